@@ -1,0 +1,55 @@
+#include "cover/config/yaml_reader.hpp"
+
+#include <algorithm>
+#include <fstream>
+
+namespace cover::config {
+
+std::string default_config_dir() {
+  if (const char* dir = std::getenv("COVER_CONFIG_DIR")) return dir;
+  return COVER_CONFIG_DIR;
+}
+
+YAML::Node load_yaml_file(const std::string& path) {
+  std::ifstream stream(path);
+  if (!stream) throw ConfigError(path + ": cannot open file");
+  try {
+    return YAML::Load(stream);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(path + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
+                      ": " + e.msg);
+  }
+}
+
+YamlReader::YamlReader(const YAML::Node& node, std::string context)
+    : node_(node), context_(std::move(context)) {
+  if (node_ && !node_.IsNull() && !node_.IsMap()) {
+    throw ConfigError(context_ + ": expected a mapping");
+  }
+}
+
+YamlReader YamlReader::child(const std::string& key) {
+  read_keys_.push_back(key);
+  YAML::Node sub = node_.IsMap() ? node_[key] : YAML::Node();
+  return YamlReader(sub ? sub : YAML::Node(YAML::NodeType::Map), context_ + "." + key);
+}
+
+bool YamlReader::has(const std::string& key) const {
+  return node_.IsMap() && static_cast<bool>(node_[key]);
+}
+
+void YamlReader::reject_unknown_keys() const {
+  if (!node_.IsMap()) return;
+  for (const auto& entry : node_) {
+    const auto key = entry.first.as<std::string>();
+    if (std::find(read_keys_.begin(), read_keys_.end(), key) == read_keys_.end()) {
+      throw ConfigError(context_ + ": unknown key '" + key + "'");
+    }
+  }
+}
+
+void check(bool condition, const std::string& context, const std::string& message) {
+  if (!condition) throw ConfigError(context + ": " + message);
+}
+
+}  // namespace cover::config

@@ -1,0 +1,14 @@
+#pragma once
+
+#include <spdlog/spdlog.h>
+
+#include <string>
+
+namespace cover::logging {
+
+// Configures the process-wide logger: `process_name` prefixes every line, `level` is one
+// of trace|debug|info|warn|error|off (or the COVER_LOG_LEVEL environment variable).
+// Logs go to stderr so stdout stays clean for JSON output of the tools.
+void init(const std::string& process_name, const std::string& level = "");
+
+}  // namespace cover::logging

@@ -1,0 +1,21 @@
+#include "cover/logging/log.hpp"
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+
+#include <cstdlib>
+
+namespace cover::logging {
+
+void init(const std::string& process_name, const std::string& level) {
+  auto logger = spdlog::stderr_color_mt(process_name);
+  logger->set_pattern("%H:%M:%S.%e %^%-5l%$ [%n] %v");
+  std::string chosen = level;
+  if (chosen.empty()) {
+    const char* env = std::getenv("COVER_LOG_LEVEL");
+    chosen = env ? env : "info";
+  }
+  logger->set_level(spdlog::level::from_str(chosen));
+  spdlog::set_default_logger(logger);
+}
+
+}  // namespace cover::logging

@@ -1,0 +1,78 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+
+#include "cover/config/yaml_reader.hpp"
+
+using cover::config::ConfigError;
+using cover::config::YamlReader;
+
+namespace {
+YAML::Node parse(const char* text) { return YAML::Load(text); }
+}  // namespace
+
+TEST(YamlReader, DefaultsStandWhenKeysAreAbsent) {
+  YamlReader reader(parse("{}"), "test");
+  double rho = 512.0;
+  reader.optional("rho", rho);
+  EXPECT_EQ(rho, 512.0);
+}
+
+TEST(YamlReader, ReadsScalarsAndFixedVectors) {
+  YamlReader reader(parse("{rho: 3.5, weights: [1, 2, 3]}"), "test");
+  double rho = 0;
+  Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+  reader.optional("rho", rho);
+  reader.optional("weights", weights);
+  EXPECT_EQ(rho, 3.5);
+  EXPECT_EQ(weights, Eigen::Vector3d(1, 2, 3));
+}
+
+TEST(YamlReader, MissingRequiredKeyIsNamed) {
+  YamlReader reader(parse("{a: 1}"), "planner.yaml:planner");
+  int pieces = 0;
+  try {
+    reader.require("pieces", pieces);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("planner.yaml:planner"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("'pieces'"), std::string::npos);
+  }
+}
+
+TEST(YamlReader, WrongTypeNamesTheKey) {
+  YamlReader reader(parse("{pieces: many}"), "ctx");
+  int pieces = 0;
+  EXPECT_THROW(reader.optional("pieces", pieces), ConfigError);
+  YamlReader vec_reader(parse("{w: [1, 2]}"), "ctx");
+  Eigen::Vector3d w;
+  EXPECT_THROW(vec_reader.optional("w", w), ConfigError);
+}
+
+TEST(YamlReader, UnknownKeyIsRejected) {
+  YamlReader reader(parse("{vmax: 1.0, vmax_ms: 2.0}"), "ctx");
+  double vmax = 0;
+  reader.optional("vmax", vmax);
+  try {
+    reader.reject_unknown_keys();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("vmax_ms"), std::string::npos);
+  }
+}
+
+TEST(YamlReader, ChildMappingsCarryTheirPath) {
+  YamlReader reader(parse("{sampc: {horizon: x}}"), "file");
+  auto child = reader.child("sampc");
+  int horizon = 0;
+  try {
+    child.optional("horizon", horizon);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("file.sampc.horizon"), std::string::npos);
+  }
+}
+
+TEST(YamlFile, MissingFileAndSyntaxErrorAreClear) {
+  EXPECT_THROW(cover::config::load_yaml_file("/nonexistent/cover.yaml"), ConfigError);
+}

@@ -1,0 +1,36 @@
+// cover-bench: the project's benchmarks, each a subcommand printing medians (JSON with --json).
+#include <iostream>
+
+#include "bench_registry.hpp"
+
+namespace {
+void print_usage() {
+  std::cerr << "usage: cover-bench <subcommand> [--json] [options]\n\nsubcommands:\n";
+  for (const auto& [name, entry] : cover::bench::registry()) {
+    std::cerr << "  " << name << std::string(name.size() < 12 ? 12 - name.size() : 1, ' ')
+              << entry.summary << "\n";
+  }
+  std::cerr << "\n'cover-bench <subcommand> --help' for its options.\n";
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+    print_usage();
+    return argc < 2 ? 2 : 0;
+  }
+  const auto& entries = cover::bench::registry();
+  const auto found = entries.find(argv[1]);
+  if (found == entries.end()) {
+    std::cerr << "cover-bench: unknown subcommand '" << argv[1] << "'\n";
+    print_usage();
+    return 2;
+  }
+  std::vector<std::string> args(argv + 2, argv + argc);
+  try {
+    return found->second.run(args);
+  } catch (const std::exception& e) {
+    std::cerr << "cover-bench " << argv[1] << ": " << e.what() << "\n";
+    return 1;
+  }
+}
