@@ -1,0 +1,34 @@
+#pragma once
+
+#include <string>
+
+#include "cover/config/yaml_reader.hpp"
+
+namespace cover::mission {
+
+// Stage-machine and mission-controller parameters (config/mission.yaml). The paper gives
+// no numbers for the stage-end test; NOTES.md suggests 0.15 m / 0.3 m/s.
+struct MissionParams {
+  // A stage ends when the UAV is within this distance of the stage transition point ...
+  double reach_tolerance_m = 0.15;
+  // ... and its speed in the reference frame is below this.
+  double speed_threshold_m_s = 0.3;
+  // Final actions (land, deliver) need a tighter test: they happen on a moving deck.
+  double action_tolerance_m = 0.05;
+  double action_speed_threshold_m_s = 0.2;
+  // A stage that has not ended after this long fails the mission (clear status, hover).
+  double initial_timeout_s = 30.0;
+  double transition_timeout_s = 40.0;
+  double final_timeout_s = 30.0;
+  // Relative state / UGV IMU older than this is stale: the controller hovers (failsafe).
+  double state_timeout_s = 0.1;
+  double imu_timeout_s = 0.1;
+  // Control period (the controller runs at 100 Hz).
+  double control_period_s = 0.01;
+
+  static MissionParams load(config::YamlReader& reader);
+  static MissionParams load_file(const std::string& path);  // reads the `mission:` section
+  void validate() const;
+};
+
+}  // namespace cover::mission

@@ -1,0 +1,57 @@
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cover/config/yaml_reader.hpp"
+
+namespace cover::mission {
+
+// What the UAV does once it reaches a process's final point (paper sec. 3.2, scenarios 2-4).
+enum class FinalAction : std::uint8_t { None = 0, Land = 1, Deliver = 2 };
+
+const char* to_string(FinalAction action);
+
+// One transition process Gi -> Gj with its three stage transition points. The field names
+// mirror the DDS type `TransitionTask`, so the YAML and the wire format stay one format.
+struct TransitionProcess {
+  int from_ugv = 0;  // Gi: reference frame of the initial stage
+  int to_ugv = 1;    // Gj: reference frame of the transition and final stages
+  Eigen::Vector3d initial_point_m{0.0, 0.0, 1.0};     // in Gi, end of the initial stage
+  Eigen::Vector3d transition_point_m{0.0, 0.0, 1.0};  // in Gj, end of the transition stage
+  Eigen::Vector3d final_point_m{0.0, 0.0, 0.3};       // in Gj, end of the final stage
+  FinalAction final_action = FinalAction::None;
+  double vmax_m_s = 1.0;   // UAV speed limit relative to the reference frame
+  double amax_m_s2 = 2.0;  // UAV acceleration limit relative to the reference frame
+
+  static TransitionProcess load(config::YamlReader& reader);
+};
+
+// A task: processes executed in order; the reference frame switches k0 -> k1 -> ... -> kn.
+struct Task {
+  std::string task_id = "task";
+  int uav_id = 0;
+  std::vector<TransitionProcess> processes;
+
+  static Task load(config::YamlReader& reader);
+
+  // Throws config::ConfigError naming the process and key when the task cannot be flown:
+  // no process, a UGV id outside [0, ugv_count), Gi == Gj, a chain break (process k+1 must
+  // start where process k ended), a non-finite or absurd point, non-positive limits, or a
+  // landing before the last process (the UAV would be disarmed for the rest of the task).
+  void validate(int ugv_count) const;
+};
+
+// Loads and validates a task from a YAML node / file. `context` names the source in errors.
+Task load_task(const YAML::Node& node, const std::string& context, int ugv_count);
+Task load_task_file(const std::string& path, int ugv_count);
+
+// Repeats the task's processes cyclically until it has `process_count` of them (Table 1's
+// cyclic G0 <-> G1 transitions are two processes repeated). Final actions are kept.
+Task repeat_processes(const Task& task, int process_count);
+
+}  // namespace cover::mission

@@ -1,0 +1,52 @@
+#include "cover/mission/mission_params.hpp"
+
+#include <cmath>
+
+namespace cover::mission {
+namespace {
+bool positive(double value) {
+  return std::isfinite(value) && value > 0.0;
+}
+}  // namespace
+
+MissionParams MissionParams::load(config::YamlReader& reader) {
+  MissionParams params;
+  reader.optional("reach_tolerance_m", params.reach_tolerance_m);
+  reader.optional("speed_threshold_m_s", params.speed_threshold_m_s);
+  reader.optional("action_tolerance_m", params.action_tolerance_m);
+  reader.optional("action_speed_threshold_m_s", params.action_speed_threshold_m_s);
+  reader.optional("initial_timeout_s", params.initial_timeout_s);
+  reader.optional("transition_timeout_s", params.transition_timeout_s);
+  reader.optional("final_timeout_s", params.final_timeout_s);
+  reader.optional("state_timeout_s", params.state_timeout_s);
+  reader.optional("imu_timeout_s", params.imu_timeout_s);
+  reader.optional("control_period_s", params.control_period_s);
+  reader.reject_unknown_keys();
+  params.validate();
+  return params;
+}
+
+MissionParams MissionParams::load_file(const std::string& path) {
+  config::YamlReader root(config::load_yaml_file(path), path);
+  config::YamlReader section = root.child("mission");
+  root.reject_unknown_keys();
+  return load(section);
+}
+
+void MissionParams::validate() const {
+  const std::string ctx = "mission";
+  config::check(positive(reach_tolerance_m), ctx + ".reach_tolerance_m", "must be > 0");
+  config::check(positive(speed_threshold_m_s), ctx + ".speed_threshold_m_s", "must be > 0");
+  config::check(positive(action_tolerance_m), ctx + ".action_tolerance_m", "must be > 0");
+  config::check(positive(action_speed_threshold_m_s), ctx + ".action_speed_threshold_m_s",
+                "must be > 0");
+  config::check(positive(initial_timeout_s), ctx + ".initial_timeout_s", "must be > 0");
+  config::check(positive(transition_timeout_s), ctx + ".transition_timeout_s", "must be > 0");
+  config::check(positive(final_timeout_s), ctx + ".final_timeout_s", "must be > 0");
+  config::check(positive(state_timeout_s), ctx + ".state_timeout_s", "must be > 0");
+  config::check(positive(imu_timeout_s), ctx + ".imu_timeout_s", "must be > 0");
+  config::check(positive(control_period_s) && control_period_s <= 0.1, ctx + ".control_period_s",
+                "must be in (0, 0.1]");
+}
+
+}  // namespace cover::mission

@@ -1,0 +1,127 @@
+#include "cover/mission/task.hpp"
+
+#include <cmath>
+
+namespace cover::mission {
+namespace {
+
+// Points farther than this from the reference UGV are almost certainly a unit or sign
+// mistake in the task (the UAV flies within a few metres of its UGVs).
+constexpr double kMaxPointDistance_m = 100.0;
+constexpr double kMaxSpeed_m_s = 20.0;
+constexpr double kMaxAcceleration_m_s2 = 30.0;
+
+FinalAction parse_final_action(const std::string& text, const std::string& context) {
+  if (text == "none") return FinalAction::None;
+  if (text == "land") return FinalAction::Land;
+  if (text == "deliver") return FinalAction::Deliver;
+  throw config::ConfigError(context + ".final_action: '" + text +
+                            "' is not one of none | land | deliver");
+}
+
+void check_point(const Eigen::Vector3d& point, const std::string& context) {
+  config::check(point.allFinite(), context, "must be finite numbers");
+  config::check(point.norm() <= kMaxPointDistance_m, context,
+                "is more than 100 m from its UGV (unit mistake?)");
+}
+
+}  // namespace
+
+const char* to_string(FinalAction action) {
+  switch (action) {
+    case FinalAction::None:
+      return "none";
+    case FinalAction::Land:
+      return "land";
+    case FinalAction::Deliver:
+      return "deliver";
+  }
+  return "unknown";
+}
+
+TransitionProcess TransitionProcess::load(config::YamlReader& reader) {
+  TransitionProcess process;
+  reader.require("from_ugv", process.from_ugv);
+  reader.require("to_ugv", process.to_ugv);
+  reader.require("initial_point_m", process.initial_point_m);
+  reader.require("transition_point_m", process.transition_point_m);
+  reader.require("final_point_m", process.final_point_m);
+  std::string action = to_string(process.final_action);
+  reader.optional("final_action", action);
+  process.final_action = parse_final_action(action, reader.context());
+  reader.optional("vmax_m_s", process.vmax_m_s);
+  reader.optional("amax_m_s2", process.amax_m_s2);
+  reader.reject_unknown_keys();
+  return process;
+}
+
+Task Task::load(config::YamlReader& reader) {
+  Task task;
+  reader.optional("task_id", task.task_id);
+  reader.optional("uav_id", task.uav_id);
+  YAML::Node list;
+  reader.require("processes", list);
+  config::check(list.IsSequence(), reader.context() + ".processes", "must be a list");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    config::YamlReader process_reader(list[i],
+                                      reader.context() + ".processes[" + std::to_string(i) + "]");
+    task.processes.push_back(TransitionProcess::load(process_reader));
+  }
+  reader.reject_unknown_keys();
+  return task;
+}
+
+void Task::validate(int ugv_count) const {
+  const std::string ctx = "task '" + task_id + "'";
+  config::check(!processes.empty(), ctx + ".processes", "is empty: nothing to fly");
+  config::check(uav_id >= 0, ctx + ".uav_id", "must be >= 0");
+  for (std::size_t i = 0; i < processes.size(); ++i) {
+    const TransitionProcess& p = processes[i];
+    const std::string pctx = ctx + ".processes[" + std::to_string(i) + "]";
+    config::check(p.from_ugv >= 0 && p.from_ugv < ugv_count, pctx + ".from_ugv",
+                  "unknown UGV " + std::to_string(p.from_ugv) + " (there are " +
+                      std::to_string(ugv_count) + ")");
+    config::check(p.to_ugv >= 0 && p.to_ugv < ugv_count, pctx + ".to_ugv",
+                  "unknown UGV " + std::to_string(p.to_ugv) + " (there are " +
+                      std::to_string(ugv_count) + ")");
+    config::check(p.from_ugv != p.to_ugv, pctx, "from_ugv and to_ugv must differ");
+    if (i > 0) {
+      config::check(p.from_ugv == processes[i - 1].to_ugv, pctx + ".from_ugv",
+                    "must equal the previous process's to_ugv (the UAV is there)");
+    }
+    check_point(p.initial_point_m, pctx + ".initial_point_m");
+    check_point(p.transition_point_m, pctx + ".transition_point_m");
+    check_point(p.final_point_m, pctx + ".final_point_m");
+    config::check(std::isfinite(p.vmax_m_s) && p.vmax_m_s > 0.0 && p.vmax_m_s <= kMaxSpeed_m_s,
+                  pctx + ".vmax_m_s", "must be in (0, 20]");
+    config::check(
+        std::isfinite(p.amax_m_s2) && p.amax_m_s2 > 0.0 && p.amax_m_s2 <= kMaxAcceleration_m_s2,
+        pctx + ".amax_m_s2", "must be in (0, 30]");
+    config::check(p.final_action != FinalAction::Land || i + 1 == processes.size(),
+                  pctx + ".final_action", "land must be the last process (the UAV disarms)");
+  }
+}
+
+Task load_task(const YAML::Node& node, const std::string& context, int ugv_count) {
+  config::YamlReader reader(node, context);
+  Task task = Task::load(reader);
+  task.validate(ugv_count);
+  return task;
+}
+
+Task load_task_file(const std::string& path, int ugv_count) {
+  return load_task(config::load_yaml_file(path), path, ugv_count);
+}
+
+Task repeat_processes(const Task& task, int process_count) {
+  Task repeated = task;
+  repeated.processes.clear();
+  if (task.processes.empty()) return repeated;
+  for (int i = 0; i < process_count; ++i) {
+    repeated.processes.push_back(
+        task.processes[static_cast<std::size_t>(i) % task.processes.size()]);
+  }
+  return repeated;
+}
+
+}  // namespace cover::mission
