@@ -10,9 +10,12 @@ enum class Stage : std::uint8_t { Initial = 0, Transition = 1, Final = 2 };
 
 inline const char* to_string(Stage stage) {
   switch (stage) {
-    case Stage::Initial: return "initial";
-    case Stage::Transition: return "transition";
-    case Stage::Final: return "final";
+    case Stage::Initial:
+      return "initial";
+    case Stage::Transition:
+      return "transition";
+    case Stage::Final:
+      return "final";
   }
   return "unknown";
 }

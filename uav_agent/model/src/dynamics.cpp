@@ -1,0 +1,216 @@
+#include "cover/model/dynamics.hpp"
+
+#include "cover/model/quaternion.hpp"
+
+namespace cover::model {
+namespace {
+
+using Eigen::Vector3d;
+
+// Shared by both views: derivative of the UAV states (p, v, q) given the UGV quantities.
+UavState uav_derivative(const UavState& x, const Input& u, const Vector3d& a, const Vector3d& omega,
+                        const Vector3d& beta) {
+  const Vector3d p = x.segment<3>(idx::kPosition);
+  const Vector3d v = x.segment<3>(idx::kVelocity);
+  const QuaternionWxyz q = x.segment<4>(idx::kQuaternion);
+  const Eigen::Vector4d body_rates(0.0, u(input_idx::kRateX), u(input_idx::kRateY),
+                                   u(input_idx::kRateZ));
+  const Eigen::Vector4d frame_rates(0.0, omega.x(), omega.y(), omega.z());
+
+  UavState dx;
+  dx.segment<3>(idx::kPosition) = v;
+  dx.segment<3>(idx::kVelocity) = -beta.cross(p) - 2.0 * omega.cross(v) -
+                                  omega.cross(omega.cross(p)) +
+                                  thrust_direction(q) * u(input_idx::kThrust) - a;
+  dx.segment<4>(idx::kQuaternion) =
+      0.5 * (right_product_matrix(body_rates) * q - left_product_matrix(frame_rates) * q);
+  return dx;
+}
+
+// Jacobians of `uav_derivative` w.r.t. the UAV states and the input.
+void uav_derivative_jacobians(const UavState& x, const Input& u, const Vector3d& omega,
+                              const Vector3d& beta, UavStateMatrix& df_dx, UavInputMatrix& df_du) {
+  const QuaternionWxyz q = x.segment<4>(idx::kQuaternion);
+  const Eigen::Matrix3d omega_skew = skew(omega);
+  const Eigen::Vector4d body_rates(0.0, u(1), u(2), u(3));
+  const Eigen::Vector4d frame_rates(0.0, omega.x(), omega.y(), omega.z());
+
+  df_dx.setZero();
+  df_dx.block<3, 3>(idx::kPosition, idx::kVelocity).setIdentity();
+  df_dx.block<3, 3>(idx::kVelocity, idx::kPosition) = -skew(beta) - omega_skew * omega_skew;
+  df_dx.block<3, 3>(idx::kVelocity, idx::kVelocity) = -2.0 * omega_skew;
+  df_dx.block<3, 4>(idx::kVelocity, idx::kQuaternion) =
+      thrust_direction_jacobian(q) * u(input_idx::kThrust);
+  df_dx.block<4, 4>(idx::kQuaternion, idx::kQuaternion) =
+      0.5 * (right_product_matrix(body_rates) - left_product_matrix(frame_rates));
+
+  df_du.setZero();
+  df_du.block<3, 1>(idx::kVelocity, input_idx::kThrust) = thrust_direction(q);
+  // q (x) [0, w] is linear in w: the last three columns of L(q).
+  df_du.block<4, 3>(idx::kQuaternion, input_idx::kRateX) =
+      0.5 * left_product_matrix(q).rightCols<3>();
+}
+
+// d(q / |q|) / dq.
+Eigen::Matrix4d normalisation_jacobian(const Eigen::Vector4d& q) {
+  const double norm = q.norm();
+  const Eigen::Vector4d unit = q / norm;
+  return (Eigen::Matrix4d::Identity() - unit * unit.transpose()) / norm;
+}
+
+// Classical RK4 with its forward sensitivities, for any state size. `Model` provides
+//   Vector derivative(const Vector& x, const Input& u, double t);
+//   void jacobians(const Vector& x, const Input& u, double t, Matrix& dfdx, InputMatrix& dfdu);
+// The sensitivity of each stage point w.r.t. z = (x, u) is propagated by the chain rule,
+// which gives the exact Jacobian of the discrete map (not a linearisation of the ODE).
+template <int NX, typename Model>
+Eigen::Matrix<double, NX, 1> rk4_with_sensitivities(
+    const Model& model, const Eigen::Matrix<double, NX, 1>& x, const Input& u, double h,
+    Eigen::Matrix<double, NX, NX>* dx_next_dx, Eigen::Matrix<double, NX, kInputSize>* dx_next_du) {
+  using Vector = Eigen::Matrix<double, NX, 1>;
+  using Sens = Eigen::Matrix<double, NX, NX + kInputSize>;
+  using Jac = Eigen::Matrix<double, NX, NX>;
+  using JacU = Eigen::Matrix<double, NX, kInputSize>;
+  const bool want_jacobians = dx_next_dx != nullptr;
+
+  const double offsets[4] = {0.0, 0.5 * h, 0.5 * h, h};
+  const double weights[4] = {h / 6.0, h / 3.0, h / 3.0, h / 6.0};
+  Vector stage_point = x;
+  Vector next = x;
+  Sens stage_sens = Sens::Zero();
+  stage_sens.template leftCols<NX>().setIdentity();
+  Sens next_sens = stage_sens;
+  Jac dfdx;
+  JacU dfdu;
+  for (int i = 0; i < 4; ++i) {
+    const Vector k = model.derivative(stage_point, u, offsets[i]);
+    next += weights[i] * k;
+    Sens k_sens;
+    if (want_jacobians) {
+      model.jacobians(stage_point, u, offsets[i], dfdx, dfdu);
+      k_sens.noalias() = dfdx * stage_sens;
+      k_sens.template rightCols<kInputSize>() += dfdu;
+      next_sens += weights[i] * k_sens;
+    }
+    if (i < 3) {
+      stage_point = x + offsets[i + 1] * k;
+      if (want_jacobians) {
+        stage_sens.setZero();
+        stage_sens.template leftCols<NX>().setIdentity();
+        stage_sens += offsets[i + 1] * k_sens;
+      }
+    }
+  }
+
+  // Renormalise the quaternion (it drifts off the unit sphere under RK4).
+  const Eigen::Vector4d q = next.template segment<4>(idx::kQuaternion);
+  if (want_jacobians) {
+    const Eigen::Matrix4d dn = normalisation_jacobian(q);
+    const Eigen::Matrix<double, 4, NX + kInputSize> rows =
+        next_sens.template middleRows<4>(idx::kQuaternion);
+    next_sens.template middleRows<4>(idx::kQuaternion).noalias() = dn * rows;
+    *dx_next_dx = next_sens.template leftCols<NX>();
+    *dx_next_du = next_sens.template rightCols<kInputSize>();
+  }
+  next.template segment<4>(idx::kQuaternion) = q / q.norm();
+  return next;
+}
+
+// The full model is autonomous: time offsets are ignored.
+struct FullModel {
+  State derivative(const State& x, const Input& u, double) const { return dynamics(x, u); }
+  void jacobians(const State& x, const Input& u, double, StateMatrix& dfdx,
+                 StateInputMatrix& dfdu) const {
+    dynamics_jacobians(x, u, dfdx, dfdu);
+  }
+};
+
+// The UAV model sees Omega(t) = Omega0 + beta t inside the step.
+struct UavModel {
+  const UgvMotion& ugv;
+  UavState derivative(const UavState& x, const Input& u, double t) const {
+    return uav_derivative(x, u, ugv.specific_force_m_s2,
+                          ugv.angular_velocity_rad_s + t * ugv.angular_acceleration_rad_s2,
+                          ugv.angular_acceleration_rad_s2);
+  }
+  void jacobians(const UavState& x, const Input& u, double t, UavStateMatrix& dfdx,
+                 UavInputMatrix& dfdu) const {
+    uav_derivative_jacobians(x, u, ugv.angular_velocity_rad_s + t * ugv.angular_acceleration_rad_s2,
+                             ugv.angular_acceleration_rad_s2, dfdx, dfdu);
+  }
+};
+
+}  // namespace
+
+State dynamics(const State& x, const Input& u) {
+  const UgvMotion ugv = ugv_part(x);
+  State dx = State::Zero();
+  dx.head<kUavStateSize>() =
+      uav_derivative(uav_part(x), u, ugv.specific_force_m_s2, ugv.angular_velocity_rad_s,
+                     ugv.angular_acceleration_rad_s2);
+  dx.segment<3>(idx::kAngularVelocity) = ugv.angular_acceleration_rad_s2;
+  return dx;
+}
+
+void dynamics_jacobians(const State& x, const Input& u, StateMatrix& df_dx,
+                        StateInputMatrix& df_du) {
+  const Vector3d p = x.segment<3>(idx::kPosition);
+  const Vector3d v = x.segment<3>(idx::kVelocity);
+  const QuaternionWxyz q = x.segment<4>(idx::kQuaternion);
+  const Vector3d omega = x.segment<3>(idx::kAngularVelocity);
+  const Vector3d beta = x.segment<3>(idx::kAngularAccel);
+
+  UavStateMatrix uav_dx;
+  UavInputMatrix uav_du;
+  uav_derivative_jacobians(uav_part(x), u, omega, beta, uav_dx, uav_du);
+  df_dx.setZero();
+  df_dx.topLeftCorner<kUavStateSize, kUavStateSize>() = uav_dx;
+  df_du.setZero();
+  df_du.topRows<kUavStateSize>() = uav_du;
+
+  // v' w.r.t. the UGV quantities.
+  df_dx.block<3, 3>(idx::kVelocity, idx::kSpecificForce) = -Eigen::Matrix3d::Identity();
+  // -2 Omega x v - Omega x (Omega x p) = 2 v x Omega - (Omega (Omega.p) - p |Omega|^2).
+  df_dx.block<3, 3>(idx::kVelocity, idx::kAngularVelocity) =
+      2.0 * skew(v) - (omega * p.transpose() + omega.dot(p) * Eigen::Matrix3d::Identity() -
+                       2.0 * p * omega.transpose());
+  df_dx.block<3, 3>(idx::kVelocity, idx::kAngularAccel) = skew(p);  // -beta x p = p x beta
+  // -1/2 [0, Omega] (x) q = -1/2 R(q) [0, Omega].
+  df_dx.block<4, 3>(idx::kQuaternion, idx::kAngularVelocity) =
+      -0.5 * right_product_matrix(q).rightCols<3>();
+  df_dx.block<3, 3>(idx::kAngularVelocity, idx::kAngularAccel).setIdentity();
+}
+
+State rk4_step(const State& x, const Input& u, double dt_s) {
+  return rk4_with_sensitivities<kStateSize>(FullModel{}, x, u, dt_s, nullptr, nullptr);
+}
+
+State rk4_step(const State& x, const Input& u, double dt_s, StateMatrix& dx_next_dx,
+               StateInputMatrix& dx_next_du) {
+  return rk4_with_sensitivities<kStateSize>(FullModel{}, x, u, dt_s, &dx_next_dx, &dx_next_du);
+}
+
+UavState uav_dynamics(const UavState& x, const Input& u, const UgvMotion& ugv) {
+  return UavModel{ugv}.derivative(x, u, 0.0);
+}
+
+void uav_dynamics_jacobians(const UavState& x, const Input& u, const UgvMotion& ugv,
+                            UavStateMatrix& df_dx, UavInputMatrix& df_du) {
+  UavModel{ugv}.jacobians(x, u, 0.0, df_dx, df_du);
+}
+
+UavState uav_rk4_step(const UavState& x, const Input& u, const UgvMotion& ugv, double dt_s) {
+  return rk4_with_sensitivities<kUavStateSize>(UavModel{ugv}, x, u, dt_s, nullptr, nullptr);
+}
+
+UavState uav_rk4_step(const UavState& x, const Input& u, const UgvMotion& ugv, double dt_s,
+                      UavStateMatrix& dx_next_dx, UavInputMatrix& dx_next_du) {
+  return rk4_with_sensitivities<kUavStateSize>(UavModel{ugv}, x, u, dt_s, &dx_next_dx, &dx_next_du);
+}
+
+Eigen::Vector3d translational_velocity(const UavState& x, const UgvMotion& ugv) {
+  return x.segment<3>(idx::kVelocity) +
+         ugv.angular_velocity_rad_s.cross(x.segment<3>(idx::kPosition));
+}
+
+}  // namespace cover::model
