@@ -1,0 +1,66 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <random>
+
+#include "cover/config/yaml_reader.hpp"
+#include "cover/sim/world_state.hpp"
+#include "cover/ugv/imu_filter.hpp"
+
+namespace cover::sim {
+
+// Each UGV's IMU: specific force (gravity included) and gyro in G_k, white noise plus a
+// constant bias drawn once per UGV from the seed (a turned-on MEMS IMU's bias).
+struct ImuSensorParams {
+  double rate_hz = 200.0;  // must divide the physics rate
+  double specific_force_noise_m_s2 = 0.05;
+  double angular_velocity_noise_rad_s = 0.005;
+  double specific_force_bias_sigma_m_s2 = 0.02;
+  double angular_velocity_bias_sigma_rad_s = 0.002;
+
+  static ImuSensorParams load(cover::config::YamlReader& reader);
+  void validate(const std::string& context = "imu") const;
+};
+
+// Noise-free IMU reading of a planar UGV: R^T (a_world + g e_z) and [0, 0, yaw rate].
+ugv::ImuSample true_imu_sample(const UgvState& ugv, double gravity_m_s2, double stamp_s);
+
+struct ImuReading {
+  ugv::ImuSample raw;         // what the IMU chip outputs
+  ugv::FilteredImu filtered;  // what the UGV agent publishes (a, Omega, beta)
+  ugv::ImuFilterStatus status = ugv::ImuFilterStatus::Started;
+};
+
+class ImuSensor {
+ public:
+  ImuSensor(const ImuSensorParams& params, const ugv::ImuFilterParams& filter_params,
+            double physics_rate_hz, int ugv_count, double gravity_m_s2, std::uint64_t seed);
+
+  // Call after every physics step; samples every UGV's IMU at the sensor rate.
+  void update(const WorldState& world);
+
+  bool has_reading() const { return has_reading_; }
+  const ImuReading& latest(int ugv_index) const { return latest_[ugv_index]; }
+
+ private:
+  struct UgvImu {
+    std::mt19937_64 rng;
+    std::normal_distribution<double> unit_normal{0.0, 1.0};
+    Eigen::Vector3d specific_force_bias_m_s2 = Eigen::Vector3d::Zero();
+    Eigen::Vector3d angular_velocity_bias_rad_s = Eigen::Vector3d::Zero();
+    ugv::ImuFilter filter;
+  };
+  static Eigen::Vector3d white_noise(UgvImu& imu, double sigma);
+
+  ImuSensorParams params_;
+  std::uint64_t sample_period_steps_;
+  int ugv_count_;
+  double gravity_m_s2_;
+  std::array<UgvImu, kMaxUgvs> imus_;
+  std::array<ImuReading, kMaxUgvs> latest_{};
+  bool has_reading_ = false;
+};
+
+}  // namespace cover::sim

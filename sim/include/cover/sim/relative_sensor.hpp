@@ -1,0 +1,72 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <random>
+
+#include "cover/config/yaml_reader.hpp"
+#include "cover/sim/world_state.hpp"
+
+namespace cover::sim {
+
+// Motion-capture-like relative state of the UAV in every UGV frame (the paper used
+// NOKOV mocap indoors): small white noise, a fixed latency, a fixed rate.
+struct RelativeSensorParams {
+  double rate_hz = 100.0;             // must divide the physics rate
+  double latency_s = 0.01;            // quantised to the physics step
+  double position_noise_m = 0.001;    // 1-sigma, per axis
+  double velocity_noise_m_s = 0.01;   // 1-sigma, per axis
+  double attitude_noise_rad = 0.003;  // 1-sigma, per axis of a small rotation
+
+  static RelativeSensorParams load(cover::config::YamlReader& reader);
+  void validate(const std::string& context = "relative_sensor") const;
+};
+
+// The UAV state in G_k (NOTES.md): p = R_k^T (p_uav - p_ugv),
+// v = R_k^T (v_uav - v_ugv) - Omega x p (d/dt of p seen in G_k), q = q_k^-1 q_uav.
+struct RelativeState {
+  double stamp_s = 0.0;  // the instant the state describes (not when it arrived)
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();
+};
+
+RelativeState true_relative_state(const QuadrotorState& uav, const UgvState& ugv, double stamp_s);
+
+class RelativeSensor {
+ public:
+  // `params` must have passed validate(); the rates were checked by WorldParams.
+  RelativeSensor(const RelativeSensorParams& params, double physics_rate_hz, int ugv_count,
+                 std::uint64_t seed);
+
+  // Call after every physics step: samples at the sensor rate, releases after the latency.
+  void update(const WorldState& world);
+
+  bool has_measurement() const { return has_measurement_; }
+  // The newest measurement of the UAV in G_k whose latency has elapsed.
+  const RelativeState& latest(int ugv_index) const { return latest_[ugv_index]; }
+  double latency_s() const { return latency_steps_ * physics_dt_s_; }
+
+ private:
+  struct Pending {
+    std::uint64_t release_step;
+    std::array<RelativeState, kMaxUgvs> states;
+  };
+  RelativeState add_noise(const RelativeState& truth);
+
+  RelativeSensorParams params_;
+  double physics_dt_s_;
+  std::uint64_t sample_period_steps_;
+  std::uint64_t latency_steps_;
+  int ugv_count_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> unit_normal_{0.0, 1.0};
+  std::deque<Pending> pending_;
+  std::array<RelativeState, kMaxUgvs> latest_{};
+  bool has_measurement_ = false;
+};
+
+}  // namespace cover::sim

@@ -1,0 +1,90 @@
+#pragma once
+
+#include <cstdint>
+
+#include "cover/sim/imu_sensor.hpp"
+#include "cover/sim/quadrotor.hpp"
+#include "cover/sim/relative_sensor.hpp"
+#include "cover/sim/ugv_motion_pattern.hpp"
+#include "cover/sim/world_params.hpp"
+#include "cover/sim/world_state.hpp"
+
+namespace cover::sim {
+
+enum class StepStatus : std::uint8_t {
+  Ok,
+  CommandRejected,  // non-finite command: the plant kept the last accepted one
+};
+const char* to_string(StepStatus status);
+
+// The world-frame simulation: N UGVs on analytic patterns, one quadrotor plant with
+// ground/deck contact, an optional payload, and the sensors the UAV and UGV agents see.
+// Fixed-step (RK4 at physics_rate_hz), seeded and deterministic: two Worlds built from
+// the same params and fed the same commands produce bit-identical states.
+//
+// Contact model: the ground (z = 0) and each UGV's deck (a rectangle at deck height,
+// moving with the UGV) are rigid and perfectly inelastic. A UAV that touches one while its
+// thrust cannot lift it (T / m <= g) sits on it: levelled, carried along at its contact
+// point (full friction), yaw carried with the surface. It lifts off as soon as T / m > g.
+// Side impacts with a UGV body are not modelled: a UAV entering a deck's footprint below
+// the deck top is put on top of it.
+class World {
+ public:
+  // Validates `params` (throws cover::config::ConfigError at construction, never later).
+  explicit World(const WorldParams& params);
+
+  // One physics step of 1 / physics_rate_hz, holding `command` (zero-order hold).
+  StepStatus step(const QuadrotorCommand& command);
+  // Whole steps covering `duration_s`; returns CommandRejected if the command was.
+  StepStatus advance(const QuadrotorCommand& command, double duration_s);
+
+  // Opens the airdrop: records the release point (world and every G_k) and lets the
+  // payload fall. Returns false when no payload is attached.
+  bool release_payload();
+
+  const WorldState& state() const { return state_; }
+  const WorldParams& params() const { return params_; }
+  double physics_dt_s() const { return dt_s_; }
+  int ugv_count() const { return state_.ugv_count; }
+
+  // Ground truth for metrics and tests (the controller must use the sensors instead).
+  RelativeState true_relative_state(int ugv_index) const;
+  // The F that hovers the true (heavier) UAV, in the command's unit.
+  double hover_thrust_command_m_s2() const;
+
+  const RelativeSensor& relative_sensor() const { return relative_sensor_; }
+  const ImuSensor& imu_sensor() const { return imu_sensor_; }
+  const Quadrotor& quadrotor() const { return quadrotor_; }
+
+ private:
+  struct SurfaceHit {
+    bool hit = false;
+    std::int32_t surface = -1;  // -1 ground, k deck of UGV k
+  };
+
+  void update_ugvs();
+  void update_uav(const QuadrotorCommand& command);
+  void update_payload();
+  void update_sensors();
+
+  double extra_mass_kg() const;
+  SurfaceHit penetrated_surface(const Eigen::Vector3d& point_m) const;
+  double surface_height_m(std::int32_t surface) const;
+  double surface_yaw_rad(std::int32_t surface) const;
+  Eigen::Vector3d surface_point_velocity(std::int32_t surface, const Eigen::Vector3d& point) const;
+  Eigen::Vector3d surface_to_world(std::int32_t surface, const Eigen::Vector3d& offset) const;
+  Eigen::Vector3d world_to_surface(std::int32_t surface, const Eigen::Vector3d& point) const;
+  void start_resting(ContactState& contact, std::int32_t surface, const Eigen::Vector3d& point_m,
+                     double yaw_rad) const;
+  void rest_uav_on_surface();
+
+  WorldParams params_;
+  double dt_s_;
+  Quadrotor quadrotor_;
+  std::vector<UgvMotionPattern> patterns_;
+  RelativeSensor relative_sensor_;
+  ImuSensor imu_sensor_;
+  WorldState state_;
+};
+
+}  // namespace cover::sim

@@ -1,0 +1,278 @@
+#include "cover/sim/world.hpp"
+
+#include <cmath>
+
+#include "cover/sim/seeding.hpp"
+
+namespace cover::sim {
+
+namespace {
+
+// Seed streams of the world's random sources (IMU streams use 0..kMaxUgvs-1 internally).
+constexpr std::uint64_t kRelativeSensorStream = 100;
+constexpr std::uint64_t kImuStream = 200;
+
+const WorldParams& validated(const WorldParams& params) {
+  params.validate();
+  return params;
+}
+
+double yaw_of(const Eigen::Quaterniond& attitude) {
+  const Eigen::Matrix3d r = attitude.toRotationMatrix();
+  return std::atan2(r(1, 0), r(0, 0));
+}
+
+bool is_finite(const QuadrotorCommand& command) {
+  return std::isfinite(command.thrust_m_s2) && command.body_rate_rad_s.eigen().allFinite();
+}
+
+}  // namespace
+
+const char* to_string(StepStatus status) {
+  switch (status) {
+    case StepStatus::Ok:
+      return "ok";
+    case StepStatus::CommandRejected:
+      return "command rejected (non-finite): holding the last one";
+  }
+  return "unknown";
+}
+
+World::World(const WorldParams& params)
+    : params_(validated(params)),
+      dt_s_(1.0 / params.physics_rate_hz),
+      quadrotor_(params.uav),
+      relative_sensor_(params.relative_sensor, params.physics_rate_hz,
+                       static_cast<int>(params.ugvs.size()),
+                       derive_seed(params.seed, kRelativeSensorStream)),
+      imu_sensor_(params.imu, params.imu_filter, params.physics_rate_hz,
+                  static_cast<int>(params.ugvs.size()), params.gravity_m_s2,
+                  derive_seed(params.seed, kImuStream)) {
+  for (const auto& ugv : params_.ugvs) patterns_.emplace_back(ugv.pattern);
+  state_.ugv_count = static_cast<std::int32_t>(params_.ugvs.size());
+  update_ugvs();
+
+  const auto& initial = params_.uav_initial;
+  if (initial.start_on_ugv >= 0) {
+    const UgvState& ugv = state_.ugvs[initial.start_on_ugv];
+    state_.uav.position_m = ugv.position_m;
+    start_resting(state_.uav_contact, initial.start_on_ugv, ugv.position_m.eigen(),
+                  ugv.yaw_rad + initial.yaw_rad);
+    rest_uav_on_surface();
+  } else {
+    state_.uav.position_m = Vec3(initial.position_m);
+    state_.uav.attitude = Quat(yaw_quaternion(initial.yaw_rad));
+    if (initial.position_m.z() <= 0.0) {
+      start_resting(state_.uav_contact, -1, initial.position_m, initial.yaw_rad);
+      rest_uav_on_surface();
+    }
+  }
+  state_.payload.attached = params_.payload.attached_at_start;
+  if (!state_.uav_contact.resting) {
+    // Starting in mid-air is a test/benchmark convenience: start spun up to hover so that
+    // the hover command holds the UAV still from the first step.
+    state_.uav.thrust_n = (params_.uav.mass_true_kg + extra_mass_kg()) * params_.gravity_m_s2;
+  }
+  update_payload();
+  update_sensors();
+}
+
+StepStatus World::step(const QuadrotorCommand& command) {
+  StepStatus status = StepStatus::Ok;
+  if (is_finite(command)) {
+    state_.last_command = command;
+  } else {
+    status = StepStatus::CommandRejected;
+  }
+  ++state_.step_index;
+  // time from the step count, not by summing dt: no drift over long missions
+  state_.time_s = static_cast<double>(state_.step_index) * dt_s_;
+  update_ugvs();
+  update_uav(state_.last_command);
+  update_payload();
+  update_sensors();
+  return status;
+}
+
+StepStatus World::advance(const QuadrotorCommand& command, double duration_s) {
+  StepStatus status = StepStatus::Ok;
+  if (!std::isfinite(duration_s) || duration_s <= 0.0) return status;
+  const auto steps = static_cast<std::uint64_t>(std::llround(duration_s / dt_s_));
+  for (std::uint64_t i = 0; i < steps; ++i) {
+    if (step(command) != StepStatus::Ok) status = StepStatus::CommandRejected;
+  }
+  return status;
+}
+
+bool World::release_payload() {
+  PayloadState& payload = state_.payload;
+  if (!payload.attached) return false;
+  payload.attached = false;
+  payload.released = true;
+  payload.release_time_s = state_.time_s;
+  payload.release_position_m = state_.uav.position_m;
+  for (int k = 0; k < state_.ugv_count; ++k) {
+    payload.release_position_in_ugv_m[k] =
+        Vec3(state_.ugvs[k].to_body(state_.uav.position_m.eigen()));
+  }
+  payload.position_m = state_.uav.position_m;
+  payload.velocity_m_s = state_.uav.velocity_m_s;
+  return true;
+}
+
+RelativeState World::true_relative_state(int ugv_index) const {
+  return cover::sim::true_relative_state(state_.uav, state_.ugvs[ugv_index], state_.time_s);
+}
+
+double World::hover_thrust_command_m_s2() const {
+  return quadrotor_.hover_thrust_command_m_s2(extra_mass_kg(), params_.gravity_m_s2);
+}
+
+double World::extra_mass_kg() const {
+  return state_.payload.attached ? params_.payload.mass_kg : 0.0;
+}
+
+void World::update_ugvs() {
+  for (int k = 0; k < state_.ugv_count; ++k) {
+    const UgvKinematics kin = patterns_[k].at(state_.time_s);
+    UgvState& ugv = state_.ugvs[k];
+    ugv.position_m = Vec3(kin.position_m.x(), kin.position_m.y(), params_.ugvs[k].deck_height_m);
+    ugv.velocity_m_s = Vec3(kin.velocity_m_s.x(), kin.velocity_m_s.y(), 0.0);
+    ugv.acceleration_m_s2 = Vec3(kin.acceleration_m_s2.x(), kin.acceleration_m_s2.y(), 0.0);
+    ugv.yaw_rad = kin.yaw_rad;
+    ugv.yaw_rate_rad_s = kin.yaw_rate_rad_s;
+    ugv.yaw_acceleration_rad_s2 = kin.yaw_acceleration_rad_s2;
+  }
+}
+
+World::SurfaceHit World::penetrated_surface(const Eigen::Vector3d& point_m) const {
+  for (int k = 0; k < state_.ugv_count; ++k) {
+    const Eigen::Vector3d local = state_.ugvs[k].to_body(point_m);
+    const UgvParams& ugv = params_.ugvs[k];
+    if (local.z() < 0.0 && std::abs(local.x()) <= ugv.deck_half_length_m &&
+        std::abs(local.y()) <= ugv.deck_half_width_m) {
+      return {true, k};
+    }
+  }
+  if (point_m.z() < 0.0) return {true, -1};
+  return {};
+}
+
+double World::surface_height_m(std::int32_t surface) const {
+  return surface < 0 ? 0.0 : state_.ugvs[surface].position_m.z;
+}
+
+double World::surface_yaw_rad(std::int32_t surface) const {
+  return surface < 0 ? 0.0 : state_.ugvs[surface].yaw_rad;
+}
+
+Eigen::Vector3d World::surface_point_velocity(std::int32_t surface,
+                                              const Eigen::Vector3d& point) const {
+  return surface < 0 ? Eigen::Vector3d::Zero() : state_.ugvs[surface].point_velocity_m_s(point);
+}
+
+Eigen::Vector3d World::surface_to_world(std::int32_t surface, const Eigen::Vector3d& offset) const {
+  return surface < 0 ? offset : state_.ugvs[surface].to_world(offset);
+}
+
+Eigen::Vector3d World::world_to_surface(std::int32_t surface, const Eigen::Vector3d& point) const {
+  return surface < 0 ? point : state_.ugvs[surface].to_body(point);
+}
+
+void World::start_resting(ContactState& contact, std::int32_t surface,
+                          const Eigen::Vector3d& point_m, double yaw_rad) const {
+  Eigen::Vector3d on_top = point_m;
+  on_top.z() = surface_height_m(surface);
+  contact.resting = true;
+  contact.surface = surface;
+  contact.offset_in_surface_m = Vec3(world_to_surface(surface, on_top));
+  contact.yaw_offset_rad = yaw_rad - surface_yaw_rad(surface);
+}
+
+// A resting UAV is carried by its surface: pose and velocity are those of its contact
+// point, levelled (the landing gear settles it flat), rate loop at the surface's yaw rate.
+void World::rest_uav_on_surface() {
+  const ContactState& contact = state_.uav_contact;
+  QuadrotorState& uav = state_.uav;
+  const Eigen::Vector3d position =
+      surface_to_world(contact.surface, contact.offset_in_surface_m.eigen());
+  const double surface_yaw_rate =
+      contact.surface < 0 ? 0.0 : state_.ugvs[contact.surface].yaw_rate_rad_s;
+  uav.position_m = Vec3(position);
+  uav.velocity_m_s = Vec3(surface_point_velocity(contact.surface, position));
+  uav.attitude = Quat(yaw_quaternion(surface_yaw_rad(contact.surface) + contact.yaw_offset_rad));
+  uav.body_rate_rad_s = Vec3(0.0, 0.0, surface_yaw_rate);
+}
+
+void World::update_uav(const QuadrotorCommand& command) {
+  QuadrotorState& uav = state_.uav;
+  ContactState& contact = state_.uav_contact;
+  const double mass_kg = params_.uav.mass_true_kg + extra_mass_kg();
+  quadrotor_.step(uav, command, extra_mass_kg(), params_.gravity_m_s2, dt_s_);
+
+  auto can_lift_off = [&] {
+    const double vertical_thrust =
+        uav.attitude.eigen().toRotationMatrix()(2, 2) * uav.thrust_n / mass_kg;
+    return vertical_thrust > params_.gravity_m_s2;
+  };
+
+  if (contact.resting) {
+    if (!can_lift_off()) {
+      rest_uav_on_surface();
+      return;
+    }
+    contact.resting = false;  // thrust exceeds weight: leave the surface
+  }
+
+  const Eigen::Vector3d position = uav.position_m.eigen();
+  const SurfaceHit hit = penetrated_surface(position);
+  if (!hit.hit) return;
+  if (!can_lift_off()) {
+    start_resting(contact, hit.surface, position, yaw_of(uav.attitude.eigen()));
+    rest_uav_on_surface();
+    return;
+  }
+  // Touching while thrusting upward (e.g. just after lift-off): stay on top, never sink.
+  uav.position_m.z = surface_height_m(hit.surface);
+  const double surface_vz = surface_point_velocity(hit.surface, position).z();
+  uav.velocity_m_s.z = std::max(uav.velocity_m_s.z, surface_vz);
+}
+
+void World::update_payload() {
+  PayloadState& payload = state_.payload;
+  if (payload.attached || !payload.released) {
+    // Hanging under the UAV (or never carried): it moves with the UAV.
+    payload.position_m = state_.uav.position_m;
+    payload.velocity_m_s = state_.uav.velocity_m_s;
+    return;
+  }
+  ContactState& contact = payload.contact;
+  if (contact.resting) {
+    const Eigen::Vector3d position =
+        surface_to_world(contact.surface, contact.offset_in_surface_m.eigen());
+    payload.position_m = Vec3(position);
+    payload.velocity_m_s = Vec3(surface_point_velocity(contact.surface, position));
+    return;
+  }
+  // Free fall (a dense parcel: drag neglected); exact for constant gravity.
+  const double g = params_.gravity_m_s2;
+  Eigen::Vector3d position = payload.position_m.eigen();
+  Eigen::Vector3d velocity = payload.velocity_m_s.eigen();
+  position += velocity * dt_s_ - Eigen::Vector3d(0, 0, 0.5 * g * dt_s_ * dt_s_);
+  velocity.z() -= g * dt_s_;
+  payload.position_m = Vec3(position);
+  payload.velocity_m_s = Vec3(velocity);
+  const SurfaceHit hit = penetrated_surface(position);
+  if (hit.hit) {
+    start_resting(contact, hit.surface, position, 0.0);
+    payload.position_m = Vec3(surface_to_world(hit.surface, contact.offset_in_surface_m.eigen()));
+    payload.velocity_m_s = Vec3(surface_point_velocity(hit.surface, payload.position_m.eigen()));
+  }
+}
+
+void World::update_sensors() {
+  relative_sensor_.update(state_);
+  imu_sensor_.update(state_);
+}
+
+}  // namespace cover::sim

@@ -1,0 +1,93 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "cover/config/yaml_reader.hpp"
+
+namespace cover::ugv {
+
+// Cut-offs and sanity limits of the UGV IMU pre-processing. The paper applies "a
+// first-order low-pass filter" to the UGV IMU without giving the cut-off; these are
+// our choices (documented in config/sim/world_default.yaml, section imu_filter).
+struct ImuFilterParams {
+  // Low-pass cut-off for the specific force (accelerometer), Hz. 15 Hz keeps the lag
+  // (~10 ms) well below the 100 Hz MPC period while removing motor/ground vibration.
+  double specific_force_cutoff_hz = 15.0;
+  // Low-pass cut-off for the angular velocity (gyro), Hz.
+  double angular_velocity_cutoff_hz = 15.0;
+  // Second low-pass on the differentiated (filtered) gyro, Hz: differentiation
+  // amplifies noise by 1/dt, so the angular acceleration needs a lower cut-off.
+  double angular_acceleration_cutoff_hz = 5.0;
+  // A gap between samples longer than this restarts the filter from the new sample:
+  // blending across a long outage would output stale dynamics.
+  double max_sample_gap_s = 0.1;
+  // Samples beyond these magnitudes are rejected as sensor faults (16 g, 2000 deg/s:
+  // the full-scale ranges of common MEMS IMUs).
+  double max_specific_force_m_s2 = 160.0;
+  double max_angular_velocity_rad_s = 35.0;
+
+  static ImuFilterParams load(cover::config::YamlReader& reader);
+  // Throws cover::config::ConfigError naming the bad key; `context` prefixes the message.
+  void validate(const std::string& context = "imu_filter") const;
+};
+
+// One raw IMU sample in the UGV body frame (FLU). Specific force includes gravity:
+// a UGV at rest reads [0, 0, +9.81].
+struct ImuSample {
+  double stamp_s = 0.0;
+  Eigen::Vector3d specific_force_m_s2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();
+};
+
+// What the controller consumes: the filtered a, Omega and the estimated beta (all in G_k).
+struct FilteredImu {
+  double stamp_s = 0.0;
+  Eigen::Vector3d specific_force_m_s2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_acceleration_rad_s2 = Eigen::Vector3d::Zero();
+};
+
+enum class ImuFilterStatus : std::uint8_t {
+  Updated,             // sample accepted and blended in
+  Started,             // first sample: outputs seeded with it, angular acceleration zero
+  RestartedAfterGap,   // gap > max_sample_gap_s: restarted from this sample
+  RejectedNonFinite,   // NaN/Inf in the sample or its stamp: last output kept
+  RejectedOutOfRange,  // magnitude beyond the sensor's full scale: last output kept
+  RejectedStaleStamp,  // stamp not after the previous one (dt <= 0): last output kept
+};
+
+const char* to_string(ImuFilterStatus status);
+inline bool accepted(ImuFilterStatus s) {
+  return s == ImuFilterStatus::Updated || s == ImuFilterStatus::Started ||
+         s == ImuFilterStatus::RestartedAfterGap;
+}
+
+// First-order low-pass on specific force and gyro, plus a filtered derivative of the
+// filtered gyro for the angular acceleration. Discretised exactly for the measured dt
+// (alpha = 1 - exp(-dt / tau)), so jittery sample times do not change the cut-off.
+// Never throws; bad samples are rejected with a status and the last good output stays.
+class ImuFilter {
+ public:
+  explicit ImuFilter(const ImuFilterParams& params = {});
+
+  ImuFilterStatus update(const ImuSample& sample);
+  void reset();
+
+  bool has_output() const { return started_; }
+  const FilteredImu& output() const { return output_; }
+  const ImuFilterParams& params() const { return params_; }
+
+ private:
+  bool is_plausible(const ImuSample& sample) const;
+  void start_from(const ImuSample& sample);
+
+  ImuFilterParams params_;
+  double specific_force_tau_s_;
+  double angular_velocity_tau_s_;
+  double angular_acceleration_tau_s_;
+  bool started_ = false;
+  FilteredImu output_;
+};
+
+}  // namespace cover::ugv
