@@ -1,0 +1,54 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+#include "cover/planner/plan_status.hpp"
+#include "cover/planner/planner_params.hpp"
+#include "cover/planner/stage_problem.hpp"
+#include "cover/planner/trajectory.hpp"
+
+namespace cover::planner {
+
+struct PlanResult {
+  PlanStatus status = PlanStatus::Failed;
+  std::string reason;
+  // Always finite and usable as a reference, whatever the status (see PlanStatus).
+  Trajectory trajectory;
+  // The v0(s) actually used (after eq. 23 at the transition stage).
+  Eigen::Vector3d initial_velocity_m_s = Eigen::Vector3d::Zero();
+  // Cost evaluations (value + gradient) spent by L-BFGS; NLopt reports no iteration count.
+  int iterations = 0;
+  double solve_ms = 0.0;
+};
+
+// Plans one stage (paper sec. 4.2): MINCO minimum jerk with free waypoints and durations,
+// cost integral ||jerk||^2 + rho T + velocity/acceleration penalties, L-BFGS (NLopt).
+// Start (p0, v0, 0), end (p_t, 0, 0). plan() never throws and never returns NaN.
+// One planner owns one optimiser instance: not thread-safe, reuse it across stages.
+class StagePlanner {
+ public:
+  // Throws config::ConfigError when params are invalid (at construction, not in the loop).
+  explicit StagePlanner(PlannerParams params);
+  ~StagePlanner();
+  StagePlanner(StagePlanner&&) noexcept;
+  StagePlanner& operator=(StagePlanner&&) noexcept;
+  StagePlanner(const StagePlanner&) = delete;
+  StagePlanner& operator=(const StagePlanner&) = delete;
+
+  PlanResult plan(const StageProblem& problem) noexcept;
+  const PlannerParams& params() const { return params_; }
+
+  // Empty when the problem is acceptable, else the reason it is not.
+  std::string check_problem(const StageProblem& problem) const;
+
+ private:
+  struct Optimiser;
+  PlanResult plan_or_throw(const StageProblem& problem);
+
+  PlannerParams params_;
+  std::unique_ptr<Optimiser> optimiser_;
+};
+
+}  // namespace cover::planner
