@@ -1,0 +1,33 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cover/dds/vendor.hpp"
+
+namespace cover::dds {
+
+// How a process joins the DDS network. Loaded from config/dds.yaml (see load_file), then
+// overridden by --dds / $COVER_DDS and --domain / $COVER_DDS_DOMAIN.
+struct ParticipantOptions {
+  Vendor vendor = Vendor::FastDds;
+  int domain_id = 0;  // 0..232 (the RTPS port formula overflows above 232)
+  // Network interface name to use ("lo" for one host; "wlan0" in the field). Empty: the
+  // vendor's default choice. On "lo" Cyclone is told that multicast works, which makes
+  // it discover Fast DDS participants in milliseconds instead of seconds.
+  std::string interface_name = "lo";
+  // Unicast discovery peers (IPv4 addresses), for networks that drop multicast (WiFi).
+  // When set, multicast discovery is turned off on both vendors.
+  std::vector<std::string> peers;
+  std::string participant_name = "cover";
+
+  void validate() const;  // throws DdsError naming the bad field
+  static ParticipantOptions load_file(const std::string& path);  // throws ConfigError
+};
+
+inline constexpr int kMaxDomainId = 232;
+
+// Applies $COVER_DDS and $COVER_DDS_DOMAIN on top of `options`.
+ParticipantOptions apply_environment(ParticipantOptions options);
+
+}  // namespace cover::dds

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cover::dds {
+
+enum class Reliability { BestEffort, Reliable };
+enum class Durability { Volatile, TransientLocal };
+
+// The QoS of one topic, applied identically to its writers and readers. Every policy is
+// set explicitly because the two vendors' defaults differ (see docs/topics.md).
+struct QosProfile {
+  std::string name;
+  Reliability reliability = Reliability::BestEffort;
+  Durability durability = Durability::Volatile;
+  int history_depth = 1;    // keep-last depth per instance
+  double deadline_s = 0.0;  // expected max period between samples; 0 = no deadline
+
+  void validate() const;  // throws DdsError with the reason
+};
+
+// Named profiles:
+//  sensor  : best-effort, volatile, keep-last 1, deadline 50 ms (IMU, relative states);
+//  command : reliable, volatile, keep-last 1, deadline 50 ms (UAV commands: the newest
+//            wins, but an arm/disarm or release is not dropped by one lost packet);
+//  state   : reliable, transient-local, keep-last 8 (tasks, task and UAV status,
+//            references: a late joiner gets the latest).
+QosProfile sensor_qos();
+QosProfile command_qos();
+QosProfile state_qos();
+
+// Looks a profile up by name; throws DdsError listing the known names.
+QosProfile qos_profile(std::string_view name);
+std::vector<std::string> qos_profile_names();
+
+}  // namespace cover::dds

@@ -1,0 +1,92 @@
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "cover/clock/clock.hpp"
+#include "cover/dds/backend.hpp"
+#include "cover/dds/writer.hpp"
+
+namespace cover::dds {
+
+// Typed reader for one topic, created by Participant::make_reader. It keeps the latest
+// sample with its local receive time (monotonic), and optionally calls a callback on the
+// vendor's receive thread for every sample.
+template <typename T>
+class Reader {
+ public:
+  using Callback = std::function<void(const T&)>;
+
+  struct Received {
+    T sample;
+    std::int64_t received_monotonic_ns = 0;
+  };
+
+  // Shared between the reader and the vendor's receive thread.
+  class State {
+   public:
+    explicit State(Callback callback) : callback_(std::move(callback)) {}
+    void deliver(const T& sample) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        latest_ = Received{sample, cover::clock::monotonic_ns()};
+        ++count_;
+      }
+      changed_.notify_all();
+      if (callback_) callback_(sample);
+    }
+    std::optional<Received> latest() const {
+      std::lock_guard<std::mutex> lock(mutex_);
+      return latest_;
+    }
+    std::uint64_t count() const {
+      std::lock_guard<std::mutex> lock(mutex_);
+      return count_;
+    }
+    // Waits until more than `seen` samples arrived; false on timeout.
+    bool wait_beyond(std::uint64_t seen, std::chrono::milliseconds timeout) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      return changed_.wait_for(lock, timeout, [&] { return count_ > seen; });
+    }
+
+   private:
+    Callback callback_;
+    mutable std::mutex mutex_;
+    std::condition_variable changed_;
+    std::optional<Received> latest_;
+    std::uint64_t count_ = 0;
+  };
+
+  Reader() = default;
+  Reader(std::unique_ptr<ReaderBackend> backend, std::shared_ptr<State> state)
+      : state_(std::move(state)), backend_(std::move(backend)) {}
+
+  // The newest sample and when it arrived, if any arrived yet.
+  std::optional<Received> latest() const { return state_ ? state_->latest() : std::nullopt; }
+  std::uint64_t received_count() const { return state_ ? state_->count() : 0; }
+
+  // Waits until a sample beyond the first `already_seen` arrives.
+  bool wait_for_sample(std::chrono::milliseconds timeout, std::uint64_t already_seen = 0) {
+    return state_ && state_->wait_beyond(already_seen, timeout);
+  }
+
+  std::size_t matched_writers() const { return backend_ ? backend_->matched_writers() : 0; }
+  std::uint64_t deadline_misses() const { return backend_ ? backend_->deadline_misses() : 0; }
+  bool wait_for_writers(std::size_t count, std::chrono::milliseconds timeout) const {
+    return wait_until_matched([this] { return matched_writers(); }, count, timeout);
+  }
+
+  explicit operator bool() const { return static_cast<bool>(backend_); }
+
+ private:
+  // Declared before the backend so the backend (and its receive thread) goes first.
+  std::shared_ptr<State> state_;
+  std::unique_ptr<ReaderBackend> backend_;
+};
+
+}  // namespace cover::dds

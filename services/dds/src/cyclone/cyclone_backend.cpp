@@ -1,0 +1,226 @@
+// Cyclone DDS 0.10 backend of the DDS layer. The only file (with the generated type
+// code) that includes Cyclone headers.
+#include "cyclone_backend.hpp"
+
+#include <dds/dds.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <mutex>
+#include <vector>
+
+#include "cover/dds/dds_error.hpp"
+#include "cyclone_type_ops.hpp"
+
+namespace cover::dds {
+namespace {
+
+std::string describe(dds_return_t rc) {
+  return std::string(dds_strretcode(rc));
+}
+
+// Cyclone's configuration for this participant, unless $CYCLONEDDS_URI says otherwise.
+std::string cyclone_config(const ParticipantOptions& options) {
+  std::string xml = "<CycloneDDS><Domain id=\"any\"><General>";
+  if (!options.interface_name.empty()) {
+    // Cyclone treats `lo` as not multicast-capable and then discovers Fast DDS peers
+    // only every 8 s by unicast; telling it multicast works makes matching take ~5 ms.
+    const bool loopback = options.interface_name == "lo";
+    xml += "<Interfaces><NetworkInterface name=\"" + options.interface_name + "\"" +
+           (loopback && options.peers.empty() ? " multicast=\"true\"" : "") + "/></Interfaces>";
+  }
+  if (!options.peers.empty()) xml += "<AllowMulticast>false</AllowMulticast>";
+  xml += "</General><Discovery>";
+  if (!options.peers.empty()) {
+    xml +=
+        "<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>32</"
+        "MaxAutoParticipantIndex><Peers>";
+    for (const auto& peer : options.peers) xml += "<Peer address=\"" + peer + "\"/>";
+    xml += "</Peers>";
+  }
+  xml += "</Discovery></Domain></CycloneDDS>";
+  return xml;
+}
+
+dds_qos_t* make_qos(const QosProfile& profile) {
+  dds_qos_t* qos = dds_create_qos();
+  dds_qset_reliability(qos,
+                       profile.reliability == Reliability::Reliable ? DDS_RELIABILITY_RELIABLE
+                                                                    : DDS_RELIABILITY_BEST_EFFORT,
+                       DDS_MSECS(100));
+  dds_qset_durability(qos, profile.durability == Durability::TransientLocal
+                               ? DDS_DURABILITY_TRANSIENT_LOCAL
+                               : DDS_DURABILITY_VOLATILE);
+  dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, profile.history_depth);
+  if (profile.deadline_s > 0) {
+    dds_qset_deadline(qos, static_cast<dds_duration_t>(profile.deadline_s * 1e9));
+  }
+  return qos;
+}
+
+// The participant handle, shared by writers and readers so it outlives them.
+class CycloneCore {
+ public:
+  explicit CycloneCore(const ParticipantOptions& options) {
+    const auto domain = static_cast<dds_domainid_t>(options.domain_id);
+    if (!std::getenv("CYCLONEDDS_URI")) {
+      const std::string config = cyclone_config(options);
+      const dds_entity_t created = dds_create_domain(domain, config.c_str());
+      // PRECONDITION_NOT_MET: this process already created the domain; reuse it.
+      if (created < 0 && created != DDS_RETCODE_PRECONDITION_NOT_MET) {
+        throw DdsError("Cyclone DDS: cannot create domain " + std::to_string(options.domain_id) +
+                       ": " + describe(created));
+      }
+      if (created > 0) domain_ = created;
+    }
+    participant_ = dds_create_participant(domain, nullptr, nullptr);
+    if (participant_ < 0) {
+      throw DdsError("Cyclone DDS: cannot create a participant on domain " +
+                     std::to_string(options.domain_id) + ": " + describe(participant_));
+    }
+  }
+  ~CycloneCore() {
+    dds_delete(participant_);
+    if (domain_ > 0) dds_delete(domain_);
+  }
+
+  dds_entity_t topic(const TypeSupport& type, const std::string& name) {
+    const dds_entity_t topic =
+        dds_create_topic(participant_, type.cyclone->descriptor, name.c_str(), nullptr, nullptr);
+    if (topic < 0) {
+      throw DdsError("Cyclone DDS: cannot create topic '" + name + "': " + describe(topic));
+    }
+    return topic;
+  }
+  dds_entity_t participant() const { return participant_; }
+
+ private:
+  dds_entity_t domain_ = 0;
+  dds_entity_t participant_ = 0;
+};
+
+class CycloneWriter final : public WriterBackend {
+ public:
+  CycloneWriter(std::shared_ptr<CycloneCore> core, const TypeSupport& type,
+                const std::string& topic, const QosProfile& profile)
+      : core_(std::move(core)), ops_(*type.cyclone), sample_(ops_.vendor_sample_size) {
+    dds_qos_t* qos = make_qos(profile);
+    writer_ = dds_create_writer(core_->participant(), core_->topic(type, topic), qos, nullptr);
+    dds_delete_qos(qos);
+    if (writer_ < 0) {
+      throw DdsError("Cyclone DDS: cannot create a writer on '" + topic +
+                     "': " + describe(writer_));
+    }
+  }
+  ~CycloneWriter() override { dds_delete(writer_); }
+
+  bool write(const void* neutral) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::fill(sample_.begin(), sample_.end(), 0);
+    ops_.to_vendor(neutral, sample_.data());
+    const dds_return_t rc = dds_write(writer_, sample_.data());
+    // Frees the strings and sequences to_vendor allocated, not the buffer itself.
+    dds_sample_free(sample_.data(), ops_.descriptor, DDS_FREE_CONTENTS);
+    return rc == DDS_RETCODE_OK;
+  }
+  std::size_t matched_readers() const override {
+    dds_publication_matched_status_t status{};
+    dds_get_publication_matched_status(writer_, &status);
+    return status.current_count;
+  }
+
+ private:
+  std::shared_ptr<CycloneCore> core_;
+  const CycloneTypeOps& ops_;
+  std::mutex mutex_;
+  std::vector<unsigned char> sample_;  // sized once: the vendor struct, reused per write
+  dds_entity_t writer_ = 0;
+};
+
+class CycloneReader final : public ReaderBackend {
+ public:
+  CycloneReader(std::shared_ptr<CycloneCore> core, const TypeSupport& type,
+                const std::string& topic, const QosProfile& profile, SampleHandler handler)
+      : core_(std::move(core)),
+        type_(type),
+        handler_(std::move(handler)),
+        neutral_sample_(type.new_sample()) {
+    dds_qos_t* qos = make_qos(profile);
+    dds_listener_t* listener = dds_create_listener(this);
+    dds_lset_data_available(listener, &CycloneReader::on_data_available);
+    dds_lset_requested_deadline_missed(listener, &CycloneReader::on_deadline_missed);
+    reader_ = dds_create_reader(core_->participant(), core_->topic(type, topic), qos, listener);
+    dds_delete_listener(listener);
+    dds_delete_qos(qos);
+    if (reader_ < 0) {
+      type_.delete_sample(neutral_sample_);
+      throw DdsError("Cyclone DDS: cannot create a reader on '" + topic +
+                     "': " + describe(reader_));
+    }
+  }
+  ~CycloneReader() override {
+    dds_delete(reader_);  // waits for a listener call in progress
+    type_.delete_sample(neutral_sample_);
+  }
+  std::size_t matched_writers() const override {
+    dds_subscription_matched_status_t status{};
+    dds_get_subscription_matched_status(reader_, &status);
+    return status.current_count;
+  }
+  std::uint64_t deadline_misses() const override { return deadline_misses_.load(); }
+
+ private:
+  static void on_data_available(dds_entity_t reader, void* self) {
+    static_cast<CycloneReader*>(self)->take_all(reader);
+  }
+  static void on_deadline_missed(dds_entity_t, const dds_requested_deadline_missed_status_t,
+                                 void* self) {
+    ++static_cast<CycloneReader*>(self)->deadline_misses_;
+  }
+  void take_all(dds_entity_t reader) {
+    void* samples[1] = {nullptr};
+    dds_sample_info_t info{};
+    // Loaned samples: no copy into a vendor buffer, only the conversion to neutral.
+    while (dds_take(reader, samples, &info, 1, 1) > 0) {
+      if (info.valid_data) {
+        type_.cyclone->from_vendor(samples[0], neutral_sample_);
+        handler_(neutral_sample_);
+      }
+      dds_return_loan(reader, samples, 1);
+      samples[0] = nullptr;
+    }
+  }
+
+  std::shared_ptr<CycloneCore> core_;
+  const TypeSupport& type_;
+  SampleHandler handler_;
+  void* neutral_sample_;
+  std::atomic<std::uint64_t> deadline_misses_{0};
+  dds_entity_t reader_ = 0;
+};
+
+class CycloneParticipant final : public ParticipantBackend {
+ public:
+  explicit CycloneParticipant(const ParticipantOptions& options)
+      : core_(std::make_shared<CycloneCore>(options)) {}
+  std::unique_ptr<WriterBackend> create_writer(const TypeSupport& type, const std::string& topic,
+                                               const QosProfile& qos) override {
+    return std::make_unique<CycloneWriter>(core_, type, topic, qos);
+  }
+  std::unique_ptr<ReaderBackend> create_reader(const TypeSupport& type, const std::string& topic,
+                                               const QosProfile& qos,
+                                               SampleHandler handler) override {
+    return std::make_unique<CycloneReader>(core_, type, topic, qos, std::move(handler));
+  }
+
+ private:
+  std::shared_ptr<CycloneCore> core_;
+};
+
+}  // namespace
+
+std::unique_ptr<ParticipantBackend> make_cyclone_participant(const ParticipantOptions& options) {
+  return std::make_unique<CycloneParticipant>(options);
+}
+
+}  // namespace cover::dds

@@ -1,0 +1,267 @@
+// Fast DDS 2.9 backend of the DDS layer. The only file (with the generated type code)
+// that includes Fast DDS headers.
+#include "fastdds_backend.hpp"
+
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <net/if.h>
+
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+#include <atomic>
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <map>
+#include <mutex>
+
+#include "cover/dds/dds_error.hpp"
+#include "fastdds_type_ops.hpp"
+
+namespace cover::dds {
+namespace {
+
+namespace fdds = eprosima::fastdds::dds;
+using eprosima::fastrtps::Duration_t;
+using eprosima::fastrtps::types::ReturnCode_t;
+
+Duration_t to_duration(double seconds) {
+  const auto whole = static_cast<int32_t>(seconds);
+  return Duration_t(whole, static_cast<uint32_t>((seconds - whole) * 1e9));
+}
+
+// The IPv4 address of a named interface, or "" when it has none.
+std::string interface_address(const std::string& name) {
+  ifaddrs* list = nullptr;
+  if (getifaddrs(&list) != 0) return "";
+  std::string address;
+  for (ifaddrs* it = list; it; it = it->ifa_next) {
+    if (it->ifa_addr && it->ifa_addr->sa_family == AF_INET && name == it->ifa_name) {
+      char text[INET_ADDRSTRLEN] = {};
+      inet_ntop(AF_INET, &reinterpret_cast<sockaddr_in*>(it->ifa_addr)->sin_addr, text,
+                sizeof(text));
+      address = text;
+      break;
+    }
+  }
+  freeifaddrs(list);
+  return address;
+}
+
+fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
+  // Starting from the factory default keeps a user's XML default profile in effect.
+  fdds::DomainParticipantQos qos = fdds::PARTICIPANT_QOS_DEFAULT;
+  qos.name(options.participant_name);
+  // With an interface named, UDP is restricted to it (plus shared memory between Fast DDS
+  // processes). On "lo" this matters for Cyclone: Fast DDS otherwise announces only its
+  // external addresses, which a Cyclone participant bound to lo discards.
+  const bool restrict_interface = !options.interface_name.empty();
+  if (restrict_interface || !options.peers.empty()) {
+    auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+    if (restrict_interface) {
+      const std::string address = interface_address(options.interface_name);
+      if (address.empty()) {
+        throw DdsError("Fast DDS: network interface '" + options.interface_name +
+                       "' has no IPv4 address");
+      }
+      udp->interfaceWhiteList.push_back(address);
+    }
+    udp->maxInitialPeersRange = 32;  // more than 4 participants per host
+    qos.transport().use_builtin_transports = false;
+    qos.transport().user_transports.push_back(udp);
+    qos.transport().user_transports.push_back(
+        std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+  }
+  for (const auto& peer : options.peers) {
+    eprosima::fastrtps::rtps::Locator_t locator;
+    eprosima::fastrtps::rtps::IPLocator::setIPv4(locator, peer);
+    qos.wire_protocol().builtin.initialPeersList.push_back(locator);
+  }
+  return qos;
+}
+
+template <typename Qos>
+void apply_common(const QosProfile& profile, Qos& qos) {
+  qos.reliability().kind = profile.reliability == Reliability::Reliable
+                               ? fdds::RELIABLE_RELIABILITY_QOS
+                               : fdds::BEST_EFFORT_RELIABILITY_QOS;
+  qos.durability().kind = profile.durability == Durability::TransientLocal
+                              ? fdds::TRANSIENT_LOCAL_DURABILITY_QOS
+                              : fdds::VOLATILE_DURABILITY_QOS;
+  qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
+  qos.history().depth = profile.history_depth;
+  if (profile.deadline_s > 0) qos.deadline().period = to_duration(profile.deadline_s);
+}
+
+// The participant and its publisher/subscriber; shared by every writer and reader so
+// that it outlives them whatever order the user destroys things in.
+class FastCore {
+ public:
+  explicit FastCore(const ParticipantOptions& options) {
+    auto* factory = fdds::DomainParticipantFactory::get_instance();
+    participant_ = factory->create_participant(options.domain_id, participant_qos(options));
+    if (!participant_) {
+      throw DdsError("Fast DDS: cannot create a participant on domain " +
+                     std::to_string(options.domain_id) + " (see the Fast DDS log above)");
+    }
+    publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+    subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+    if (!publisher_ || !subscriber_) throw DdsError("Fast DDS: cannot create publisher/subscriber");
+  }
+  ~FastCore() {
+    participant_->delete_contained_entities();
+    fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+  }
+
+  fdds::Topic* topic(const TypeSupport& type, const std::string& name) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (auto found = topics_.find(name); found != topics_.end()) {
+      if (found->second->get_type_name() != type.type_name) {
+        throw DdsError("Fast DDS: topic '" + name + "' already used with type " +
+                       found->second->get_type_name());
+      }
+      return found->second;
+    }
+    if (!participant_->find_type(type.type_name).get()) {
+      fdds::TypeSupport support(type.fastdds->new_topic_type());
+      if (support.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+        throw DdsError(std::string("Fast DDS: cannot register type ") + type.type_name);
+      }
+    }
+    fdds::Topic* created =
+        participant_->create_topic(name, type.type_name, fdds::TOPIC_QOS_DEFAULT);
+    if (!created) throw DdsError("Fast DDS: cannot create topic '" + name + "'");
+    topics_[name] = created;
+    return created;
+  }
+
+  fdds::Publisher* publisher() { return publisher_; }
+  fdds::Subscriber* subscriber() { return subscriber_; }
+
+ private:
+  std::mutex mutex_;
+  fdds::DomainParticipant* participant_ = nullptr;
+  fdds::Publisher* publisher_ = nullptr;
+  fdds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, fdds::Topic*> topics_;
+};
+
+class FastWriter final : public WriterBackend {
+ public:
+  FastWriter(std::shared_ptr<FastCore> core, const TypeSupport& type, const std::string& topic,
+             const QosProfile& profile)
+      : core_(std::move(core)), ops_(*type.fastdds), sample_(ops_.new_vendor_sample()) {
+    fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
+    apply_common(profile, qos);
+    // A 100 ms heartbeat (default 3 s) stops the loss of early reliable samples.
+    qos.reliable_writer_qos().times.heartbeatPeriod = to_duration(0.1);
+    writer_ = core_->publisher()->create_datawriter(core_->topic(type, topic), qos);
+    if (!writer_) throw DdsError("Fast DDS: cannot create a writer on '" + topic + "'");
+  }
+  ~FastWriter() override {
+    core_->publisher()->delete_datawriter(writer_);
+    ops_.delete_vendor_sample(sample_);
+  }
+  bool write(const void* neutral) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ops_.to_vendor(neutral, sample_);
+    return writer_->write(sample_);
+  }
+  std::size_t matched_readers() const override {
+    fdds::PublicationMatchedStatus status;
+    writer_->get_publication_matched_status(status);
+    return static_cast<std::size_t>(status.current_count);
+  }
+
+ private:
+  std::shared_ptr<FastCore> core_;
+  const FastDdsTypeOps& ops_;
+  std::mutex mutex_;
+  void* sample_;  // vendor sample reused by every write: no allocation per sample
+  fdds::DataWriter* writer_ = nullptr;
+};
+
+class FastReader final : public ReaderBackend, private fdds::DataReaderListener {
+ public:
+  FastReader(std::shared_ptr<FastCore> core, const TypeSupport& type, const std::string& topic,
+             const QosProfile& profile, SampleHandler handler)
+      : core_(std::move(core)),
+        type_(type),
+        handler_(std::move(handler)),
+        vendor_sample_(type.fastdds->new_vendor_sample()),
+        neutral_sample_(type.new_sample()) {
+    fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
+    apply_common(profile, qos);
+    reader_ = core_->subscriber()->create_datareader(core_->topic(type, topic), qos, this,
+                                                     fdds::StatusMask::all());
+    if (!reader_) throw DdsError("Fast DDS: cannot create a reader on '" + topic + "'");
+  }
+  ~FastReader() override {
+    reader_->set_listener(nullptr);
+    core_->subscriber()->delete_datareader(reader_);
+    type_.fastdds->delete_vendor_sample(vendor_sample_);
+    type_.delete_sample(neutral_sample_);
+  }
+  std::size_t matched_writers() const override {
+    fdds::SubscriptionMatchedStatus status;
+    reader_->get_subscription_matched_status(status);
+    return static_cast<std::size_t>(status.current_count);
+  }
+  std::uint64_t deadline_misses() const override { return deadline_misses_.load(); }
+
+ private:
+  void on_data_available(fdds::DataReader* reader) override {
+    fdds::SampleInfo info;
+    while (reader->take_next_sample(vendor_sample_, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) continue;
+      type_.fastdds->from_vendor(vendor_sample_, neutral_sample_);
+      handler_(neutral_sample_);
+    }
+  }
+  void on_requested_deadline_missed(fdds::DataReader*,
+                                    const fdds::RequestedDeadlineMissedStatus&) override {
+    ++deadline_misses_;
+  }
+
+  std::shared_ptr<FastCore> core_;
+  const TypeSupport& type_;
+  SampleHandler handler_;
+  void* vendor_sample_;
+  void* neutral_sample_;
+  std::atomic<std::uint64_t> deadline_misses_{0};
+  fdds::DataReader* reader_ = nullptr;
+};
+
+class FastParticipant final : public ParticipantBackend {
+ public:
+  explicit FastParticipant(const ParticipantOptions& options)
+      : core_(std::make_shared<FastCore>(options)) {}
+  std::unique_ptr<WriterBackend> create_writer(const TypeSupport& type, const std::string& topic,
+                                               const QosProfile& qos) override {
+    return std::make_unique<FastWriter>(core_, type, topic, qos);
+  }
+  std::unique_ptr<ReaderBackend> create_reader(const TypeSupport& type, const std::string& topic,
+                                               const QosProfile& qos,
+                                               SampleHandler handler) override {
+    return std::make_unique<FastReader>(core_, type, topic, qos, std::move(handler));
+  }
+
+ private:
+  std::shared_ptr<FastCore> core_;
+};
+
+}  // namespace
+
+std::unique_ptr<ParticipantBackend> make_fastdds_participant(const ParticipantOptions& options) {
+  return std::make_unique<FastParticipant>(options);
+}
+
+}  // namespace cover::dds

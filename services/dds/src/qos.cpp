@@ -1,0 +1,42 @@
+#include "cover/dds/qos.hpp"
+
+#include <cmath>
+
+#include "cover/dds/dds_error.hpp"
+
+namespace cover::dds {
+
+void QosProfile::validate() const {
+  if (history_depth < 1 || history_depth > 1000) {
+    throw DdsError("QoS profile '" + name + "': history_depth must be in 1..1000");
+  }
+  if (!std::isfinite(deadline_s) || deadline_s < 0) {
+    throw DdsError("QoS profile '" + name + "': deadline_s must be >= 0");
+  }
+}
+
+QosProfile sensor_qos() {
+  return {"sensor", Reliability::BestEffort, Durability::Volatile, 1, 0.05};
+}
+
+QosProfile command_qos() {
+  return {"command", Reliability::Reliable, Durability::Volatile, 1, 0.05};
+}
+
+QosProfile state_qos() {
+  return {"state", Reliability::Reliable, Durability::TransientLocal, 8, 0.0};
+}
+
+std::vector<std::string> qos_profile_names() {
+  return {"sensor", "command", "state"};
+}
+
+QosProfile qos_profile(std::string_view name) {
+  if (name == "sensor") return sensor_qos();
+  if (name == "command") return command_qos();
+  if (name == "state") return state_qos();
+  throw DdsError("unknown QoS profile '" + std::string(name) +
+                 "' (expected sensor, command or state)");
+}
+
+}  // namespace cover::dds

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <sys/types.h>
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cover::process {
+
+// A child process started with posix_spawn, for integration tests and benchmarks that
+// run real processes. Its stdout can be read line by line; the destructor terminates it.
+class ChildProcess {
+ public:
+  // `argv[0]` is the executable path. `extra_env` entries ("KEY=value") are added to the
+  // parent's environment. Throws std::runtime_error when the spawn fails.
+  ChildProcess(const std::vector<std::string>& argv, const std::vector<std::string>& extra_env = {},
+               bool capture_stdout = false);
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  pid_t pid() const { return pid_; }
+
+  // Reads one line from the child's stdout (capture_stdout only); nullopt on EOF/timeout.
+  std::optional<std::string> read_line(std::chrono::milliseconds timeout);
+
+  // Sends SIGTERM (or `signal`) and waits up to `timeout`, then SIGKILL. Returns the exit
+  // code, or 128 + signal number if it was killed by a signal.
+  int terminate(std::chrono::milliseconds timeout = std::chrono::milliseconds(5000),
+                int signal_number = 15);
+
+  // Waits for the child to exit by itself; nullopt on timeout.
+  std::optional<int> wait(std::chrono::milliseconds timeout);
+
+ private:
+  pid_t pid_ = -1;
+  int stdout_fd_ = -1;
+  std::string buffer_;
+  std::optional<int> exit_code_;
+};
+
+}  // namespace cover::process
