@@ -1,0 +1,193 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cover/config/yaml_reader.hpp"
+#include "cover/model/quaternion.hpp"
+#include "cover/sampc/horizon_cost.hpp"
+
+namespace cover::sampc {
+namespace {
+
+using Eigen::Vector3d;
+using model::Stage;
+
+SampcInput example_input(Stage stage) {
+  SampcInput in;
+  in.stage = stage;
+  in.uav_state = model::uav_state_at_rest(Vector3d(1.5, -2.0, 1.2));
+  in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.4);
+  for (int k = 0; k <= kMaxHorizon; ++k) {
+    in.reference.position_m[k] = Vector3d(1.5 - 0.05 * k, -2.0 + 0.08 * k, 1.2 + 0.01 * k);
+    in.reference.velocity_m_s[k] = Vector3d(-0.5, 0.8, 0.1);
+  }
+  return in;
+}
+
+HorizonCost build(const SampcParams& params, const SampcInput& in, double held_yaw = 0.3) {
+  HorizonCost cost;
+  build_horizon_cost(params, in, held_yaw, cost);
+  return cost;
+}
+
+TEST(HorizonCost, TrackingStagesFollowThePlanWithTable2Weights) {
+  const SampcParams params;
+  for (Stage stage : {Stage::Initial, Stage::Final}) {
+    const SampcInput in = example_input(stage);
+    const HorizonCost cost = build(params, in);
+    EXPECT_EQ(cost.reference_mode, ReferenceMode::XyzRef);
+    for (int k = 0; k < params.horizon_steps; ++k) {
+      const NodeCost& n = cost.nodes[k];
+      const double decay = std::exp(-params.e0 * k);
+      EXPECT_EQ(n.position_ref_m, in.reference.position_m[k]);
+      EXPECT_EQ(n.velocity_ref_m_s, in.reference.velocity_m_s[k]);
+      EXPECT_LT((n.position_weight - decay * Vector3d(200, 200, 300)).norm(), 1e-9);
+      EXPECT_LT((n.velocity_weight - decay * Vector3d(100, 100, 300)).norm(), 1e-9);
+      EXPECT_LT((n.attitude_weight - decay * Eigen::Vector4d::Constant(50)).norm(), 1e-9);
+      EXPECT_LT((n.input_weight - std::exp(-params.e3 * k) * model::Input(1, 20, 20, 5)).norm(),
+                1e-9);
+      EXPECT_EQ(n.attitude_ref, Eigen::Vector4d(1, 0, 0, 0));
+      EXPECT_EQ(n.squared_distance_weight, 0.0);
+    }
+    const NodeCost& terminal = cost.nodes[params.horizon_steps];
+    EXPECT_EQ(terminal.input_weight, model::Input::Zero());
+    EXPECT_NEAR(terminal.position_weight.z(),
+                params.terminal_weight_scale * std::exp(-params.e0 * 20) * 300, 1e-9);
+  }
+}
+
+TEST(HorizonCost, TransitionStageUsesXyZRefWithTheCustomisedVelocityAndYaw) {
+  const SampcParams params;
+  const SampcInput in = example_input(Stage::Transition);
+  const HorizonCost cost = build(params, in);
+  EXPECT_EQ(cost.reference_mode, ReferenceMode::XyZRef);
+
+  const Vector3d p = in.uav_state.head<3>();
+  const double d0 = p.head<2>().squaredNorm();
+  // Eq. 30: v_ref_xy = -(Omega x p)_xy - p_xy/|p_xy| * v0d, v0d the plan's horizontal speed.
+  Vector3d expected_v0 = -in.ugv.angular_velocity_rad_s.cross(p);
+  expected_v0.head<2>() -= p.head<2>().normalized() * in.reference.velocity_m_s[0].head<2>().norm();
+  expected_v0.z() = in.reference.velocity_m_s[0].z();
+  EXPECT_LT((cost.nodes[0].velocity_ref_m_s - expected_v0).norm(), 1e-12);
+  EXPECT_LT((cost.nodes[0].velocity_weight - Vector3d(350, 350, 100)).norm(), 1e-12);
+
+  const double yaw = std::atan2(-p.y(), -p.x());
+  EXPECT_NEAR(cost.yaw_ref_rad, yaw, 1e-12);
+  for (int k = 0; k < params.horizon_steps; ++k) {
+    const NodeCost& n = cost.nodes[k];
+    const double decay = std::exp(-params.e0 * k);
+    EXPECT_LT((n.position_weight - decay * Vector3d(0, 0, 200)).norm(), 1e-9);
+    if (k > 0) {
+      EXPECT_LT((n.velocity_weight - decay * Vector3d(0, 0, 100)).norm(), 1e-9);
+      EXPECT_EQ(n.velocity_ref_m_s.z(), in.reference.velocity_m_s[k].z());
+    }
+    EXPECT_LT((n.attitude_weight - decay * Eigen::Vector4d::Constant(40)).norm(), 1e-9);
+    EXPECT_LT((n.attitude_ref - model::yaw_quaternion(yaw)).norm(), 1e-12);
+    EXPECT_NEAR(n.squared_distance_ref_m2, in.reference.position_m[k].head<2>().squaredNorm(),
+                1e-12);
+    EXPECT_NEAR(n.squared_distance_weight,
+                std::exp(-params.e1 * k) * (200 * std::exp(params.e2_per_m2 * d0) + 100), 1e-9);
+    EXPECT_LT((n.input_weight - std::exp(-params.e3 * k) * model::Input(1, 30, 30, 5)).norm(),
+              1e-9);
+  }
+}
+
+TEST(HorizonCost, DistanceWeightGrowsAsTheUavNearsTheUgv) {
+  const SampcParams params;
+  SampcInput far = example_input(Stage::Transition);
+  SampcInput near = far;
+  near.uav_state.head<2>() *= 0.2;
+  EXPECT_GT(build(params, near).nodes[0].squared_distance_weight,
+            build(params, far).nodes[0].squared_distance_weight);
+}
+
+TEST(HorizonCost, NoRefVxyDiffersFromCoverOnlyInTheHorizontalVelocityWeight) {
+  SampcParams cover_params;
+  SampcParams ablation = cover_params;
+  ablation.mode = Mode::NoRefVxy;
+  const SampcInput in = example_input(Stage::Transition);
+  const HorizonCost a = build(cover_params, in), b = build(ablation, in);
+  EXPECT_EQ(b.nodes[0].velocity_weight, Vector3d(0, 0, 100));
+  for (int k = 0; k <= cover_params.horizon_steps; ++k) {
+    EXPECT_EQ(a.nodes[k].position_weight, b.nodes[k].position_weight);
+    EXPECT_EQ(a.nodes[k].position_ref_m, b.nodes[k].position_ref_m);
+    EXPECT_EQ(a.nodes[k].velocity_ref_m_s, b.nodes[k].velocity_ref_m_s);
+    EXPECT_EQ(a.nodes[k].attitude_ref, b.nodes[k].attitude_ref);
+    EXPECT_EQ(a.nodes[k].attitude_weight, b.nodes[k].attitude_weight);
+    EXPECT_EQ(a.nodes[k].squared_distance_weight, b.nodes[k].squared_distance_weight);
+    EXPECT_EQ(a.nodes[k].input_weight, b.nodes[k].input_weight);
+    if (k > 0) EXPECT_EQ(a.nodes[k].velocity_weight, b.nodes[k].velocity_weight);
+  }
+  // Outside the transition stage the ablation changes nothing.
+  const HorizonCost c = build(cover_params, example_input(Stage::Final));
+  const HorizonCost d = build(ablation, example_input(Stage::Final));
+  EXPECT_EQ(c.nodes[0].velocity_weight, d.nodes[0].velocity_weight);
+}
+
+TEST(HorizonCost, ConiMpcTracksThePlanAtTheTransitionStageToo) {
+  SampcParams coni;
+  coni.mode = Mode::ConiMpc;
+  const SampcParams cover_params;
+  const HorizonCost at_transition = build(coni, example_input(Stage::Transition));
+  const HorizonCost cover_initial = build(cover_params, example_input(Stage::Initial));
+  EXPECT_EQ(at_transition.reference_mode, ReferenceMode::XyzRef);
+  for (int k = 0; k <= coni.horizon_steps; ++k) {
+    EXPECT_EQ(at_transition.nodes[k].position_weight, cover_initial.nodes[k].position_weight);
+    EXPECT_EQ(at_transition.nodes[k].velocity_ref_m_s, cover_initial.nodes[k].velocity_ref_m_s);
+    EXPECT_EQ(at_transition.nodes[k].attitude_ref, cover_initial.nodes[k].attitude_ref);
+    EXPECT_EQ(at_transition.nodes[k].squared_distance_weight, 0.0);
+  }
+}
+
+TEST(HorizonCost, YawIsHeldOnTheUgvAxis) {
+  const SampcParams params;
+  SampcInput in = example_input(Stage::Transition);
+  in.uav_state.head<2>() = Eigen::Vector2d(0.01, 0.0);
+  const HorizonCost cost = build(params, in, 0.7);
+  EXPECT_NEAR(cost.yaw_ref_rad, 0.7, 1e-12);
+  EXPECT_TRUE(cost.nodes[0].velocity_ref_m_s.allFinite());
+}
+
+TEST(HorizonCost, AttitudeCostIsSignInvariant) {
+  const SampcParams params;
+  const HorizonCost cost = build(params, example_input(Stage::Transition));
+  model::UavState x = example_input(Stage::Transition).uav_state;
+  x.segment<4>(6) = Eigen::Vector4d(0.8, 0.1, -0.3, 0.5).normalized();
+  model::UavState flipped = x;
+  flipped.segment<4>(6) *= -1.0;
+  EXPECT_NEAR(cost.nodes[3].evaluate(x, model::hover_input()),
+              cost.nodes[3].evaluate(flipped, model::hover_input()), 1e-12);
+}
+
+TEST(SampcParams, ShippedConfigLoadsAndEqualsTheDefaults) {
+  const SampcParams loaded = SampcParams::load_file(config::default_config_dir() + "/sampc.yaml");
+  const SampcParams defaults;
+  EXPECT_EQ(loaded.mode, defaults.mode);
+  EXPECT_EQ(loaded.horizon_steps, defaults.horizon_steps);
+  EXPECT_EQ(loaded.step_s, defaults.step_s);
+  EXPECT_EQ(loaded.e2_per_m2, defaults.e2_per_m2);
+  EXPECT_EQ(loaded.transition_weights.velocity, defaults.transition_weights.velocity);
+  EXPECT_EQ(loaded.tracking_weights.input, defaults.tracking_weights.input);
+  EXPECT_EQ(loaded.yaw_rate_max_rad_s, defaults.yaw_rate_max_rad_s);
+}
+
+TEST(SampcParams, RejectsBadValuesNamingTheKey) {
+  const auto load = [](const std::string& text) {
+    config::YamlReader reader(YAML::Load(text), "test:sampc");
+    return SampcParams::load(reader);
+  };
+  EXPECT_NO_THROW(load("mode: coni-mpc"));
+  EXPECT_THROW(load("mode: fancy"), config::ConfigError);
+  EXPECT_THROW(load("horizn_steps: 10"), config::ConfigError);
+  try {
+    load("e2_per_m2: 0.5");
+    FAIL();
+  } catch (const config::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("e2_per_m2"), std::string::npos);
+  }
+  EXPECT_THROW(load("tracking_weights: {input: [1, 0, 20, 5]}"), config::ConfigError);
+  EXPECT_THROW(load("thrust_max_m_s2: 9.0"), config::ConfigError);
+}
+
+}  // namespace
+}  // namespace cover::sampc

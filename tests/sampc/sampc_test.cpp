@@ -1,0 +1,235 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "cover/model/dynamics.hpp"
+#include "cover/sampc/reference_solver.hpp"
+#include "cover/sampc/sampc.hpp"
+
+namespace cover::sampc {
+namespace {
+
+using Eigen::Vector3d;
+using model::Stage;
+
+void expect_within_bounds(const SampcParams& params, const Eigen::Vector4d& command) {
+  ASSERT_TRUE(command.allFinite());
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_GE(command(i), params.input_lower_bound()(i)) << "component " << i;
+    EXPECT_LE(command(i), params.input_upper_bound()(i)) << "component " << i;
+  }
+}
+
+// The plant: the model integrated with 1 ms RK4 steps over one 10 ms control period.
+model::UavState plant_step(const model::UavState& x, const model::Input& u, model::UgvMotion& ugv) {
+  model::UavState next = x;
+  for (int i = 0; i < 10; ++i) {
+    next = model::uav_rk4_step(next, u, ugv, 0.001);
+    ugv = ugv.advanced(0.001);
+  }
+  return next;
+}
+
+SampcInput random_problem(std::mt19937& rng, Stage stage) {
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  SampcInput in;
+  in.stage = stage;
+  in.uav_state =
+      model::uav_state_at_rest(Vector3d(2.0 * uni(rng), 2.0 * uni(rng), 1.0 + 0.5 * uni(rng)));
+  in.uav_state.segment<3>(3) = 0.5 * Vector3d(uni(rng), uni(rng), uni(rng));
+  in.uav_state.segment<4>(6) =
+      Eigen::Vector4d(1.0, 0.1 * uni(rng), 0.1 * uni(rng), 0.3 * uni(rng)).normalized();
+  in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.5 * uni(rng));
+  in.ugv.angular_acceleration_rad_s2 = Vector3d(0.0, 0.0, 0.1 * uni(rng));
+  in.ugv.specific_force_m_s2 = Vector3d(0.5 * uni(rng), 0.5 * uni(rng), model::kGravity_m_s2);
+  const Vector3d target(0.3 * uni(rng), 0.3 * uni(rng), 1.0 + 0.3 * uni(rng));
+  for (int k = 0; k <= kMaxHorizon; ++k) {
+    // A straight approach to the target over the horizon, then hold.
+    const double s = std::min(1.0, k / 20.0);
+    const Vector3d start = in.uav_state.head<3>();
+    in.reference.position_m[k] = start + s * (target - start);
+    in.reference.velocity_m_s[k] = k < 20 ? Vector3d((target - start) / 2.0) : Vector3d::Zero();
+  }
+  return in;
+}
+
+TEST(Sampc, OnReferenceAtHoverCommandsHover) {
+  const SampcParams params;
+  Sampc mpc(params);
+  SampcInput in;
+  in.stage = Stage::Final;
+  in.uav_state = model::uav_state_at_rest(Vector3d(0.0, 0.0, 1.5));
+  in.reference = HorizonReference::hold(Vector3d(0.0, 0.0, 1.5));
+  for (int i = 0; i < 3; ++i) {
+    const SampcOutput out = mpc.solve(in);
+    EXPECT_EQ(out.status, SolveStatus::Ok);
+    EXPECT_LT((out.command - model::hover_input()).norm(), 1e-9);
+  }
+}
+
+TEST(Sampc, NonFiniteOrAbsurdInputGivesHoverAndAnError) {
+  const SampcParams params;
+  Sampc mpc(params);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::mt19937 rng(7);
+  const SampcInput good = random_problem(rng, Stage::Initial);
+
+  SampcInput bad_state = good;
+  bad_state.uav_state(4) = nan;
+  SampcInput bad_ugv = good;
+  bad_ugv.ugv.angular_velocity_rad_s.z() = std::numeric_limits<double>::infinity();
+  SampcInput bad_reference = good;
+  bad_reference.reference.position_m[7].x() = nan;
+  SampcInput absurd = good;
+  absurd.uav_state(0) = 1e7;
+  SampcInput zero_quaternion = good;
+  zero_quaternion.uav_state.segment<4>(6).setZero();
+
+  for (const SampcInput* in : {&bad_state, &bad_ugv, &bad_reference, &absurd, &zero_quaternion}) {
+    for (bool split : {false, true}) {
+      SampcOutput out;
+      if (split) {
+        mpc.prepare(*in);
+        out = mpc.feedback(*in);
+      } else {
+        out = mpc.solve(*in);
+      }
+      EXPECT_EQ(out.status, SolveStatus::InvalidInput);
+      EXPECT_TRUE(is_error(out.status));
+      EXPECT_STRNE(out.reason, "");
+      EXPECT_EQ(out.command, model::hover_input());
+    }
+  }
+  // The controller recovers as soon as the input is sane again.
+  const SampcOutput out = mpc.solve(good);
+  EXPECT_FALSE(is_error(out.status));
+  expect_within_bounds(params, out.command);
+}
+
+TEST(Sampc, BoundsHoldOnEveryOutput) {
+  SampcParams params;
+  Sampc mpc(params);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  int saturated = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const Stage stage = static_cast<Stage>(trial % 3);
+    SampcInput in = random_problem(rng, stage);
+    // Far off and tumbling: forces the boxes to bind.
+    in.uav_state.head<3>() += 6.0 * Vector3d(uni(rng), uni(rng), uni(rng));
+    in.uav_state.segment<3>(3) = 4.0 * Vector3d(uni(rng), uni(rng), uni(rng));
+    in.uav_state.segment<4>(6) =
+        Eigen::Vector4d(uni(rng), uni(rng), uni(rng), uni(rng)).normalized();
+    if (trial % 5 == 0) mpc.reset();
+    const SampcOutput out = mpc.solve(in);
+    EXPECT_FALSE(is_error(out.status)) << out.reason;
+    expect_within_bounds(params, out.command);
+    for (int k = 0; k < params.horizon_steps; ++k)
+      expect_within_bounds(params, mpc.planned_input(k));
+    const Eigen::Vector4d lo = params.input_lower_bound(), hi = params.input_upper_bound();
+    for (int i = 0; i < 4; ++i) {
+      saturated += out.command(i) <= lo(i) + 1e-9 || out.command(i) >= hi(i) - 1e-9;
+    }
+  }
+  EXPECT_GT(saturated, 0);  // the test did exercise the bounds
+}
+
+TEST(Sampc, ConvergedSqpMatchesTheNloptReferenceSolve) {
+  for (Mode mode : {Mode::Cover, Mode::NoRefVxy, Mode::ConiMpc}) {
+    SampcParams params;
+    params.mode = mode;
+    params.max_sqp_iterations = 50;
+    params.sqp_step_tolerance = 1e-9;
+    std::mt19937 rng(100 + static_cast<int>(mode));
+    for (int trial = 0; trial < 3; ++trial) {
+      const SampcInput in = random_problem(rng, static_cast<Stage>(trial));
+      Sampc mpc(params);
+      const SampcOutput out = mpc.solve(in);
+      ASSERT_EQ(out.status, SolveStatus::Ok)
+          << out.reason << " " << to_string(mode) << " " << trial;
+      std::vector<model::Input> sqp_inputs(params.horizon_steps);
+      for (int k = 0; k < params.horizon_steps; ++k) sqp_inputs[k] = mpc.planned_input(k);
+      const model::UavState x0 = model::UavState(in.uav_state);
+      const double sqp_cost =
+          single_shooting_cost(params, mpc.horizon_cost(), x0, in.ugv, sqp_inputs);
+      const ReferenceSolution reference =
+          solve_reference(params, mpc.horizon_cost(), x0, in.ugv,
+                          std::vector<model::Input>(params.horizon_steps, model::hover_input()));
+      ASSERT_TRUE(reference.ok);
+      // The SQP must be as good as the reference (up to 1e-3), and the reference close
+      // to it (both solve the same problem).
+      EXPECT_LT((sqp_cost - reference.cost) / reference.cost, 1e-3)
+          << to_string(mode) << " trial " << trial;
+      EXPECT_GT((sqp_cost - reference.cost) / reference.cost, -1e-2);
+    }
+  }
+}
+
+TEST(Sampc, PrepareFeedbackSplitEqualsSolve) {
+  const SampcParams params;
+  std::mt19937 rng(5);
+  const SampcInput in = random_problem(rng, Stage::Transition);
+  Sampc a(params), b(params);
+  a.solve(in);
+  b.solve(in);
+  SampcInput next = in;
+  next.uav_state.head<3>() += Vector3d(0.01, -0.02, 0.005);
+  const SampcOutput via_solve = a.solve(next);
+  b.prepare(in);  // predicted: the last measurement
+  const SampcOutput via_split = b.feedback(next);
+  EXPECT_EQ(via_solve.status, SolveStatus::Ok);
+  EXPECT_EQ(via_split.status, SolveStatus::Ok);
+  // Same linearisation point up to the x0 the references were built from: close commands.
+  EXPECT_LT((via_solve.command - via_split.command).norm(), 0.05);
+}
+
+TEST(Sampc, ClosedLoopTracksAPointFromAnOffset) {
+  const SampcParams params;
+  Sampc mpc(params);
+  SampcInput in;
+  in.stage = Stage::Final;
+  in.uav_state = model::uav_state_at_rest(Vector3d(1.0, -1.0, 0.6));
+  in.reference = HorizonReference::hold(Vector3d(0.0, 0.0, 1.5));
+  in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.3);  // a turning UGV
+  for (int step = 0; step < 500; ++step) {
+    const SampcOutput out = mpc.solve(in);
+    ASSERT_FALSE(is_error(out.status));
+    expect_within_bounds(params, out.command);
+    in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
+  }
+  EXPECT_LT((in.uav_state.head<3>() - Vector3d(0.0, 0.0, 1.5)).norm(), 0.05);
+  EXPECT_LT(in.uav_state.segment<3>(3).norm(), 0.05);
+}
+
+TEST(Sampc, TransitionStageClosesTheHorizontalDistanceToTheUgv) {
+  const SampcParams params;
+  Sampc mpc(params);
+  SampcInput in;
+  in.stage = Stage::Transition;
+  in.uav_state = model::uav_state_at_rest(Vector3d(2.0, 1.0, 1.5));
+  in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.35);
+  const Vector3d start = in.uav_state.head<3>();
+  const Vector3d goal(0.0, 0.0, 1.5);
+  double t = 0.0;
+  const double duration = 4.0;
+  for (int step = 0; step < 500; ++step, t += 0.01) {
+    // A quintic from the start to above the UGV in `duration` seconds.
+    for (int k = 0; k <= params.horizon_steps; ++k) {
+      const double s = std::min(1.0, (t + k * params.step_s) / duration);
+      const double shape = s * s * s * (10 - 15 * s + 6 * s * s);
+      const double rate = 30 * s * s * (1 - s) * (1 - s) / duration;
+      in.reference.position_m[k] = start + shape * (goal - start);
+      in.reference.velocity_m_s[k] = rate * (goal - start);
+    }
+    const SampcOutput out = mpc.solve(in);
+    ASSERT_FALSE(is_error(out.status));
+    in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
+  }
+  EXPECT_LT(in.uav_state.head<2>().norm(), 0.15);
+  EXPECT_NEAR(in.uav_state(2), 1.5, 0.1);
+}
+
+}  // namespace
+}  // namespace cover::sampc

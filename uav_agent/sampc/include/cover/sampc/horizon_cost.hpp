@@ -1,0 +1,62 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+
+#include "cover/model/state.hpp"
+#include "cover/sampc/horizon_reference.hpp"
+#include "cover/sampc/sampc_params.hpp"
+
+namespace cover::sampc {
+
+// The two reference modes of sec. 4.3.
+enum class ReferenceMode {
+  XyzRef,  // x-y-z-ref: track the planned position, velocity, nose along the UGV's x
+  XyZRef,  // xy-z-ref: track height and squared horizontal distance, customised velocity
+};
+
+// Which reference mode `mode` uses at `stage` (Cover and NoRefVxy adapt; ConiMpc does not).
+ReferenceMode reference_mode_for(Mode mode, model::Stage stage);
+
+// The nonlinear least-squares cost of one node k (eq. 24, NOTES.md):
+//   sum_i wp_i (p - p_ref)_i^2 + sum_i wv_i (v - v_ref)_i^2 + sum_i wq_i e_i^2
+//   + wd (px^2 + py^2 - d_ref)^2 + sum_i wu_i (u - u_h)_i^2
+// with the attitude error e = q - (q . q_ref) q_ref, the part of q orthogonal to q_ref:
+// e(-q) = -e(q), so q and -q cost the same; it is linear in q (exact Gauss-Newton) and
+// |e|^2 = sin^2(angle/2), which matches |q - q_ref|^2 to second order near the reference.
+// The terminal node has zero input weights.
+struct NodeCost {
+  Eigen::Vector3d position_ref_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position_weight = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_ref_m_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_weight = Eigen::Vector3d::Zero();
+  Eigen::Vector4d attitude_ref{1.0, 0.0, 0.0, 0.0};
+  Eigen::Vector4d attitude_weight = Eigen::Vector4d::Zero();
+  double squared_distance_ref_m2 = 0.0;
+  double squared_distance_weight = 0.0;
+  model::Input input_ref = model::hover_input();
+  model::Input input_weight = model::Input::Zero();
+
+  // d e / d q = I - q_ref q_ref' (constant: e is linear in q).
+  Eigen::Matrix4d attitude_error_jacobian() const;
+
+  // Cost value at (x, u); adds its gradient into the optional outputs.
+  double evaluate(const model::UavState& x, const model::Input& u,
+                  model::UavState* grad_x = nullptr, model::Input* grad_u = nullptr) const;
+};
+
+// The whole horizon's costs for one solve: references and stage-adaptive weights.
+struct HorizonCost {
+  int horizon_steps = 0;
+  ReferenceMode reference_mode = ReferenceMode::XyzRef;
+  double yaw_ref_rad = 0.0;  // the yaw reference used (xy-z-ref), for holding near the UGV
+  std::array<NodeCost, kMaxHorizon + 1> nodes;
+};
+
+// Builds the references and weights of eqs. 25-35 for `input` (the UAV state is the
+// measurement: d0, the eq. 30 velocity and the yaw reference depend on it). `held_yaw_rad`
+// is used as yaw reference when the UAV is within yaw_hold_radius_m of the UGV's axis.
+void build_horizon_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
+                        HorizonCost& cost);
+
+}  // namespace cover::sampc

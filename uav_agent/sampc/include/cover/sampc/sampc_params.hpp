@@ -1,0 +1,95 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "cover/config/yaml_reader.hpp"
+
+namespace cover::sampc {
+
+// Longest horizon the fixed-size workspaces hold; `horizon_steps` may be anything up to it.
+inline constexpr int kMaxHorizon = 40;
+
+// The paper's comparisons (NOTES.md, "Baselines"):
+//  - Cover:    stage-adaptive: xy-z-ref at the transition stage, x-y-z-ref otherwise.
+//  - NoRefVxy: as Cover with Q0v_x = Q0v_y = 0 ("w.o. Ref. Vxy").
+//  - ConiMpc:  x-y-z-ref at every stage (the prior method).
+enum class Mode { Cover, NoRefVxy, ConiMpc };
+
+const char* to_string(Mode mode);
+
+// The weight set of one reference mode (Table 2): index 0 is the transition stage's
+// xy-z-ref set, index 1 the x-y-z-ref set of the initial and final stages.
+struct WeightSet {
+  Eigen::Vector3d position;      // Qp  [x, y, z]
+  Eigen::Vector3d velocity;      // Qv  [x, y, z]
+  Eigen::Vector4d attitude;      // Qq  [w, x, y, z]
+  Eigen::Vector4d input;         // R   [F, wx, wy, wz], must be > 0
+  double distance_gain = 0.0;    // q0 of Qd (xy-z-ref only), 1/m^4
+  double distance_offset = 0.0;  // q1 of Qd (xy-z-ref only), 1/m^4
+};
+
+// Parameters of SAMPC (paper sec. 4.3, eqs. 24-35). Defaults are those shipped in
+// config/sampc.yaml, where each choice the paper leaves open is explained.
+struct SampcParams {
+  Mode mode = Mode::Cover;
+
+  int horizon_steps = 20;          // N
+  double step_s = 0.1;             // dt of one shooting interval
+  double control_period_s = 0.01;  // how far the warm start is shifted between calls (100 Hz)
+
+  // Exponential decays over the horizon: Q by exp(-e0 k), Qd by exp(-e1 k), R by exp(-e3 k);
+  // Qd grows as the current squared distance d0 shrinks through exp(e2 d0), e2 < 0.
+  double e0 = 0.05;
+  double e1 = 0.05;
+  double e2_per_m2 = -0.5;
+  double e3 = 0.02;
+
+  double thrust_min_m_s2 = 2.0;
+  double thrust_max_m_s2 = 20.0;
+  double roll_pitch_rate_max_rad_s = 3.14;
+  double yaw_rate_max_rad_s = 1.5;
+
+  WeightSet transition_weights{Eigen::Vector3d(0, 0, 200),
+                               Eigen::Vector3d(350, 350, 100),
+                               Eigen::Vector4d::Constant(40),
+                               Eigen::Vector4d(1, 30, 30, 5),
+                               200.0,
+                               100.0};
+  WeightSet tracking_weights{Eigen::Vector3d(200, 200, 300),
+                             Eigen::Vector3d(100, 100, 300),
+                             Eigen::Vector4d::Constant(50),
+                             Eigen::Vector4d(1, 20, 20, 5),
+                             0.0,
+                             0.0};
+  // The terminal node k = N uses the stage weights of k = N times this factor.
+  double terminal_weight_scale = 2.0;
+
+  // Below this horizontal distance to the UGV the nose-at-UGV yaw is ill-defined: the last
+  // yaw reference is held, and the eq. 30 direction term is dropped.
+  double yaw_hold_radius_m = 0.2;
+
+  // Solver: 1 SQP iteration per call is the real-time iteration. After reset() (no warm
+  // start) `cold_start_iterations` are spent instead. `max_sqp_iterations` > 1 iterates
+  // until the largest step component is below `sqp_step_tolerance`.
+  int max_sqp_iterations = 1;
+  int cold_start_iterations = 5;
+  double sqp_step_tolerance = 1e-6;
+  int max_qp_iterations = 25;  // active-set changes per QP
+
+  // Input sanity: beyond these the solve is refused with status invalid_input.
+  double max_abs_position_m = 1000.0;
+  double max_abs_speed_m_s = 50.0;
+  double max_abs_angular_rate_rad_s = 20.0;
+
+  Eigen::Vector4d input_lower_bound() const;
+  Eigen::Vector4d input_upper_bound() const;
+
+  static SampcParams load(config::YamlReader& reader);
+  // Reads the `sampc` section of a YAML file; throws config::ConfigError naming the key.
+  static SampcParams load_file(const std::string& path);
+  // Throws config::ConfigError naming the offending key.
+  void validate() const;
+};
+
+}  // namespace cover::sampc

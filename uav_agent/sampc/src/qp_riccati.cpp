@@ -1,0 +1,232 @@
+#include "cover/sampc/qp_riccati.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cover::sampc {
+namespace {
+
+// An input this close to a bound counts as on it (the iterates are projected exactly,
+// so this only absorbs rounding).
+constexpr double kOnBound = 1e-10;
+// A bound-held input is released only when its gradient points inside by more than this.
+constexpr double kGradientTolerance = 1e-9;
+// Projected Armijo search: sufficient decrease fraction and step halvings.
+constexpr double kArmijo = 1e-4;
+constexpr int kMaxHalvings = 30;
+
+}  // namespace
+
+void RiccatiQp::factorize(const ActiveSet& active) {
+  factored_active_ = active;
+  P_[horizon_] = nodes[horizon_].Q;
+  MatrixXX PA, Q_bar;
+  MatrixXU PB;
+  for (int k = horizon_ - 1; k >= 0; --k) {
+    const QpNode& n = nodes[k];
+    const MatrixXX& P = P_[k + 1];
+    PA.noalias() = P * n.A;
+    PB.noalias() = P * n.B;
+    MatrixUU& R_bar = r_bar_[k];
+    MatrixUX& S_bar = s_bar_[k];
+    R_bar = n.R;
+    R_bar.noalias() += n.B.transpose() * PB;
+    S_bar = n.S;
+    S_bar.noalias() += n.B.transpose() * PA;
+    Q_bar = n.Q;
+    Q_bar.noalias() += n.A.transpose() * PA;
+
+    // Bound-held inputs leave the stage problem: identity rows/columns in M, no feedback.
+    MatrixUU M = R_bar;
+    MatrixUX S_free = S_bar;
+    for (int i = 0; i < kNu; ++i) {
+      if (active[k][i] == BoundState::Free) continue;
+      M.row(i).setZero();
+      M.col(i).setZero();
+      M(i, i) = 1.0;
+      S_free.row(i).setZero();
+    }
+    free_factor_[k].compute(M);
+    MatrixUX& K = K_[k];
+    K = -free_factor_[k].solve(S_free);
+
+    // The stage cost under du = K dx (+ k), in closed form: valid for any active set
+    // (for an empty one it is the textbook Q_bar - S' R^-1 S).
+    const MatrixXU KtR = K.transpose() * R_bar;
+    MatrixXX& P_k = P_[k];
+    P_k = Q_bar;
+    P_k.noalias() += S_bar.transpose() * K;
+    P_k.noalias() += K.transpose() * S_bar;
+    P_k.noalias() += KtR * K;
+    P_k = (0.5 * (P_k + P_k.transpose())).eval();
+  }
+}
+
+void RiccatiQp::newton_point(const VectorX& dx0) {
+  // Vector part of the recursion: p_k and the feedforward k_k, with the bound-held inputs
+  // at their current values.
+  std::array<VectorU, kMaxHorizon> feedforward;
+  VectorX p = nodes[horizon_].q;
+  for (int k = horizon_ - 1; k >= 0; --k) {
+    const QpNode& n = nodes[k];
+    const VectorX p_next = P_[k + 1] * n.c + p;
+    VectorU r_bar = n.r;
+    r_bar.noalias() += n.B.transpose() * p_next;
+    VectorU r_free = r_bar;
+    for (int i = 0; i < kNu; ++i) {
+      if (factored_active_[k][i] == BoundState::Free) continue;
+      r_free += r_bar_[k].col(i) * du_[k](i);
+    }
+    for (int i = 0; i < kNu; ++i) {
+      if (factored_active_[k][i] != BoundState::Free) r_free(i) = -du_[k](i);
+    }
+    VectorU& kk = feedforward[k];
+    kk = -free_factor_[k].solve(r_free);
+    VectorX p_k = n.q;
+    p_k.noalias() += n.A.transpose() * p_next;
+    p_k.noalias() += s_bar_[k].transpose() * kk;
+    p_k.noalias() += K_[k].transpose() * (r_bar + r_bar_[k] * kk);
+    p = p_k;
+  }
+  new_dx_[0] = dx0;
+  for (int k = 0; k < horizon_; ++k) {
+    const QpNode& n = nodes[k];
+    new_du_[k] = feedforward[k];
+    new_du_[k].noalias() += K_[k] * new_dx_[k];
+    new_dx_[k + 1] = n.c;
+    new_dx_[k + 1].noalias() += n.A * new_dx_[k];
+    new_dx_[k + 1].noalias() += n.B * new_du_[k];
+  }
+}
+
+void RiccatiQp::simulate(const VectorX& dx0, const std::array<VectorU, kMaxHorizon>& du,
+                         std::array<VectorX, kMaxHorizon + 1>& dx) const {
+  dx[0] = dx0;
+  for (int k = 0; k < horizon_; ++k) {
+    dx[k + 1] = nodes[k].c;
+    dx[k + 1].noalias() += nodes[k].A * dx[k];
+    dx[k + 1].noalias() += nodes[k].B * du[k];
+  }
+}
+
+double RiccatiQp::objective(const std::array<VectorU, kMaxHorizon>& du,
+                            const std::array<VectorX, kMaxHorizon + 1>& dx) const {
+  double value = 0.0;
+  for (int k = 0; k < horizon_; ++k) {
+    const QpNode& n = nodes[k];
+    value += 0.5 * dx[k].dot(n.Q * dx[k]) + du[k].dot(n.S * dx[k]) + 0.5 * du[k].dot(n.R * du[k]) +
+             n.q.dot(dx[k]) + n.r.dot(du[k]);
+  }
+  const QpNode& t = nodes[horizon_];
+  return value + 0.5 * dx[horizon_].dot(t.Q * dx[horizon_]) + t.q.dot(dx[horizon_]);
+}
+
+double RiccatiQp::objective() const {
+  return objective(du_, dx_);
+}
+
+void RiccatiQp::compute_gradient() {
+  // Adjoint sweep: lambda_k = d objective / d dx_k along the dynamics.
+  VectorX lambda = nodes[horizon_].q;
+  lambda.noalias() += nodes[horizon_].Q * dx_[horizon_];
+  for (int k = horizon_ - 1; k >= 0; --k) {
+    const QpNode& n = nodes[k];
+    VectorU& g = gradient_[k];
+    g = n.r;
+    g.noalias() += n.R * du_[k];
+    g.noalias() += n.S * dx_[k];
+    g.noalias() += n.B.transpose() * lambda;
+    VectorX next = n.q;
+    next.noalias() += n.Q * dx_[k];
+    next.noalias() += n.S.transpose() * du_[k];
+    next.noalias() += n.A.transpose() * lambda;
+    lambda = next;
+  }
+}
+
+void RiccatiQp::identify_active_set(ActiveSet& active) const {
+  for (int k = 0; k < horizon_; ++k) {
+    for (int i = 0; i < kNu; ++i) {
+      const double u = du_[k](i), g = gradient_[k](i);
+      BoundState state = BoundState::Free;
+      if (u <= nodes[k].lower(i) + kOnBound && g > kGradientTolerance) state = BoundState::AtLower;
+      if (u >= nodes[k].upper(i) - kOnBound && g < -kGradientTolerance) state = BoundState::AtUpper;
+      active[k][i] = state;
+    }
+  }
+}
+
+bool RiccatiQp::within_bounds(const std::array<VectorU, kMaxHorizon>& du) const {
+  for (int k = 0; k < horizon_; ++k) {
+    if ((du[k].array() < nodes[k].lower.array() - kOnBound).any() ||
+        (du[k].array() > nodes[k].upper.array() + kOnBound).any()) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void RiccatiQp::prepare(int horizon) {
+  horizon_ = horizon;
+  for (int k = 0; k < horizon_; ++k) du_[k].setZero();
+  simulate(VectorX::Zero(), du_, dx_);
+  compute_gradient();
+  ActiveSet active{};
+  identify_active_set(active);
+  factorize(active);
+}
+
+QpResult RiccatiQp::solve_prepared(const VectorX& dx0, int max_iterations) {
+  QpResult result;
+  // Start from the current plan (du = 0), feasible by construction.
+  for (int k = 0; k < horizon_; ++k) du_[k].setZero();
+  simulate(dx0, du_, dx_);
+  compute_gradient();
+  ActiveSet active{};
+  while (result.iterations < max_iterations) {
+    ++result.iterations;
+    identify_active_set(active);
+    if (active != factored_active_) {
+      factorize(active);
+      ++result.factorizations;
+    }
+    newton_point(dx0);
+    if (within_bounds(new_du_)) {
+      // The exact minimiser on this face is feasible: optimal unless a held input wants out.
+      du_ = new_du_;
+      dx_ = new_dx_;
+      compute_gradient();
+      identify_active_set(active);
+      if (active == factored_active_) {
+        result.converged = true;
+        return result;
+      }
+      continue;
+    }
+    // Projected Armijo search along the Newton direction.
+    const double current = objective(du_, dx_);
+    double step = 1.0;
+    for (int halving = 0; halving <= kMaxHalvings; ++halving, step *= 0.5) {
+      double predicted = 0.0;
+      for (int k = 0; k < horizon_; ++k) {
+        trial_du_[k] = (du_[k] + step * (new_du_[k] - du_[k]))
+                           .cwiseMax(nodes[k].lower)
+                           .cwiseMin(nodes[k].upper);
+        predicted += gradient_[k].dot(trial_du_[k] - du_[k]);
+      }
+      simulate(dx0, trial_du_, trial_dx_);
+      if (objective(trial_du_, trial_dx_) <= current + kArmijo * predicted) break;
+    }
+    du_ = trial_du_;
+    dx_ = trial_dx_;
+    compute_gradient();
+  }
+  return result;
+}
+
+QpResult RiccatiQp::solve(int horizon, const VectorX& dx0, int max_iterations) {
+  prepare(horizon);
+  return solve_prepared(dx0, max_iterations);
+}
+
+}  // namespace cover::sampc

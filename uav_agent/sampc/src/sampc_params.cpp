@@ -1,0 +1,143 @@
+#include "cover/sampc/sampc_params.hpp"
+
+#include <cmath>
+
+#include "cover/model/state.hpp"
+
+namespace cover::sampc {
+namespace {
+
+Mode parse_mode(const std::string& text, const std::string& context) {
+  if (text == "cover") return Mode::Cover;
+  if (text == "no-ref-vxy") return Mode::NoRefVxy;
+  if (text == "coni-mpc") return Mode::ConiMpc;
+  throw config::ConfigError(context + ".mode: '" + text +
+                            "' is not one of cover, no-ref-vxy, coni-mpc");
+}
+
+void load_weights(config::YamlReader reader, WeightSet& set, bool with_distance) {
+  reader.optional("position", set.position);
+  reader.optional("velocity", set.velocity);
+  reader.optional("attitude", set.attitude);
+  reader.optional("input", set.input);
+  if (with_distance) {
+    reader.optional("distance_gain", set.distance_gain);
+    reader.optional("distance_offset", set.distance_offset);
+  }
+  reader.reject_unknown_keys();
+}
+
+void validate_weights(const WeightSet& set, const std::string& context) {
+  config::check(set.position.allFinite() && (set.position.array() >= 0).all(),
+                context + ".position", "weights must be finite and >= 0");
+  config::check(set.velocity.allFinite() && (set.velocity.array() >= 0).all(),
+                context + ".velocity", "weights must be finite and >= 0");
+  config::check(set.attitude.allFinite() && (set.attitude.array() >= 0).all(),
+                context + ".attitude", "weights must be finite and >= 0");
+  // R > 0 keeps every QP strictly convex in the inputs (the Riccati recursion needs it).
+  config::check(set.input.allFinite() && (set.input.array() > 0).all(), context + ".input",
+                "weights must be finite and > 0");
+  config::check(std::isfinite(set.distance_gain) && set.distance_gain >= 0,
+                context + ".distance_gain", "must be finite and >= 0");
+  config::check(std::isfinite(set.distance_offset) && set.distance_offset >= 0,
+                context + ".distance_offset", "must be finite and >= 0");
+}
+
+}  // namespace
+
+const char* to_string(Mode mode) {
+  switch (mode) {
+    case Mode::Cover:
+      return "cover";
+    case Mode::NoRefVxy:
+      return "no-ref-vxy";
+    case Mode::ConiMpc:
+      return "coni-mpc";
+  }
+  return "unknown";
+}
+
+Eigen::Vector4d SampcParams::input_lower_bound() const {
+  return {thrust_min_m_s2, -roll_pitch_rate_max_rad_s, -roll_pitch_rate_max_rad_s,
+          -yaw_rate_max_rad_s};
+}
+
+Eigen::Vector4d SampcParams::input_upper_bound() const {
+  return {thrust_max_m_s2, roll_pitch_rate_max_rad_s, roll_pitch_rate_max_rad_s,
+          yaw_rate_max_rad_s};
+}
+
+SampcParams SampcParams::load(config::YamlReader& reader) {
+  SampcParams p;
+  std::string mode = to_string(p.mode);
+  reader.optional("mode", mode);
+  p.mode = parse_mode(mode, reader.context());
+  reader.optional("horizon_steps", p.horizon_steps);
+  reader.optional("step_s", p.step_s);
+  reader.optional("control_period_s", p.control_period_s);
+  reader.optional("e0", p.e0);
+  reader.optional("e1", p.e1);
+  reader.optional("e2_per_m2", p.e2_per_m2);
+  reader.optional("e3", p.e3);
+  reader.optional("thrust_min_m_s2", p.thrust_min_m_s2);
+  reader.optional("thrust_max_m_s2", p.thrust_max_m_s2);
+  reader.optional("roll_pitch_rate_max_rad_s", p.roll_pitch_rate_max_rad_s);
+  reader.optional("yaw_rate_max_rad_s", p.yaw_rate_max_rad_s);
+  load_weights(reader.child("transition_weights"), p.transition_weights, true);
+  load_weights(reader.child("tracking_weights"), p.tracking_weights, false);
+  reader.optional("terminal_weight_scale", p.terminal_weight_scale);
+  reader.optional("yaw_hold_radius_m", p.yaw_hold_radius_m);
+  reader.optional("max_sqp_iterations", p.max_sqp_iterations);
+  reader.optional("cold_start_iterations", p.cold_start_iterations);
+  reader.optional("sqp_step_tolerance", p.sqp_step_tolerance);
+  reader.optional("max_qp_iterations", p.max_qp_iterations);
+  reader.optional("max_abs_position_m", p.max_abs_position_m);
+  reader.optional("max_abs_speed_m_s", p.max_abs_speed_m_s);
+  reader.optional("max_abs_angular_rate_rad_s", p.max_abs_angular_rate_rad_s);
+  reader.reject_unknown_keys();
+  p.validate();
+  return p;
+}
+
+SampcParams SampcParams::load_file(const std::string& path) {
+  const YAML::Node root = config::load_yaml_file(path);
+  config::check(root.IsMap() && root["sampc"], path, "missing section 'sampc'");
+  config::YamlReader reader(root["sampc"], path + ":sampc");
+  return load(reader);
+}
+
+void SampcParams::validate() const {
+  const std::string c = "sampc";
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
+  config::check(horizon_steps >= 1 && horizon_steps <= kMaxHorizon, c + ".horizon_steps",
+                "must be in [1, " + std::to_string(kMaxHorizon) + "]");
+  config::check(positive(step_s), c + ".step_s", "must be > 0");
+  config::check(positive(control_period_s), c + ".control_period_s", "must be > 0");
+  config::check(std::isfinite(e0) && e0 >= 0, c + ".e0", "must be finite and >= 0");
+  config::check(std::isfinite(e1) && e1 >= 0, c + ".e1", "must be finite and >= 0");
+  config::check(std::isfinite(e2_per_m2) && e2_per_m2 <= 0, c + ".e2_per_m2",
+                "must be finite and <= 0 (Qd grows as the UAV nears the UGV)");
+  config::check(std::isfinite(e3) && e3 >= 0, c + ".e3", "must be finite and >= 0");
+  config::check(positive(thrust_min_m_s2), c + ".thrust_min_m_s2", "must be > 0");
+  config::check(std::isfinite(thrust_max_m_s2) && thrust_max_m_s2 > model::kGravity_m_s2 &&
+                    thrust_min_m_s2 < model::kGravity_m_s2,
+                c + ".thrust_max_m_s2", "thrust bounds must bracket hover (g)");
+  config::check(positive(roll_pitch_rate_max_rad_s), c + ".roll_pitch_rate_max_rad_s",
+                "must be > 0");
+  config::check(positive(yaw_rate_max_rad_s), c + ".yaw_rate_max_rad_s", "must be > 0");
+  validate_weights(transition_weights, c + ".transition_weights");
+  validate_weights(tracking_weights, c + ".tracking_weights");
+  config::check(positive(terminal_weight_scale), c + ".terminal_weight_scale", "must be > 0");
+  config::check(std::isfinite(yaw_hold_radius_m) && yaw_hold_radius_m >= 0,
+                c + ".yaw_hold_radius_m", "must be finite and >= 0");
+  config::check(max_sqp_iterations >= 1, c + ".max_sqp_iterations", "must be >= 1");
+  config::check(cold_start_iterations >= 1, c + ".cold_start_iterations", "must be >= 1");
+  config::check(positive(sqp_step_tolerance), c + ".sqp_step_tolerance", "must be > 0");
+  config::check(max_qp_iterations >= 1, c + ".max_qp_iterations", "must be >= 1");
+  config::check(positive(max_abs_position_m), c + ".max_abs_position_m", "must be > 0");
+  config::check(positive(max_abs_speed_m_s), c + ".max_abs_speed_m_s", "must be > 0");
+  config::check(positive(max_abs_angular_rate_rad_s), c + ".max_abs_angular_rate_rad_s",
+                "must be > 0");
+}
+
+}  // namespace cover::sampc
