@@ -130,17 +130,33 @@ std::string SvgPlot::render() const {
   lo -= pad;
   hi += pad;
 
+  // Legend: one entry per distinct label, in order of first appearance.
+  std::vector<const SvgStyle*> entries;
+  for (const auto& path : paths_) {
+    if (path.style.legend.empty()) continue;
+    const bool seen = std::any_of(entries.begin(), entries.end(), [&](const SvgStyle* s) {
+      return s->legend == path.style.legend;
+    });
+    if (!seen) entries.push_back(&path.style);
+  }
+
+  // Equal scale on both axes; the picture is then cropped to the data's aspect ratio
+  // (keeping room for the legend) instead of leaving a band of white.
   const double plot_w = width_px_ - kMarginLeftPx - kMarginRightPx;
-  const double plot_h = height_px_ - kMarginTopPx - kMarginBottomPx;
-  const double scale = std::min(plot_w / (hi.x() - lo.x()), plot_h / (hi.y() - lo.y()));
-  const Viewport view{lo.x(), lo.y(), scale, kMarginLeftPx, kMarginTopPx + plot_h};
+  const double max_plot_h = height_px_ - kMarginTopPx - kMarginBottomPx;
+  const double scale = std::min(plot_w / (hi.x() - lo.x()), max_plot_h / (hi.y() - lo.y()));
+  const double legend_h = 20.0 * static_cast<double>(entries.size()) + 20.0;
+  const double plot_h = std::max((hi.y() - lo.y()) * scale, std::min(legend_h, max_plot_h));
+  const int height_px = static_cast<int>(std::ceil(kMarginTopPx + plot_h + kMarginBottomPx));
+  const Viewport view{lo.x(), lo.y(), scale, kMarginLeftPx,
+                      kMarginTopPx + (plot_h + (hi.y() - lo.y()) * scale) / 2};
   const double right_px = view.px(hi.x());
   const double top_px = view.py(hi.y());
 
   std::ostringstream svg;
   svg.precision(7);
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width_px_ << "\" height=\""
-      << height_px_ << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+      << height_px << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   svg << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   svg << "<text x=\"" << width_px_ / 2 << "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">"
       << escape_xml(title_) << "</text>\n";
@@ -190,17 +206,8 @@ std::string SvgPlot::render() const {
         << view.py(marker.point.y()) - 6 << "\">" << escape_xml(marker.label) << "</text>\n";
   }
 
-  // Legend: one entry per distinct label, in order of first appearance.
-  std::vector<const SvgStyle*> entries;
-  for (const auto& path : paths_) {
-    if (path.style.legend.empty()) continue;
-    const bool seen = std::any_of(entries.begin(), entries.end(), [&](const SvgStyle* s) {
-      return s->legend == path.style.legend;
-    });
-    if (!seen) entries.push_back(&path.style);
-  }
   const double legend_x = right_px + 16;
-  double legend_y = top_px + 10;
+  double legend_y = kMarginTopPx + 10;
   for (const SvgStyle* style : entries) {
     svg << "<line x1=\"" << legend_x << "\" y1=\"" << legend_y << "\" x2=\"" << legend_x + 24
         << "\" y2=\"" << legend_y << "\" stroke=\"" << style->colour << "\" stroke-width=\"3\""
