@@ -42,6 +42,7 @@ class ImuSensor {
   void update(const WorldState& world);
 
   bool has_reading() const { return has_reading_; }
+  // 0 <= ugv_index < ugv count; meaningful once has_reading().
   const ImuReading& latest(int ugv_index) const { return latest_[ugv_index]; }
 
  private:

@@ -46,7 +46,8 @@ class RelativeSensor {
   void update(const WorldState& world);
 
   bool has_measurement() const { return has_measurement_; }
-  // The newest measurement of the UAV in G_k whose latency has elapsed.
+  // The newest measurement of the UAV in G_k whose latency has elapsed
+  // (0 <= ugv_index < ugv count; meaningful once has_measurement()).
   const RelativeState& latest(int ugv_index) const { return latest_[ugv_index]; }
   double latency_s() const { return latency_steps_ * physics_dt_s_; }
 

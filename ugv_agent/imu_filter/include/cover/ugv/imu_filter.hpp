@@ -69,6 +69,7 @@ inline bool accepted(ImuFilterStatus s) {
 // Never throws; bad samples are rejected with a status and the last good output stays.
 class ImuFilter {
  public:
+  // `params` must have passed validate() (done by load()).
   explicit ImuFilter(const ImuFilterParams& params = {});
 
   ImuFilterStatus update(const ImuSample& sample);
