@@ -50,7 +50,7 @@ class SampleFiller {
 template <typename T>
 std::string first_difference(const T& expected, const T& actual) {
   const auto patch =
-      nlohmann::json::diff(cover::dds::to_json(expected), cover::dds::to_json(actual));
+      nlohmann::ordered_json::diff(cover::dds::to_json(expected), cover::dds::to_json(actual));
   return patch.empty() ? std::string() : patch[0]["path"].template get<std::string>();
 }
 

@@ -123,6 +123,9 @@ class CycloneWriter final : public WriterBackend {
     dds_sample_free(sample_.data(), ops_.descriptor, DDS_FREE_CONTENTS);
     return rc == DDS_RETCODE_OK;
   }
+  bool wait_for_acknowledgments(std::chrono::milliseconds timeout) override {
+    return dds_wait_for_acks(writer_, DDS_MSECS(timeout.count())) == DDS_RETCODE_OK;
+  }
   std::size_t matched_readers() const override {
     dds_publication_matched_status_t status{};
     dds_get_publication_matched_status(writer_, &status);

@@ -175,6 +175,10 @@ class FastWriter final : public WriterBackend {
     ops_.to_vendor(neutral, sample_);
     return writer_->write(sample_);
   }
+  bool wait_for_acknowledgments(std::chrono::milliseconds timeout) override {
+    return writer_->wait_for_acknowledgments(to_duration(timeout.count() * 1e-3)) ==
+           ReturnCode_t::RETCODE_OK;
+  }
   std::size_t matched_readers() const override {
     fdds::PublicationMatchedStatus status;
     writer_->get_publication_matched_status(status);

@@ -21,6 +21,8 @@ class WriterBackend {
   // Writes one vendor-neutral sample; false on a vendor error (never throws).
   virtual bool write(const void* sample) = 0;
   virtual std::size_t matched_readers() const = 0;
+  // Reliable topics: waits until matched readers acknowledged every sample written.
+  virtual bool wait_for_acknowledgments(std::chrono::milliseconds timeout) = 0;
 };
 
 // Called from the vendor's receive thread with a vendor-neutral sample.

@@ -25,32 +25,35 @@ struct IsVector : std::false_type {};
 template <typename T>
 struct IsVector<std::vector<T>> : std::true_type {};
 
-template <typename T>
-nlohmann::json encode(const T& value);
+// Encoded objects keep the IDL field order (ordered_json), which reads better.
+using Json = nlohmann::ordered_json;
 
 template <typename T>
-void decode(const nlohmann::json& json, T& value, const std::string& path);
+Json encode(const T& value);
+
+template <typename J, typename T>
+void decode(const J& json, T& value, const std::string& path);
 
 template <typename T>
-nlohmann::json encode(const T& value) {
+Json encode(const T& value) {
   if constexpr (std::is_enum_v<T>) {
     return to_string(value);
   } else if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
     return value;
   } else if constexpr (IsVector<T>::value) {
-    nlohmann::json array = nlohmann::json::array();
+    Json array = Json::array();
     for (const auto& element : value) array.push_back(encode(element));
     return array;
   } else {
-    nlohmann::json object = nlohmann::json::object();
+    Json object = Json::object();
     msg::visit_fields(value,
                       [&](const char* name, const auto& field) { object[name] = encode(field); });
     return object;
   }
 }
 
-template <typename T>
-void decode_struct(const nlohmann::json& json, T& value, const std::string& path) {
+template <typename J, typename T>
+void decode_struct(const J& json, T& value, const std::string& path) {
   if (!json.is_object()) throw JsonError(path + ": expected an object");
   std::vector<std::string> known;
   msg::visit_fields(value, [&](const char* name, auto& field) {
@@ -69,27 +72,28 @@ void decode_struct(const nlohmann::json& json, T& value, const std::string& path
   }
 }
 
-template <typename T>
-void decode(const nlohmann::json& json, T& value, const std::string& path) {
+template <typename J, typename T>
+void decode(const J& json, T& value, const std::string& path) {
   if constexpr (std::is_enum_v<T>) {
-    if (!json.is_string() || !from_string(json.get<std::string>(), value)) {
+    if (!json.is_string() || !from_string(json.template get<std::string>(), value)) {
       throw JsonError(path + ": expected an enum name, got " + json.dump());
     }
   } else if constexpr (std::is_same_v<T, bool>) {
     if (!json.is_boolean()) throw JsonError(path + ": expected true or false");
-    value = json.get<bool>();
+    value = json.template get<bool>();
   } else if constexpr (std::is_arithmetic_v<T>) {
     if (!json.is_number()) throw JsonError(path + ": expected a number, got " + json.dump());
     if constexpr (std::is_integral_v<T>) {
       if (!json.is_number_integer()) throw JsonError(path + ": expected an integer");
-      if (std::is_unsigned_v<T> && json.get<long long>() < 0 && !json.is_number_unsigned()) {
+      if (std::is_unsigned_v<T> && json.template get<long long>() < 0 &&
+          !json.is_number_unsigned()) {
         throw JsonError(path + ": expected a non-negative integer");
       }
     }
-    value = json.get<T>();
+    value = json.template get<T>();
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (!json.is_string()) throw JsonError(path + ": expected a string");
-    value = json.get<std::string>();
+    value = json.template get<std::string>();
   } else if constexpr (IsVector<T>::value) {
     if (!json.is_array()) throw JsonError(path + ": expected an array");
     value.resize(json.size());
@@ -104,14 +108,14 @@ void decode(const nlohmann::json& json, T& value, const std::string& path) {
 }  // namespace json_detail
 
 template <typename T>
-nlohmann::json to_json(const T& sample) {
+json_detail::Json to_json(const T& sample) {
   return json_detail::encode(sample);
 }
 
 // Fields left out take their zero value; an unknown field or a wrong type throws JsonError
 // naming the field path.
-template <typename T>
-T from_json(const nlohmann::json& json) {
+template <typename T, typename J>
+T from_json(const J& json) {
   T sample{};
   json_detail::decode(json, sample, "");
   return sample;

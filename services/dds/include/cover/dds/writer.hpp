@@ -17,6 +17,12 @@ class Writer {
   bool write(const T& sample) { return backend_ && backend_->write(&sample); }
   std::size_t matched_readers() const { return backend_ ? backend_->matched_readers() : 0; }
 
+  // Reliable topics: waits until every matched reader acknowledged what was written
+  // (call before destroying a writer whose last samples must arrive).
+  bool wait_for_acknowledgments(std::chrono::milliseconds timeout) {
+    return backend_ && backend_->wait_for_acknowledgments(timeout);
+  }
+
   // Waits until at least `count` readers matched; false on timeout.
   bool wait_for_readers(std::size_t count, std::chrono::milliseconds timeout) const;
 

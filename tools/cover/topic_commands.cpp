@@ -1,0 +1,124 @@
+#include "topic_commands.hpp"
+
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+#include <thread>
+
+#include "cover/clock/clock.hpp"
+#include "cover/dds/json_codec.hpp"
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/process/shutdown_signal.hpp"
+
+namespace cover::cli {
+namespace {
+
+using namespace std::chrono_literals;
+
+const dds::TopicInfo& lookup(const std::string& topic) {
+  const dds::TopicInfo* info = dds::find_topic(topic);
+  if (!info) {
+    throw std::runtime_error("'" + topic + "' is not in the catalogue (see `cover topics`)");
+  }
+  return *info;
+}
+
+template <typename T>
+int echo_typed(dds::Participant& participant, const dds::TopicInfo& info,
+               const EchoRequest& request) {
+  auto reader = participant.make_reader<T>(
+      request.topic, dds::qos_profile(info.qos_profile), [&request](const T& sample) {
+        const auto json = dds::to_json(sample);
+        std::cout << (request.json ? json.dump() : json.dump(2)) << std::endl;
+      });
+  const auto give_up = std::chrono::steady_clock::now() +
+                       std::chrono::milliseconds(static_cast<long>(request.timeout_s * 1000));
+  while (request.count <= 0 ||
+         reader.received_count() < static_cast<std::uint64_t>(request.count)) {
+    if (process::ShutdownSignal::requested()) return 130;
+    if (request.timeout_s > 0 && std::chrono::steady_clock::now() >= give_up) {
+      std::cerr << "cover echo: timeout after " << reader.received_count() << " samples\n";
+      return 1;
+    }
+    reader.wait_for_sample(50ms, reader.received_count());
+  }
+  return 0;
+}
+
+template <typename T>
+int publish_typed(dds::Participant& participant, const dds::TopicInfo& info,
+                  const PubRequest& request) {
+  const T sample = dds::from_json<T>(nlohmann::json::parse(request.json));
+  auto writer = participant.make_writer<T>(request.topic, dds::qos_profile(info.qos_profile));
+  const auto wait = std::chrono::milliseconds(static_cast<long>(request.wait_for_reader_s * 1000));
+  if (!writer.wait_for_readers(1, wait)) {
+    std::cerr << "cover pub: no subscriber on " << request.topic << " yet; publishing anyway\n";
+  }
+  const auto period = request.rate_hz > 0
+                          ? std::chrono::nanoseconds(static_cast<long>(1e9 / request.rate_hz))
+                          : std::chrono::nanoseconds(0);
+  auto next = std::chrono::steady_clock::now();
+  for (int i = 0; i < request.count && !process::ShutdownSignal::requested(); ++i) {
+    if (!writer.write(sample)) {
+      std::cerr << "cover pub: write failed\n";
+      return 1;
+    }
+    next += period;
+    std::this_thread::sleep_until(next);
+  }
+  // Reliable topics: make sure the subscribers have the samples before the writer goes.
+  if (dds::qos_profile(info.qos_profile).reliability == dds::Reliability::Reliable) {
+    writer.wait_for_acknowledgments(2s);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int list_topics(bool json) {
+  for (const auto& entry : dds::topic_catalog()) {
+    if (json) {
+      std::cout << nlohmann::json{{"topic", entry.pattern},
+                                  {"type", entry.type_name},
+                                  {"qos", entry.qos_profile},
+                                  {"rate", entry.rate},
+                                  {"description", entry.description}}
+                       .dump()
+                << "\n";
+    } else {
+      std::cout << std::left << std::setw(28) << entry.pattern << std::setw(34) << entry.type_name
+                << std::setw(9) << entry.qos_profile << std::setw(11) << entry.rate
+                << entry.description << "\n";
+    }
+  }
+  return 0;
+}
+
+int echo(const dds::ParticipantOptions& options, const EchoRequest& request) {
+  const auto& info = lookup(request.topic);
+  dds::Participant participant(options);
+  int rc = 0;
+  msg::with_type(info.type_name, [&](auto tag) {
+    rc = echo_typed<typename decltype(tag)::type>(participant, info, request);
+  });
+  return rc;
+}
+
+int publish(const dds::ParticipantOptions& options, const PubRequest& request) {
+  const auto& info = lookup(request.topic);
+  nlohmann::json parsed;
+  try {
+    parsed = nlohmann::json::parse(request.json);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::runtime_error(std::string("invalid JSON: ") + e.what());
+  }
+  dds::Participant participant(options);
+  int rc = 0;
+  msg::with_type(info.type_name, [&](auto tag) {
+    rc = publish_typed<typename decltype(tag)::type>(participant, info, request);
+  });
+  return rc;
+}
+
+}  // namespace cover::cli

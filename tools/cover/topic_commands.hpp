@@ -1,0 +1,31 @@
+#pragma once
+
+#include <string>
+
+#include "cover/dds/participant_options.hpp"
+
+namespace cover::cli {
+
+// `cover topics`: prints the topic catalogue (a table, or JSON lines with `json`).
+int list_topics(bool json);
+
+struct EchoRequest {
+  std::string topic;
+  int count = 0;           // 0: until interrupted
+  double timeout_s = 0.0;  // 0: wait forever
+  bool json = false;       // one compact JSON object per line instead of indented JSON
+};
+// `cover echo`: prints samples of a catalogue topic as they arrive.
+int echo(const dds::ParticipantOptions& options, const EchoRequest& request);
+
+struct PubRequest {
+  std::string topic;
+  std::string json;
+  double rate_hz = 0.0;  // 0: as fast as the single/first sample allows
+  int count = 1;
+  double wait_for_reader_s = 5.0;
+};
+// `cover pub`: publishes a JSON sample (missing fields zero, unknown fields an error).
+int publish(const dds::ParticipantOptions& options, const PubRequest& request);
+
+}  // namespace cover::cli
