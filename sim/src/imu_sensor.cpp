@@ -1,6 +1,7 @@
 #include "cover/sim/imu_sensor.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "cover/sim/seeding.hpp"
 
@@ -13,6 +14,7 @@ ImuSensorParams ImuSensorParams::load(cover::config::YamlReader& reader) {
   reader.optional("angular_velocity_noise_rad_s", p.angular_velocity_noise_rad_s);
   reader.optional("specific_force_bias_sigma_m_s2", p.specific_force_bias_sigma_m_s2);
   reader.optional("angular_velocity_bias_sigma_rad_s", p.angular_velocity_bias_sigma_rad_s);
+  reader.optional("fault_probability", p.fault_probability);
   reader.reject_unknown_keys();
   p.validate(reader.context());
   return p;
@@ -32,6 +34,7 @@ void ImuSensorParams::validate(const std::string& context) const {
         context + ".specific_force_bias_sigma_m_s2", "must be in [0, 2] m/s^2");
   check(in_range(angular_velocity_bias_sigma_rad_s, 0.0, 0.5),
         context + ".angular_velocity_bias_sigma_rad_s", "must be in [0, 0.5] rad/s");
+  check(in_range(fault_probability, 0.0, 1.0), context + ".fault_probability", "must be in [0, 1]");
 }
 
 ugv::ImuSample true_imu_sample(const UgvState& ugv, double gravity_m_s2, double stamp_s) {
@@ -75,6 +78,9 @@ void ImuSensor::update(const WorldState& world) {
         imu.specific_force_bias_m_s2 + white_noise(imu, params_.specific_force_noise_m_s2);
     sample.angular_velocity_rad_s +=
         imu.angular_velocity_bias_rad_s + white_noise(imu, params_.angular_velocity_noise_rad_s);
+    if (params_.fault_probability > 0.0 && imu.unit_uniform(imu.rng) < params_.fault_probability) {
+      sample.angular_velocity_rad_s.x() = std::numeric_limits<double>::quiet_NaN();
+    }
     ImuReading& reading = latest_[k];
     reading.raw = sample;
     reading.status = imu.filter.update(sample);

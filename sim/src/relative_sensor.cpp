@@ -11,6 +11,7 @@ RelativeSensorParams RelativeSensorParams::load(cover::config::YamlReader& reade
   reader.optional("position_noise_m", p.position_noise_m);
   reader.optional("velocity_noise_m_s", p.velocity_noise_m_s);
   reader.optional("attitude_noise_rad", p.attitude_noise_rad);
+  reader.optional("dropout_probability", p.dropout_probability);
   reader.reject_unknown_keys();
   p.validate(reader.context());
   return p;
@@ -28,6 +29,8 @@ void RelativeSensorParams::validate(const std::string& context) const {
         "must be in [0, 5] m/s");
   check(in_range(attitude_noise_rad, 0.0, 0.5), context + ".attitude_noise_rad",
         "must be in [0, 0.5] rad");
+  check(in_range(dropout_probability, 0.0, 1.0), context + ".dropout_probability",
+        "must be in [0, 1]");
 }
 
 RelativeState true_relative_state(const QuadrotorState& uav, const UgvState& ugv, double stamp_s) {
@@ -72,7 +75,12 @@ RelativeState RelativeSensor::add_noise(const RelativeState& truth) {
 }
 
 void RelativeSensor::update(const WorldState& world) {
-  if (world.step_index % sample_period_steps_ == 0) {
+  const bool sampling = world.step_index % sample_period_steps_ == 0;
+  // Draw only when dropouts are enabled, so enabling them is the only thing that
+  // changes the noise sequence.
+  const bool dropped = sampling && params_.dropout_probability > 0.0 &&
+                       unit_uniform_(rng_) < params_.dropout_probability;
+  if (sampling && !dropped) {
     Pending sample{world.step_index + latency_steps_, {}};
     for (int k = 0; k < ugv_count_; ++k) {
       sample.states[k] = add_noise(true_relative_state(world.uav, world.ugvs[k], world.time_s));

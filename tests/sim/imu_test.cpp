@@ -76,3 +76,26 @@ TEST(UgvImu, FilteredAngularAccelerationTracksFigureEight) {
 
 }  // namespace
 }  // namespace cover::sim
+
+namespace cover::sim {
+namespace {
+
+TEST(UgvImu, CorruptedSamplesAreRejectedAndTheFilteredOutputStaysFinite) {
+  WorldParams params = test::noiseless_world({test::circle(0.5, 0.35)});
+  params.imu.fault_probability = 0.3;
+  World world(params);
+  int rejected = 0;
+  for (int i = 0; i < 5000; ++i) {
+    world.step(QuadrotorCommand{});
+    if (world.state().step_index % 5 != 0) continue;
+    const ImuReading& reading = world.imu_sensor().latest(0);
+    rejected += reading.status == ugv::ImuFilterStatus::RejectedNonFinite;
+    EXPECT_TRUE(reading.filtered.angular_velocity_rad_s.allFinite());
+    EXPECT_TRUE(reading.filtered.angular_acceleration_rad_s2.allFinite());
+  }
+  EXPECT_GT(rejected, 200);  // ~30 % of 1000 samples
+  EXPECT_NEAR(world.imu_sensor().latest(0).filtered.angular_velocity_rad_s.z(), 0.35, 1e-3);
+}
+
+}  // namespace
+}  // namespace cover::sim

@@ -83,3 +83,27 @@ TEST(RelativeSensor, NoiseHasTheConfiguredSpread) {
 
 }  // namespace
 }  // namespace cover::sim
+
+namespace cover::sim {
+namespace {
+
+TEST(RelativeSensor, DropoutsLeaveOlderStampsButNeverFutureOnes) {
+  WorldParams params = test::noiseless_world({test::stationary_at(0, 0)});
+  params.relative_sensor.dropout_probability = 0.5;
+  params.relative_sensor.latency_s = 0.0;
+  World world(params);
+  int stale = 0, fresh = 0;
+  for (int i = 0; i < 5000; ++i) {
+    world.step(QuadrotorCommand{});
+    if (world.state().step_index % 10 != 0 || !world.relative_sensor().has_measurement()) continue;
+    const double age = world.state().time_s - world.relative_sensor().latest(0).stamp_s;
+    EXPECT_GE(age, -1e-12);
+    (age > 1e-9 ? stale : fresh)++;
+  }
+  // about half the samples are lost
+  EXPECT_GT(stale, 150);
+  EXPECT_GT(fresh, 150);
+}
+
+}  // namespace
+}  // namespace cover::sim

@@ -19,6 +19,9 @@ struct ImuSensorParams {
   double angular_velocity_noise_rad_s = 0.005;
   double specific_force_bias_sigma_m_s2 = 0.02;
   double angular_velocity_bias_sigma_rad_s = 0.002;
+  // Probability that a sample is corrupted (NaN in one axis): exercises the filter's
+  // rejection path end to end. 0 by default.
+  double fault_probability = 0.0;
 
   static ImuSensorParams load(cover::config::YamlReader& reader);
   void validate(const std::string& context = "imu") const;
@@ -49,6 +52,7 @@ class ImuSensor {
   struct UgvImu {
     std::mt19937_64 rng;
     std::normal_distribution<double> unit_normal{0.0, 1.0};
+    std::uniform_real_distribution<double> unit_uniform{0.0, 1.0};
     Eigen::Vector3d specific_force_bias_m_s2 = Eigen::Vector3d::Zero();
     Eigen::Vector3d angular_velocity_bias_rad_s = Eigen::Vector3d::Zero();
     ugv::ImuFilter filter;

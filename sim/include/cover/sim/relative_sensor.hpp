@@ -20,6 +20,9 @@ struct RelativeSensorParams {
   double position_noise_m = 0.001;    // 1-sigma, per axis
   double velocity_noise_m_s = 0.01;   // 1-sigma, per axis
   double attitude_noise_rad = 0.003;  // 1-sigma, per axis of a small rotation
+  // Probability that a sample is lost (mocap occlusion, Wi-Fi loss): consumers then see
+  // an older stamp. 0 by default; raise it to test the controller's staleness handling.
+  double dropout_probability = 0.0;
 
   static RelativeSensorParams load(cover::config::YamlReader& reader);
   void validate(const std::string& context = "relative_sensor") const;
@@ -65,6 +68,7 @@ class RelativeSensor {
   int ugv_count_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> unit_normal_{0.0, 1.0};
+  std::uniform_real_distribution<double> unit_uniform_{0.0, 1.0};
   std::deque<Pending> pending_;
   std::array<RelativeState, kMaxUgvs> latest_{};
   bool has_measurement_ = false;

@@ -1,0 +1,24 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "cover/sampc/sampc_params.hpp"
+#include "cover/sim/closed_loop.hpp"
+
+namespace cover::sim {
+
+// "cover" | "no-ref-vxy" | "coni-mpc" (the benchmarks' method names); nullopt otherwise.
+std::optional<sampc::Mode> parse_method(const std::string& name);
+
+// A number for JSON: NaN (not measured) becomes null.
+nlohmann::json number_or_null(double value);
+
+// The run's headline metrics (what `cover-bench scenario --json` prints).
+nlohmann::json summary_json(const ClosedLoopResult& result);
+
+// Inserts `suffix` before the extension: ("out/fig.svg", "coni-mpc") -> "out/fig_coni-mpc.svg".
+std::string with_suffix(const std::string& path, const std::string& suffix);
+
+}  // namespace cover::sim
