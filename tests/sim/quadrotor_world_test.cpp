@@ -106,6 +106,18 @@ TEST(Quadrotor, RateLoopIsAFirstOrderLagWithLimits) {
   EXPECT_NEAR(world.state().uav.body_rate_rad_s.x, params.uav.max_roll_pitch_rate_rad_s, 1e-3);
 }
 
+TEST(Quadrotor, ThrustFollowsTheCommandThroughAFirstOrderLagAndLimits) {
+  WorldParams params = free_flight_world(50.0);
+  World world(params);
+  const double start_n = world.state().uav.thrust_n;  // spun up to hover
+  const double target_n = 15.0 * params.uav.mass_nominal_kg;
+  world.advance(thrust_only(15.0), params.uav.thrust_time_constant_s);
+  EXPECT_NEAR(world.state().uav.thrust_n, target_n + (start_n - target_n) * std::exp(-1.0), 1e-3);
+  world.advance(thrust_only(1e3), 0.3);  // far beyond the motors
+  EXPECT_NEAR(world.state().uav.thrust_n, params.uav.max_thrust_m_s2 * params.uav.mass_nominal_kg,
+              1e-3);
+}
+
 TEST(World, RejectsNonFiniteCommandsAndHoldsTheLastOne) {
   World world(free_flight_world(2.0));
   const double hover = world.hover_thrust_command_m_s2();
