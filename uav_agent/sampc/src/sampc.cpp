@@ -189,6 +189,8 @@ struct Sampc::Workspace {
 
   SampcOutput hover(SolveStatus status, const char* reason) {
     reset();
+    // Leave no NaN behind for planned_input(); the next call re-initialises anyway.
+    for (int k = 0; k < N(); ++k) u[k] = model::hover_input();
     SampcOutput out;
     out.command = model::hover_input();
     out.status = status;
