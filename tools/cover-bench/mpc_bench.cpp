@@ -208,7 +208,7 @@ GapStats measure_gap(SampcParams params, int problems, unsigned seed) {
 int run(const std::vector<std::string>& args) {
   CLI::App app{"SAMPC: closed loop on the model across all stages; timing and optimality gap"};
   bool json = false;
-  int iterations = 3000;
+  int iterations = 5000;
   int gap_problems = 20;
   unsigned seed = 2026;
   std::string config = cover::config::default_config_dir() + "/sampc.yaml";

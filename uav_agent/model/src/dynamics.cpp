@@ -60,7 +60,8 @@ Eigen::Matrix4d normalisation_jacobian(const Eigen::Vector4d& q) {
 
 // Classical RK4 with its forward sensitivities, for any state size. `Model` provides
 //   Vector derivative(const Vector& x, const Input& u, double t);
-//   void jacobians(const Vector& x, const Input& u, double t, Matrix& dfdx, InputMatrix& dfdu);
+//   void sensitivity(const Vector& x, const Input& u, double t, const Sens& dx_dz, Sens& dk_dz);
+// the latter giving d f(x(z), u(z)) / dz = df/dx dx/dz + df/du du/dz for z = (x0, u).
 // The sensitivity of each stage point w.r.t. z = (x, u) is propagated by the chain rule,
 // which gives the exact Jacobian of the discrete map (not a linearisation of the ODE).
 template <int NX, typename Model>
@@ -69,8 +70,6 @@ Eigen::Matrix<double, NX, 1> rk4_with_sensitivities(
     Eigen::Matrix<double, NX, NX>* dx_next_dx, Eigen::Matrix<double, NX, kInputSize>* dx_next_du) {
   using Vector = Eigen::Matrix<double, NX, 1>;
   using Sens = Eigen::Matrix<double, NX, NX + kInputSize>;
-  using Jac = Eigen::Matrix<double, NX, NX>;
-  using JacU = Eigen::Matrix<double, NX, kInputSize>;
   const bool want_jacobians = dx_next_dx != nullptr;
 
   const double offsets[4] = {0.0, 0.5 * h, 0.5 * h, h};
@@ -80,16 +79,12 @@ Eigen::Matrix<double, NX, 1> rk4_with_sensitivities(
   Sens stage_sens = Sens::Zero();
   stage_sens.template leftCols<NX>().setIdentity();
   Sens next_sens = stage_sens;
-  Jac dfdx;
-  JacU dfdu;
   for (int i = 0; i < 4; ++i) {
     const Vector k = model.derivative(stage_point, u, offsets[i]);
     next += weights[i] * k;
     Sens k_sens;
     if (want_jacobians) {
-      model.jacobians(stage_point, u, offsets[i], dfdx, dfdu);
-      k_sens.noalias() = dfdx * stage_sens;
-      k_sens.template rightCols<kInputSize>() += dfdu;
+      model.sensitivity(stage_point, u, offsets[i], stage_sens, k_sens);
       next_sens += weights[i] * k_sens;
     }
     if (i < 3) {
@@ -108,7 +103,7 @@ Eigen::Matrix<double, NX, 1> rk4_with_sensitivities(
     const Eigen::Matrix4d dn = normalisation_jacobian(q);
     const Eigen::Matrix<double, 4, NX + kInputSize> rows =
         next_sens.template middleRows<4>(idx::kQuaternion);
-    next_sens.template middleRows<4>(idx::kQuaternion).noalias() = dn * rows;
+    next_sens.template middleRows<4>(idx::kQuaternion).noalias() = dn.lazyProduct(rows);
     *dx_next_dx = next_sens.template leftCols<NX>();
     *dx_next_du = next_sens.template rightCols<kInputSize>();
   }
@@ -116,12 +111,17 @@ Eigen::Matrix<double, NX, 1> rk4_with_sensitivities(
   return next;
 }
 
-// The full model is autonomous: time offsets are ignored.
+// The full model is autonomous: time offsets are ignored. Dense products: it serves the
+// model API and tests, not the controller's loop.
 struct FullModel {
+  using Sens = Eigen::Matrix<double, kStateSize, kStateSize + kInputSize>;
   State derivative(const State& x, const Input& u, double) const { return dynamics(x, u); }
-  void jacobians(const State& x, const Input& u, double, StateMatrix& dfdx,
-                 StateInputMatrix& dfdu) const {
+  void sensitivity(const State& x, const Input& u, double, const Sens& dx_dz, Sens& dk_dz) const {
+    StateMatrix dfdx;
+    StateInputMatrix dfdu;
     dynamics_jacobians(x, u, dfdx, dfdu);
+    dk_dz.noalias() = dfdx * dx_dz;
+    dk_dz.rightCols<kInputSize>() += dfdu;
   }
 };
 
@@ -133,10 +133,34 @@ struct UavModel {
                           ugv.angular_velocity_rad_s + t * ugv.angular_acceleration_rad_s2,
                           ugv.angular_acceleration_rad_s2);
   }
-  void jacobians(const UavState& x, const Input& u, double t, UavStateMatrix& dfdx,
-                 UavInputMatrix& dfdu) const {
-    uav_derivative_jacobians(x, u, ugv.angular_velocity_rad_s + t * ugv.angular_acceleration_rad_s2,
-                             ugv.angular_acceleration_rad_s2, dfdx, dfdu);
+
+  // (lazyProduct: coefficient-based kernels; Eigen's default GEMM is slow at these sizes.)
+  // df/dx dx_dz + [0 df/du] by blocks (the blocks of uav_derivative_jacobians): df/dx is
+  // mostly zeros (p' = v; v' couples 3x3 and 3x4 blocks; q' depends on q only), which
+  // halves the cost of the loop's most expensive product.
+  using Sens = Eigen::Matrix<double, kUavStateSize, kUavStateSize + kInputSize>;
+  void sensitivity(const UavState& x, const Input& u, double t, const Sens& dx_dz,
+                   Sens& dk_dz) const {
+    const Vector3d omega = ugv.angular_velocity_rad_s + t * ugv.angular_acceleration_rad_s2;
+    const Vector3d& beta = ugv.angular_acceleration_rad_s2;
+    const QuaternionWxyz q = x.segment<4>(idx::kQuaternion);
+    const Eigen::Matrix3d omega_skew = skew(omega);
+    const Eigen::Matrix3d dv_dp = -skew(beta) - omega_skew * omega_skew;
+    const Eigen::Matrix3d dv_dv = -2.0 * omega_skew;
+    const Eigen::Matrix<double, 3, 4> dv_dq = thrust_direction_jacobian(q) * u(input_idx::kThrust);
+    const Eigen::Matrix4d dq_dq =
+        0.5 * (right_product_matrix(Eigen::Vector4d(0.0, u(1), u(2), u(3))) -
+               left_product_matrix(Eigen::Vector4d(0.0, omega.x(), omega.y(), omega.z())));
+
+    dk_dz.middleRows<3>(idx::kPosition) = dx_dz.middleRows<3>(idx::kVelocity);
+    auto dv = dk_dz.middleRows<3>(idx::kVelocity);
+    dv.noalias() = dv_dp.lazyProduct(dx_dz.middleRows<3>(idx::kPosition));
+    dv.noalias() += dv_dv.lazyProduct(dx_dz.middleRows<3>(idx::kVelocity));
+    dv.noalias() += dv_dq.lazyProduct(dx_dz.middleRows<4>(idx::kQuaternion));
+    dv.col(kUavStateSize + input_idx::kThrust) += thrust_direction(q);
+    auto dq = dk_dz.middleRows<4>(idx::kQuaternion);
+    dq.noalias() = dq_dq.lazyProduct(dx_dz.middleRows<4>(idx::kQuaternion));
+    dq.rightCols<3>() += 0.5 * left_product_matrix(q).rightCols<3>();
   }
 };
 
@@ -196,7 +220,8 @@ UavState uav_dynamics(const UavState& x, const Input& u, const UgvMotion& ugv) {
 
 void uav_dynamics_jacobians(const UavState& x, const Input& u, const UgvMotion& ugv,
                             UavStateMatrix& df_dx, UavInputMatrix& df_du) {
-  UavModel{ugv}.jacobians(x, u, 0.0, df_dx, df_du);
+  uav_derivative_jacobians(x, u, ugv.angular_velocity_rad_s, ugv.angular_acceleration_rad_s2, df_dx,
+                           df_du);
 }
 
 UavState uav_rk4_step(const UavState& x, const Input& u, const UgvMotion& ugv, double dt_s) {

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+// Every product below is written as lazyProduct: for these 10x10-ish fixed sizes Eigen's
+// default picks its blocked GEMM (packing and all), several times slower than the
+// unrolled coefficient-based kernel.
+
 namespace cover::sampc {
 namespace {
 
@@ -25,16 +29,16 @@ void RiccatiQp::factorize(const ActiveSet& active) {
   for (int k = horizon_ - 1; k >= 0; --k) {
     const QpNode& n = nodes[k];
     const MatrixXX& P = P_[k + 1];
-    PA.noalias() = P * n.A;
-    PB.noalias() = P * n.B;
+    PA.noalias() = P.lazyProduct(n.A);
+    PB.noalias() = P.lazyProduct(n.B);
     MatrixUU& R_bar = r_bar_[k];
     MatrixUX& S_bar = s_bar_[k];
     R_bar = n.R;
-    R_bar.noalias() += n.B.transpose() * PB;
+    R_bar.noalias() += n.B.transpose().lazyProduct(PB);
     S_bar = n.S;
-    S_bar.noalias() += n.B.transpose() * PA;
+    S_bar.noalias() += n.B.transpose().lazyProduct(PA);
     Q_bar = n.Q;
-    Q_bar.noalias() += n.A.transpose() * PA;
+    Q_bar.noalias() += n.A.transpose().lazyProduct(PA);
 
     // Bound-held inputs leave the stage problem: identity rows/columns in M, no feedback.
     MatrixUU M = R_bar;
@@ -46,18 +50,19 @@ void RiccatiQp::factorize(const ActiveSet& active) {
       M(i, i) = 1.0;
       S_free.row(i).setZero();
     }
-    free_factor_[k].compute(M);
+    // M = R + B'PB (free block) is 4x4 SPD and well conditioned (R > 0): Eigen's closed-form
+    // 4x4 inverse is exact enough and much faster than a Cholesky solve with 10 columns.
+    MatrixUU& M_inv = free_inverse_[k];
+    M_inv = M.inverse();
     MatrixUX& K = K_[k];
-    K = -free_factor_[k].solve(S_free);
+    K.noalias() = -M_inv.lazyProduct(S_free);
 
-    // The stage cost under du = K dx (+ k), in closed form: valid for any active set
-    // (for an empty one it is the textbook Q_bar - S' R^-1 S).
-    const MatrixXU KtR = K.transpose() * R_bar;
+    // Value of the stage under du = K dx: Q_bar + S'K + K'S + K'R K, where K'(S + R K) = 0
+    // for any active set (free rows: the stationarity that defines K; held rows: K is 0
+    // there), leaving the textbook Q_bar + S'K = Q_bar - S' M^-1 S.
     MatrixXX& P_k = P_[k];
     P_k = Q_bar;
-    P_k.noalias() += S_bar.transpose() * K;
-    P_k.noalias() += K.transpose() * S_bar;
-    P_k.noalias() += KtR * K;
+    P_k.noalias() += S_bar.transpose().lazyProduct(K);
     P_k = (0.5 * (P_k + P_k.transpose())).eval();
   }
 }
@@ -69,9 +74,10 @@ void RiccatiQp::newton_point(const VectorX& dx0) {
   VectorX p = nodes[horizon_].q;
   for (int k = horizon_ - 1; k >= 0; --k) {
     const QpNode& n = nodes[k];
-    const VectorX p_next = P_[k + 1] * n.c + p;
+    VectorX p_next = p;
+    p_next.noalias() += P_[k + 1].lazyProduct(n.c);
     VectorU r_bar = n.r;
-    r_bar.noalias() += n.B.transpose() * p_next;
+    r_bar.noalias() += n.B.transpose().lazyProduct(p_next);
     VectorU r_free = r_bar;
     for (int i = 0; i < kNu; ++i) {
       if (factored_active_[k][i] == BoundState::Free) continue;
@@ -81,21 +87,21 @@ void RiccatiQp::newton_point(const VectorX& dx0) {
       if (factored_active_[k][i] != BoundState::Free) r_free(i) = -du_[k](i);
     }
     VectorU& kk = feedforward[k];
-    kk = -free_factor_[k].solve(r_free);
+    kk.noalias() = -free_inverse_[k].lazyProduct(r_free);
+    // As for P: K'(r_bar + R_bar k) vanishes, so p = q_bar + S'k.
     VectorX p_k = n.q;
-    p_k.noalias() += n.A.transpose() * p_next;
-    p_k.noalias() += s_bar_[k].transpose() * kk;
-    p_k.noalias() += K_[k].transpose() * (r_bar + r_bar_[k] * kk);
+    p_k.noalias() += n.A.transpose().lazyProduct(p_next);
+    p_k.noalias() += s_bar_[k].transpose().lazyProduct(kk);
     p = p_k;
   }
   new_dx_[0] = dx0;
   for (int k = 0; k < horizon_; ++k) {
     const QpNode& n = nodes[k];
     new_du_[k] = feedforward[k];
-    new_du_[k].noalias() += K_[k] * new_dx_[k];
+    new_du_[k].noalias() += K_[k].lazyProduct(new_dx_[k]);
     new_dx_[k + 1] = n.c;
-    new_dx_[k + 1].noalias() += n.A * new_dx_[k];
-    new_dx_[k + 1].noalias() += n.B * new_du_[k];
+    new_dx_[k + 1].noalias() += n.A.lazyProduct(new_dx_[k]);
+    new_dx_[k + 1].noalias() += n.B.lazyProduct(new_du_[k]);
   }
 }
 
@@ -104,8 +110,8 @@ void RiccatiQp::simulate(const VectorX& dx0, const std::array<VectorU, kMaxHoriz
   dx[0] = dx0;
   for (int k = 0; k < horizon_; ++k) {
     dx[k + 1] = nodes[k].c;
-    dx[k + 1].noalias() += nodes[k].A * dx[k];
-    dx[k + 1].noalias() += nodes[k].B * du[k];
+    dx[k + 1].noalias() += nodes[k].A.lazyProduct(dx[k]);
+    dx[k + 1].noalias() += nodes[k].B.lazyProduct(du[k]);
   }
 }
 
@@ -128,18 +134,18 @@ double RiccatiQp::objective() const {
 void RiccatiQp::compute_gradient() {
   // Adjoint sweep: lambda_k = d objective / d dx_k along the dynamics.
   VectorX lambda = nodes[horizon_].q;
-  lambda.noalias() += nodes[horizon_].Q * dx_[horizon_];
+  lambda.noalias() += nodes[horizon_].Q.lazyProduct(dx_[horizon_]);
   for (int k = horizon_ - 1; k >= 0; --k) {
     const QpNode& n = nodes[k];
     VectorU& g = gradient_[k];
     g = n.r;
-    g.noalias() += n.R * du_[k];
-    g.noalias() += n.S * dx_[k];
-    g.noalias() += n.B.transpose() * lambda;
+    g.noalias() += n.R.lazyProduct(du_[k]);
+    g.noalias() += n.S.lazyProduct(dx_[k]);
+    g.noalias() += n.B.transpose().lazyProduct(lambda);
     VectorX next = n.q;
-    next.noalias() += n.Q * dx_[k];
-    next.noalias() += n.S.transpose() * du_[k];
-    next.noalias() += n.A.transpose() * lambda;
+    next.noalias() += n.Q.lazyProduct(dx_[k]);
+    next.noalias() += n.S.transpose().lazyProduct(du_[k]);
+    next.noalias() += n.A.transpose().lazyProduct(lambda);
     lambda = next;
   }
 }

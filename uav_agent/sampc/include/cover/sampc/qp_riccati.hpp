@@ -1,7 +1,7 @@
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <array>
 #include <cstdint>
 
@@ -95,7 +95,7 @@ class RiccatiQp {
   std::array<MatrixUX, kMaxHorizon> K_;
   std::array<MatrixUU, kMaxHorizon> r_bar_;
   std::array<MatrixUX, kMaxHorizon> s_bar_;
-  std::array<Eigen::LLT<MatrixUU>, kMaxHorizon> free_factor_;
+  std::array<MatrixUU, kMaxHorizon> free_inverse_;  // (R + B'PB) on the free inputs, inverted
   // Iterates.
   std::array<VectorX, kMaxHorizon + 1> dx_, new_dx_, trial_dx_;
   std::array<VectorU, kMaxHorizon> du_, new_du_, trial_du_, gradient_;
