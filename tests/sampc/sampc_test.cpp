@@ -5,6 +5,7 @@
 #include <random>
 
 #include "cover/model/dynamics.hpp"
+#include "cover/model/quaternion.hpp"
 #include "cover/sampc/reference_solver.hpp"
 #include "cover/sampc/sampc.hpp"
 
@@ -56,16 +57,24 @@ SampcInput random_problem(std::mt19937& rng, Stage stage) {
 }
 
 TEST(Sampc, OnReferenceAtHoverCommandsHover) {
-  const SampcParams params;
-  Sampc mpc(params);
-  SampcInput in;
-  in.stage = Stage::Final;
-  in.uav_state = model::uav_state_at_rest(Vector3d(0.0, 0.0, 1.5));
-  in.reference = HorizonReference::hold(Vector3d(0.0, 0.0, 1.5));
-  for (int i = 0; i < 3; ++i) {
-    const SampcOutput out = mpc.solve(in);
-    EXPECT_EQ(out.status, SolveStatus::Ok);
-    EXPECT_LT((out.command - model::hover_input()).norm(), 1e-9);
+  // Above the UGV's axis so that the transition stage's references (d_ref = 0, yaw held)
+  // are met as well.
+  for (Mode mode : {Mode::Cover, Mode::NoRefVxy, Mode::ConiMpc}) {
+    for (Stage stage : {Stage::Initial, Stage::Transition, Stage::Final}) {
+      SampcParams params;
+      params.mode = mode;
+      Sampc mpc(params);
+      SampcInput in;
+      in.stage = stage;
+      in.uav_state = model::uav_state_at_rest(Vector3d(0.0, 0.0, 1.5));
+      in.reference = HorizonReference::hold(Vector3d(0.0, 0.0, 1.5));
+      for (int i = 0; i < 3; ++i) {
+        const SampcOutput out = mpc.solve(in);
+        EXPECT_EQ(out.status, SolveStatus::Ok);
+        EXPECT_LT((out.command - model::hover_input()).norm(), 1e-9)
+            << to_string(mode) << " " << model::to_string(stage);
+      }
+    }
   }
 }
 
@@ -229,6 +238,53 @@ TEST(Sampc, TransitionStageClosesTheHorizontalDistanceToTheUgv) {
   }
   EXPECT_LT(in.uav_state.head<2>().norm(), 0.15);
   EXPECT_NEAR(in.uav_state(2), 1.5, 0.1);
+}
+
+TEST(Sampc, FeedbackInANewStageRePreparesWithThatStagesCost) {
+  const SampcParams params;
+  Sampc mpc(params);
+  std::mt19937 rng(21);
+  SampcInput in = random_problem(rng, Stage::Initial);
+  mpc.prepare(in);
+  EXPECT_EQ(mpc.horizon_cost().reference_mode, ReferenceMode::XyzRef);
+  in.stage = Stage::Transition;
+  const SampcOutput out = mpc.feedback(in);
+  EXPECT_EQ(out.status, SolveStatus::Ok);
+  EXPECT_EQ(mpc.horizon_cost().reference_mode, ReferenceMode::XyZRef);
+}
+
+TEST(Sampc, ResetAfterAFrameSwitchFliesOnWithoutErrors) {
+  const SampcParams params;
+  Sampc mpc(params);
+  SampcInput in;
+  in.stage = Stage::Initial;
+  in.uav_state = model::uav_state_at_rest(Vector3d(0.5, 0.5, 1.2));
+  in.uav_state.segment<3>(3) = Vector3d(0.4, -0.2, 0.0);
+  in.reference = HorizonReference::hold(Vector3d(1.0, 0.0, 1.5));
+  for (int step = 0; step < 50; ++step) {
+    const SampcOutput out = mpc.solve(in);
+    in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
+  }
+  // Switch to a frame 3 m away and turned by 90 deg: the state jumps, the guess is stale.
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ()).toRotationMatrix();
+  model::UavState switched = in.uav_state;
+  switched.head<3>() = turn.transpose() * (in.uav_state.head<3>() - Vector3d(3.0, 0.0, 0.0));
+  switched.segment<3>(3) = turn.transpose() * in.uav_state.segment<3>(3);
+  switched.segment<4>(6) =
+      model::multiply(model::yaw_quaternion(-M_PI / 2), in.uav_state.segment<4>(6));
+  in.uav_state = switched;
+  in.stage = Stage::Transition;
+  in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.3);
+  in.reference = HorizonReference::hold(Vector3d(0.0, 0.0, 1.5));
+  mpc.reset();
+  for (int step = 0; step < 600; ++step) {
+    const SampcOutput out = mpc.solve(in);
+    ASSERT_EQ(out.status, SolveStatus::Ok) << out.reason;
+    expect_within_bounds(params, out.command);
+    in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
+  }
+  EXPECT_LT(in.uav_state.head<2>().norm(), 0.1);
+  EXPECT_NEAR(in.uav_state(2), 1.5, 0.05);
 }
 
 }  // namespace

@@ -18,6 +18,13 @@ enum class Mode { Cover, NoRefVxy, ConiMpc };
 
 const char* to_string(Mode mode);
 
+// Whether the transition stage's planned start velocity drops the frame-rotation part
+// (eq. 23, v0 = v + Omega x p): COVER and its ablation do, the CoNi-MPC baseline does not.
+// For the mission layer, which plans the stage references.
+inline bool compensates_frame_rotation(Mode mode) {
+  return mode != Mode::ConiMpc;
+}
+
 // The weight set of one reference mode (Table 2): index 0 is the transition stage's
 // xy-z-ref set, index 1 the x-y-z-ref set of the initial and final stages.
 struct WeightSet {
