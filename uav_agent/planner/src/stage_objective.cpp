@@ -9,6 +9,21 @@ namespace {
 // Returned for a point where MINCO broke down (durations so short the system is singular):
 // large but finite so the L-BFGS line search simply backs off.
 constexpr double kUnusableCost = 1.0e30;
+
+// d^Order/ds^Order of one quintic piece at s, by Horner's rule. Written out because
+// Eigen's generic row-vector products are not inlined and dominated the cost function.
+template <int Order>
+Eigen::RowVector3d evaluate_derivative(const Eigen::Matrix<double, 6, 3>& coefficients, double s) {
+  Eigen::RowVector3d value = Eigen::RowVector3d::Zero();
+  for (int k = 5; k >= Order; --k) {
+    double falling_factorial = 1.0;
+    for (int m = 0; m < Order; ++m) falling_factorial *= (k - m);
+    for (int axis = 0; axis < 3; ++axis) {
+      value[axis] = value[axis] * s + falling_factorial * coefficients(k, axis);
+    }
+  }
+  return value;
+}
 }  // namespace
 
 StageObjective::StageObjective(const PlannerParams& params)
@@ -102,17 +117,18 @@ double StageObjective::add_penalties() {
   for (int i = 0; i < pieces_; ++i) {
     const double duration = durations_(i);
     const double step = duration / kappa;
-    const auto coefficients = c.middleRows<6>(6 * i);
+    // Fixed-size local copies: the strided blocks of the 6M x 3 matrices are much slower.
+    const Eigen::Matrix<double, 6, 3> coefficients = c.middleRows<6>(6 * i);
+    Eigen::Matrix<double, 6, 3> gradient = Eigen::Matrix<double, 6, 3>::Zero();
     for (int j = 0; j <= kappa; ++j) {
       const double fraction = static_cast<double>(j) / kappa;
       const double s1 = fraction * duration, s2 = s1 * s1, s3 = s2 * s1, s4 = s3 * s1;
       const double trapezoid = (j == 0 || j == kappa) ? 0.5 : 1.0;
-      Eigen::Matrix<double, 6, 1> beta1, beta2, beta3;
+      Eigen::Matrix<double, 6, 1> beta1, beta2;
       beta1 << 0.0, 1.0, 2.0 * s1, 3.0 * s2, 4.0 * s3, 5.0 * s4;
       beta2 << 0.0, 0.0, 2.0, 6.0 * s1, 12.0 * s2, 20.0 * s3;
-      beta3 << 0.0, 0.0, 0.0, 6.0, 24.0 * s1, 60.0 * s2;
-      const Eigen::RowVector3d velocity = beta1.transpose() * coefficients;
-      const Eigen::RowVector3d acceleration = beta2.transpose() * coefficients;
+      const Eigen::RowVector3d velocity = evaluate_derivative<1>(coefficients, s1);
+      const Eigen::RowVector3d acceleration = evaluate_derivative<2>(coefficients, s1);
 
       const double limit = speed_limit_at(piece_start_s + s1);
       const double speed_excess = (velocity.squaredNorm() - limit * limit) * inverse_vm2;
@@ -121,8 +137,7 @@ double StageObjective::add_penalties() {
         const double excess2 = speed_excess * speed_excess;
         penalty += weight * excess2 * speed_excess;
         const double d_excess = 3.0 * weight * excess2;  // d penalty / d excess
-        gradient_by_coefficients_.middleRows<6>(6 * i) +=
-            (2.0 * inverse_vm2 * d_excess) * beta1 * velocity;
+        gradient.noalias() += (2.0 * inverse_vm2 * d_excess) * beta1 * velocity;
         partial_gradient_by_durations_(i) +=
             params_.speed_penalty_weight * trapezoid / kappa * excess2 * speed_excess +
             d_excess * 2.0 * inverse_vm2 * fraction * velocity.dot(acceleration);
@@ -136,18 +151,18 @@ double StageObjective::add_penalties() {
       const double acc_excess =
           (acceleration.squaredNorm() - amax_m_s2_ * amax_m_s2_) * inverse_am2;
       if (acc_excess > 0.0) {
-        const Eigen::RowVector3d jerk = beta3.transpose() * coefficients;
+        const Eigen::RowVector3d jerk = evaluate_derivative<3>(coefficients, s1);
         const double weight = params_.acc_penalty_weight * trapezoid * step;
         const double excess2 = acc_excess * acc_excess;
         penalty += weight * excess2 * acc_excess;
         const double d_excess = 3.0 * weight * excess2;
-        gradient_by_coefficients_.middleRows<6>(6 * i) +=
-            (2.0 * inverse_am2 * d_excess) * beta2 * acceleration;
+        gradient.noalias() += (2.0 * inverse_am2 * d_excess) * beta2 * acceleration;
         partial_gradient_by_durations_(i) +=
             params_.acc_penalty_weight * trapezoid / kappa * excess2 * acc_excess +
             d_excess * 2.0 * inverse_am2 * fraction * acceleration.dot(jerk);
       }
     }
+    gradient_by_coefficients_.middleRows<6>(6 * i) += gradient;
     piece_start_s += duration;
   }
   // A sample of piece i moves with every earlier duration: suffix sums keep this O(M).

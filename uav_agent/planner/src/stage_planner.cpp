@@ -203,7 +203,9 @@ PlanResult StagePlanner::plan_or_throw(const StageProblem& problem) {
     default:
       result.status = have_best && objective.best_cost() < guess_cost ? PlanStatus::EarlyStop
                                                                       : PlanStatus::Failed;
-      result.reason = std::string("L-BFGS stopped: ") + nlopt_result_to_string(code);
+      // Typically NLOPT_FAILURE: the line search gave up on a badly scaled (long) stage.
+      result.reason = std::string("L-BFGS gave up (NLopt ") + nlopt_result_to_string(code) +
+                      "); keeping the best point it evaluated";
       break;
   }
 
