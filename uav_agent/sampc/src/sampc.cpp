@@ -134,8 +134,8 @@ struct Sampc::Workspace {
       // The d-term's own curvature 2 wd (d - d_ref) * 2 I where it is convex (UAV outside
       // the reference radius): plain Gauss-Newton ignores it and then overshoots back and
       // forth across the radius; where it is concave it is left out to keep the QP convex.
-      const double distance_residual = x[k].segment<2>(kPosition).squaredNorm() -
-                                       c.squared_distance_ref_m2;
+      const double distance_residual =
+          x[k].segment<2>(kPosition).squaredNorm() - c.squared_distance_ref_m2;
       if (distance_residual > 0.0) {
         node.Q.block<2, 2>(kPosition, kPosition).diagonal().array() +=
             4.0 * c.squared_distance_weight * distance_residual;
