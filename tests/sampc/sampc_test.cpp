@@ -287,5 +287,38 @@ TEST(Sampc, ResetAfterAFrameSwitchFliesOnWithoutErrors) {
   EXPECT_NEAR(in.uav_state(2), 1.5, 0.05);
 }
 
+TEST(Sampc, WildButFiniteInputsNeverGiveNanOrOutOfBoundCommands) {
+  const SampcParams params;
+  Sampc mpc(params);
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  const auto wild = [&](double scale) { return Vector3d(uni(rng), uni(rng), uni(rng)) * scale; };
+  int errors = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    SampcInput in;
+    in.stage = static_cast<Stage>(trial % 3);
+    in.uav_state.head<3>() = wild(trial % 7 == 0 ? 2000.0 : 30.0);
+    in.uav_state.segment<3>(3) = wild(trial % 11 == 0 ? 80.0 : 10.0);
+    // Unnormalised (sometimes degenerate) quaternions, as a bad estimator might send.
+    in.uav_state.segment<4>(6) = Eigen::Vector4d(uni(rng), uni(rng), uni(rng), uni(rng)) * 1.4;
+    in.ugv.specific_force_m_s2 = wild(30.0);
+    in.ugv.angular_velocity_rad_s = wild(5.0);
+    in.ugv.angular_acceleration_rad_s2 = wild(5.0);
+    for (int k = 0; k <= kMaxHorizon; ++k) {
+      in.reference.position_m[k] = wild(20.0);
+      in.reference.velocity_m_s[k] = wild(5.0);
+    }
+    const SampcOutput out = trial % 2 ? mpc.solve(in) : (mpc.prepare(in), mpc.feedback(in));
+    expect_within_bounds(params, out.command);
+    if (is_error(out.status)) {
+      ++errors;
+      EXPECT_EQ(out.command, model::hover_input());
+    }
+  }
+  // The out-of-range ones are refused; most others are solved.
+  EXPECT_GT(errors, 0);
+  EXPECT_LT(errors, 150);
+}
+
 }  // namespace
 }  // namespace cover::sampc
