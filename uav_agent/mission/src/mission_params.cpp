@@ -13,6 +13,7 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
   MissionParams params;
   reader.optional("reach_tolerance_m", params.reach_tolerance_m);
   reader.optional("speed_threshold_m_s", params.speed_threshold_m_s);
+  reader.optional("transition_reach_tolerance_m", params.transition_reach_tolerance_m);
   reader.optional("action_tolerance_m", params.action_tolerance_m);
   reader.optional("action_speed_threshold_m_s", params.action_speed_threshold_m_s);
   reader.optional("initial_timeout_s", params.initial_timeout_s);
@@ -20,6 +21,11 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
   reader.optional("final_timeout_s", params.final_timeout_s);
   reader.optional("state_timeout_s", params.state_timeout_s);
   reader.optional("imu_timeout_s", params.imu_timeout_s);
+  reader.optional("stale_failure_s", params.stale_failure_s);
+  reader.optional("max_plan_attempts", params.max_plan_attempts);
+  reader.optional("integral_gain_1_s3", params.integral_gain_1_s3);
+  reader.optional("integral_error_clip_m", params.integral_error_clip_m);
+  reader.optional("integral_limit_m_s2", params.integral_limit_m_s2);
   reader.optional("control_period_s", params.control_period_s);
   reader.reject_unknown_keys();
   params.validate();
@@ -36,6 +42,8 @@ MissionParams MissionParams::load_file(const std::string& path) {
 void MissionParams::validate() const {
   const std::string ctx = "mission";
   config::check(positive(reach_tolerance_m), ctx + ".reach_tolerance_m", "must be > 0");
+  config::check(positive(transition_reach_tolerance_m), ctx + ".transition_reach_tolerance_m",
+                "must be > 0");
   config::check(positive(speed_threshold_m_s), ctx + ".speed_threshold_m_s", "must be > 0");
   config::check(positive(action_tolerance_m), ctx + ".action_tolerance_m", "must be > 0");
   config::check(positive(action_speed_threshold_m_s), ctx + ".action_speed_threshold_m_s",
@@ -45,6 +53,15 @@ void MissionParams::validate() const {
   config::check(positive(final_timeout_s), ctx + ".final_timeout_s", "must be > 0");
   config::check(positive(state_timeout_s), ctx + ".state_timeout_s", "must be > 0");
   config::check(positive(imu_timeout_s), ctx + ".imu_timeout_s", "must be > 0");
+  config::check(positive(stale_failure_s), ctx + ".stale_failure_s", "must be > 0");
+  config::check(max_plan_attempts >= 1 && max_plan_attempts <= 1000, ctx + ".max_plan_attempts",
+                "must be in [1, 1000]");
+  config::check(
+      std::isfinite(integral_gain_1_s3) && integral_gain_1_s3 >= 0.0 && integral_gain_1_s3 <= 20.0,
+      ctx + ".integral_gain_1_s3", "must be in [0, 20] (0 disables)");
+  config::check(positive(integral_error_clip_m), ctx + ".integral_error_clip_m", "must be > 0");
+  config::check(positive(integral_limit_m_s2) && integral_limit_m_s2 <= 10.0,
+                ctx + ".integral_limit_m_s2", "must be in (0, 10]");
   config::check(positive(control_period_s) && control_period_s <= 0.1, ctx + ".control_period_s",
                 "must be in (0, 0.1]");
 }

@@ -144,7 +144,9 @@ void StageMachine::start_stage(std::size_t process_index, Stage stage, double ti
 bool StageMachine::reached(const Eigen::Vector3d& position_m,
                            const Eigen::Vector3d& velocity_m_s) const {
   const bool acts = decision_.stage == Stage::Final && process().final_action != FinalAction::None;
-  const double tolerance_m = acts ? params_.action_tolerance_m : params_.reach_tolerance_m;
+  double tolerance_m = params_.reach_tolerance_m;
+  if (acts) tolerance_m = params_.action_tolerance_m;
+  if (decision_.stage == Stage::Transition) tolerance_m = params_.transition_reach_tolerance_m;
   const double speed_m_s = acts ? params_.action_speed_threshold_m_s : params_.speed_threshold_m_s;
   return (position_m - decision_.target_point_m).norm() <= tolerance_m &&
          velocity_m_s.norm() <= speed_m_s;

@@ -13,6 +13,10 @@ struct MissionParams {
   double reach_tolerance_m = 0.15;
   // ... and its speed in the reference frame is below this.
   double speed_threshold_m_s = 0.3;
+  // The transition stage's own tolerance: there SAMPC tracks the squared horizontal distance
+  // (xy-z-ref), whose pull vanishes like r^3 near the point, so unmodelled drag leaves a
+  // horizontal offset of a couple of decimetres. The final stage (x-y-z-ref) then converges.
+  double transition_reach_tolerance_m = 0.3;
   // Final actions (land, deliver) need a tighter test: they happen on a moving deck.
   double action_tolerance_m = 0.05;
   double action_speed_threshold_m_s = 0.2;
@@ -23,6 +27,19 @@ struct MissionParams {
   // Relative state / UGV IMU older than this is stale: the controller hovers (failsafe).
   double state_timeout_s = 0.1;
   double imu_timeout_s = 0.1;
+  // Inputs stale for longer than this fail the mission (StaleInput); the UAV keeps hovering.
+  double stale_failure_s = 0.5;
+  // A stage whose reference cannot be planned after this many attempts (one per control
+  // step) fails the mission (PlanningFailed).
+  int max_plan_attempts = 10;
+  // Offset-free tracking: SAMPC's model knows neither the true mass nor drag, so a hover
+  // sags and a moving frame drags the UAV off its point. An integral of the tracking error
+  // estimates that missing acceleration d and SAMPC sees it through its UGV specific-force
+  // parameter (a - d in eq. 5). Gain in (m/s^2) per (m s); errors are clipped before
+  // integrating (anti-windup during fast stage starts) and d is bounded.
+  double integral_gain_1_s3 = 4.0;
+  double integral_error_clip_m = 0.2;
+  double integral_limit_m_s2 = 2.0;
   // Control period (the controller runs at 100 Hz).
   double control_period_s = 0.01;
 

@@ -1,0 +1,133 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "cover/mission/mission_params.hpp"
+#include "cover/mission/stage_machine.hpp"
+#include "cover/mission/task.hpp"
+#include "cover/model/ugv_motion.hpp"
+#include "cover/planner/planner_params.hpp"
+#include "cover/planner/stage_planner.hpp"
+#include "cover/planner/trajectory.hpp"
+#include "cover/sampc/sampc.hpp"
+
+namespace cover::mission {
+
+// The UAV's state relative to one UGV, in that UGV's frame G_k (from the relative
+// estimator; the DDS adapter or the simulator fills it).
+struct RelativeMeasurement {
+  double stamp_s = 0.0;
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();  // A in G_k
+};
+
+// The filtered IMU of one UGV (a, Omega, beta in G_k), as its agent publishes it.
+struct UgvImuMeasurement {
+  double stamp_s = 0.0;
+  model::UgvMotion motion;
+};
+
+// Why the command is not the optimised one.
+enum class Failsafe : std::uint8_t {
+  None = 0,
+  WaitingForInputs = 1,  // no valid state/IMU of the start UGV yet: stay idle, disarmed
+  StaleInput = 2,        // reference UGV's state or IMU too old or non-finite: hover
+  SolverError = 3,       // SAMPC returned its hover fallback
+  MissionFailed = 4,     // the stage machine failed: hold position in the frame
+  Landed = 5,            // disarmed on the landing point: motors idle
+};
+
+const char* to_string(Failsafe failsafe);
+
+// Collective thrust per unit mass and body rates, plus the actuator flags.
+struct ControlCommand {
+  double thrust_m_s2 = 0.0;
+  Eigen::Vector3d body_rate_rad_s = Eigen::Vector3d::Zero();
+  bool armed = false;
+  bool release_payload = false;  // open the airdrop on this step
+};
+
+struct ControllerStatus {
+  StageDecision stage;  // stage, process, reference UGV, mission state, failure reason
+  Failsafe failsafe = Failsafe::WaitingForInputs;
+  sampc::SolveStatus solve_status = sampc::SolveStatus::Ok;
+  double solve_us = 0.0;  // SAMPC time of this step
+  bool planned = false;   // a stage reference was planned this step
+  planner::PlanStatus plan_status = planner::PlanStatus::Ok;  // of the last plan
+  double plan_ms = 0.0;                                       // of the last plan
+  // Reference trajectory z(s, t) now, in the reference frame (for tracking metrics).
+  Eigen::Vector3d reference_position_m = Eigen::Vector3d::Zero();
+  // Integral estimate of the unmodelled acceleration (mass, drag) fed to SAMPC, m/s^2.
+  Eigen::Vector3d disturbance_m_s2 = Eigen::Vector3d::Zero();
+};
+
+struct ControllerOutput {
+  ControlCommand command;
+  ControllerStatus status;
+};
+
+// What the UAV agent (later a DDS adapter) and the benchmarks call at 100 Hz. Holds the
+// latest relative state and UGV IMU per UGV, runs the stage machine, plans each stage's
+// reference at its start (eq. 23 at the transition stage, except for coni-mpc), feeds
+// SAMPC the horizon reference and returns the command with a status. Never throws after
+// construction and never outputs NaN: stale or invalid inputs give a hover command.
+// The method (cover / no-ref-vxy / coni-mpc) is SAMPC's `mode`.
+class MissionController {
+ public:
+  // Throws config::ConfigError when the task or a parameter set is invalid.
+  MissionController(Task task, int ugv_count, MissionParams mission, planner::PlannerParams planner,
+                    sampc::SampcParams sampc);
+
+  // Inputs for an unknown UGV index are ignored (counted in `ignored_inputs()`).
+  void set_relative_state(int ugv, const RelativeMeasurement& measurement);
+  void set_ugv_imu(int ugv, const UgvImuMeasurement& measurement);
+
+  // One control step at time `now_s` (same clock as the measurement stamps).
+  const ControllerOutput& step(double now_s);
+
+  const ControllerOutput& output() const { return output_; }
+  const StageMachine& stage_machine() const { return machine_; }
+  const planner::Trajectory& reference_trajectory() const { return trajectory_; }
+  int ignored_inputs() const { return ignored_inputs_; }
+
+ private:
+  struct UgvInputs {
+    bool has_state = false;
+    bool has_imu = false;
+    RelativeMeasurement state;
+    UgvImuMeasurement imu;
+  };
+
+  bool inputs_fresh(int ugv, double now_s) const;
+  bool plan_stage(double now_s);
+  void fill_reference(double t_s, sampc::HorizonReference& reference) const;
+  void command_from_sampc(const UgvInputs& inputs, double now_s);
+  void integrate_disturbance(const Eigen::Vector3d& position_m, const Eigen::Vector3d& reference_m);
+  void hover(Failsafe reason);
+  void idle(Failsafe reason);
+
+  MissionParams params_;
+  int ugv_count_;
+  StageMachine machine_;
+  planner::StagePlanner planner_;
+  sampc::Sampc sampc_;
+  std::vector<UgvInputs> inputs_;
+  planner::Trajectory trajectory_;
+  double stage_start_s_ = 0.0;
+  int last_reference_ugv_ = -1;
+  bool plan_pending_ = false;
+  int plan_attempts_ = 0;
+  bool holding_ = false;  // mission failed: hold the position where it failed
+  double stale_since_s_ = -1.0;
+  int ignored_inputs_ = 0;
+  // Integral estimate of the acceleration SAMPC's model misses, in the reference frame.
+  Eigen::Vector3d disturbance_m_s2_ = Eigen::Vector3d::Zero();
+  sampc::SampcInput sampc_input_;
+  ControllerOutput output_;
+};
+
+}  // namespace cover::mission

@@ -1,0 +1,247 @@
+#include "cover/mission/mission_controller.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "cover/sampc/horizon_cost.hpp"
+
+namespace cover::mission {
+
+using model::Stage;
+
+const char* to_string(Failsafe failsafe) {
+  switch (failsafe) {
+    case Failsafe::None:
+      return "none";
+    case Failsafe::WaitingForInputs:
+      return "waiting-for-inputs";
+    case Failsafe::StaleInput:
+      return "stale-input";
+    case Failsafe::SolverError:
+      return "solver-error";
+    case Failsafe::MissionFailed:
+      return "mission-failed";
+    case Failsafe::Landed:
+      return "landed";
+  }
+  return "unknown";
+}
+
+namespace {
+
+Task validated(Task task, int ugv_count) {
+  task.validate(ugv_count);
+  return task;
+}
+
+bool is_finite(const RelativeMeasurement& m) {
+  return std::isfinite(m.stamp_s) && m.position_m.allFinite() && m.velocity_m_s.allFinite() &&
+         m.attitude.coeffs().allFinite() && m.attitude.norm() > 0.5;
+}
+
+}  // namespace
+
+MissionController::MissionController(Task task, int ugv_count, MissionParams mission,
+                                     planner::PlannerParams planner, sampc::SampcParams sampc)
+    : params_(mission),
+      ugv_count_(ugv_count),
+      machine_(validated(std::move(task), ugv_count), mission),
+      planner_(std::move(planner)),
+      sampc_((sampc.validate(), sampc)),
+      inputs_(static_cast<std::size_t>(ugv_count)) {
+  output_.status.stage = machine_.decision();
+  idle(Failsafe::WaitingForInputs);
+}
+
+void MissionController::set_relative_state(int ugv, const RelativeMeasurement& measurement) {
+  if (ugv < 0 || ugv >= ugv_count_) {
+    ++ignored_inputs_;
+    return;
+  }
+  inputs_[ugv].state = measurement;
+  inputs_[ugv].has_state = true;
+}
+
+void MissionController::set_ugv_imu(int ugv, const UgvImuMeasurement& measurement) {
+  if (ugv < 0 || ugv >= ugv_count_) {
+    ++ignored_inputs_;
+    return;
+  }
+  inputs_[ugv].imu = measurement;
+  inputs_[ugv].has_imu = true;
+}
+
+bool MissionController::inputs_fresh(int ugv, double now_s) const {
+  if (ugv < 0 || ugv >= ugv_count_) return false;
+  const UgvInputs& in = inputs_[ugv];
+  return in.has_state && in.has_imu && is_finite(in.state) && in.imu.motion.all_finite() &&
+         std::isfinite(in.imu.stamp_s) && now_s - in.state.stamp_s <= params_.state_timeout_s &&
+         now_s - in.imu.stamp_s <= params_.imu_timeout_s;
+}
+
+const ControllerOutput& MissionController::step(double now_s) {
+  output_.command.release_payload = false;
+  output_.status.planned = false;
+  output_.status.solve_us = 0.0;
+  if (!machine_.decision().armed) {
+    idle(Failsafe::Landed);
+    return output_;
+  }
+
+  // 1. Inputs of the current reference frame: without them, hover (or stay idle on the
+  // deck before the mission has started); persistently stale fails the mission.
+  int reference = machine_.reference_ugv();
+  if (!std::isfinite(now_s) || !inputs_fresh(reference, now_s)) {
+    if (machine_.decision().state == MissionState::NotStarted) {
+      idle(Failsafe::WaitingForInputs);
+      return output_;
+    }
+    if (stale_since_s_ < 0.0) stale_since_s_ = now_s;
+    if (!(now_s - stale_since_s_ <= params_.stale_failure_s)) {
+      machine_.fail(FailureReason::StaleInput, now_s);
+    }
+    hover(Failsafe::StaleInput);
+    return output_;
+  }
+  stale_since_s_ = -1.0;
+
+  // 2. Stage machine on the state in the current frame; a new stage needs a new plan.
+  const RelativeMeasurement& state = inputs_[reference].state;
+  const StageDecision& decision = machine_.update(now_s, state.position_m, state.velocity_m_s);
+  output_.status.stage = decision;
+  output_.command.release_payload = decision.release_payload;
+  if (decision.stage_started) {
+    plan_pending_ = true;
+    plan_attempts_ = 0;
+  }
+  if (!decision.armed) {
+    idle(Failsafe::Landed);
+    return output_;
+  }
+
+  // 3. The frame may have switched (transition stage): its own inputs are needed, and the
+  // previous frame's warm start means nothing there.
+  reference = machine_.reference_ugv();
+  if (reference != last_reference_ugv_) {
+    sampc_.reset();
+    // Frames are level (planar UGVs): the vertical estimate (mass) carries over, the
+    // horizontal one (drag in this frame's motion) does not.
+    disturbance_m_s2_.head<2>().setZero();
+    last_reference_ugv_ = reference;
+  }
+  if (!inputs_fresh(reference, now_s)) {
+    hover(Failsafe::StaleInput);
+    return output_;
+  }
+  if (decision.state == MissionState::Failed && !holding_) {
+    // Hold where the failure happened, in the current frame, with the tracking weights.
+    holding_ = true;
+    plan_pending_ = false;
+    trajectory_ = planner::Trajectory::hold(inputs_[reference].state.position_m);
+    stage_start_s_ = now_s;
+  }
+  if (plan_pending_ && !plan_stage(now_s) && ++plan_attempts_ >= params_.max_plan_attempts) {
+    machine_.fail(FailureReason::PlanningFailed, now_s);
+    output_.status.stage = machine_.decision();
+  }
+
+  // 4. SAMPC on the horizon reference.
+  command_from_sampc(inputs_[reference], now_s);
+  if (holding_ && output_.status.failsafe == Failsafe::None) {
+    output_.status.failsafe = Failsafe::MissionFailed;
+  }
+  return output_;
+}
+
+bool MissionController::plan_stage(double now_s) {
+  const StageDecision& decision = machine_.decision();
+  const UgvInputs& in = inputs_[decision.reference_ugv];
+  const TransitionProcess& process = machine_.task().processes[decision.process_index];
+  planner::StageProblem problem;
+  problem.start_position_m = in.state.position_m;
+  problem.start_velocity_m_s = in.state.velocity_m_s;
+  problem.goal_position_m = decision.target_point_m;
+  problem.vmax_m_s = process.vmax_m_s;
+  problem.amax_m_s2 = process.amax_m_s2;
+  // Eq. 23 at the transition stage; the prior method (coni-mpc) has no such compensation.
+  problem.transition_stage =
+      decision.stage == Stage::Transition && sampc_.params().mode != sampc::Mode::ConiMpc;
+  problem.ugv_angular_velocity_rad_s = in.imu.motion.angular_velocity_rad_s;
+
+  planner::PlanResult result = planner_.plan(problem);
+  output_.status.planned = true;
+  output_.status.plan_status = result.status;
+  output_.status.plan_ms = result.solve_ms;
+  // Even a failed plan returns a finite trajectory (hold the start): fly it meanwhile.
+  trajectory_ = std::move(result.trajectory);
+  stage_start_s_ = now_s;
+  plan_pending_ = !planner::is_usable(result.status);
+  return !plan_pending_;
+}
+
+void MissionController::fill_reference(double t_s, sampc::HorizonReference& reference) const {
+  const sampc::SampcParams& p = sampc_.params();
+  for (int k = 0; k <= p.horizon_steps; ++k) {
+    const double t_k = t_s + k * p.step_s;
+    reference.position_m[k] = trajectory_.position(t_k);
+    reference.velocity_m_s[k] = trajectory_.velocity(t_k);
+  }
+}
+
+void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s) {
+  const double t_s = now_s - stage_start_s_;
+  // Holding after a failure tracks a point: the x-y-z-ref weights of the final stage.
+  sampc_input_.stage = holding_ ? Stage::Final : machine_.decision().stage;
+  sampc_input_.uav_state.segment<3>(model::idx::kPosition) = inputs.state.position_m;
+  sampc_input_.uav_state.segment<3>(model::idx::kVelocity) = inputs.state.velocity_m_s;
+  const Eigen::Quaterniond q = inputs.state.attitude.normalized();
+  sampc_input_.uav_state.segment<4>(model::idx::kQuaternion) << q.w(), q.x(), q.y(), q.z();
+  fill_reference(t_s, sampc_input_.reference);
+  output_.status.reference_position_m = sampc_input_.reference.position_m[0];
+  integrate_disturbance(inputs.state.position_m, sampc_input_.reference.position_m[0]);
+  sampc_input_.ugv = inputs.imu.motion;
+  sampc_input_.ugv.specific_force_m_s2 -= disturbance_m_s2_;
+  output_.status.disturbance_m_s2 = disturbance_m_s2_;
+
+  const sampc::SampcOutput out = sampc_.solve(sampc_input_);
+  output_.status.solve_status = out.status;
+  output_.status.solve_us = out.prepare_us + out.feedback_us;
+  output_.command.thrust_m_s2 = out.command(model::input_idx::kThrust);
+  output_.command.body_rate_rad_s = out.command.tail<3>();
+  output_.command.armed = true;
+  output_.status.failsafe = sampc::is_error(out.status) ? Failsafe::SolverError : Failsafe::None;
+}
+
+void MissionController::integrate_disturbance(const Eigen::Vector3d& position_m,
+                                              const Eigen::Vector3d& reference_m) {
+  // At the transition stage (xy-z-ref) the horizontal position is not tracked: there is no
+  // horizontal error to integrate, only the height.
+  const bool tracks_xy = sampc::reference_mode_for(sampc_.params().mode, sampc_input_.stage) ==
+                         sampc::ReferenceMode::XyzRef;
+  Eigen::Vector3d error = (position_m - reference_m)
+                              .cwiseMax(-params_.integral_error_clip_m)
+                              .cwiseMin(params_.integral_error_clip_m);
+  if (!tracks_xy) error.head<2>().setZero();
+  // Below the point (error < 0) the model must learn of a downward pull: d decreases.
+  disturbance_m_s2_ += params_.integral_gain_1_s3 * params_.control_period_s * error;
+  disturbance_m_s2_ = disturbance_m_s2_.cwiseMax(-params_.integral_limit_m_s2)
+                          .cwiseMin(params_.integral_limit_m_s2);
+}
+
+void MissionController::hover(Failsafe reason) {
+  output_.command.thrust_m_s2 = model::kGravity_m_s2;
+  output_.command.body_rate_rad_s.setZero();
+  output_.command.armed = true;
+  output_.status.failsafe = reason;
+  output_.status.stage = machine_.decision();
+}
+
+void MissionController::idle(Failsafe reason) {
+  output_.command.thrust_m_s2 = 0.0;
+  output_.command.body_rate_rad_s.setZero();
+  output_.command.armed = false;
+  output_.status.failsafe = reason;
+  output_.status.stage = machine_.decision();
+}
+
+}  // namespace cover::mission
