@@ -15,6 +15,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Restarts of L-BFGS after a line-search failure, within the same evaluation budget.
+constexpr int kMaxRestarts = 2;
+
 double elapsed_ms(Clock::time_point since) {
   return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
 }
@@ -173,8 +176,21 @@ PlanResult StagePlanner::plan_or_throw(const StageProblem& problem) {
   const double guess_cost = objective.evaluate(guess.data(), nullptr);
   objective.reset_tracking();
 
-  double final_cost = 0.0;
-  const nlopt_result code = nlopt_optimize(optimiser.opt.get(), optimiser.x.data(), &final_cost);
+  // Luksan's line search occasionally gives up (NLOPT_FAILURE) on long, badly scaled
+  // stages; restarting from the best point (fresh curvature memory) usually finishes.
+  nlopt_result code = NLOPT_FAILURE;
+  for (int attempt = 0; attempt <= kMaxRestarts; ++attempt) {
+    const int remaining = params_.max_evaluations - objective.evaluations();
+    if (remaining <= 0) break;
+    if (attempt > 0) {
+      std::copy(objective.best_x().data(), objective.best_x().data() + objective.dimension(),
+                optimiser.x.begin());
+    }
+    nlopt_set_maxeval(optimiser.opt.get(), remaining);
+    double final_cost = 0.0;
+    code = nlopt_optimize(optimiser.opt.get(), optimiser.x.data(), &final_cost);
+    if (code != NLOPT_FAILURE) break;
+  }
   result.iterations = objective.evaluations();
 
   // L-BFGS may stop on a worse trial point; the best point it evaluated is what we keep.

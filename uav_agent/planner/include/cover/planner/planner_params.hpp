@@ -22,7 +22,7 @@ struct PlannerParams {
   int samples_per_piece = 16;
   // Initial speed above vm (unavoidable at t = 0): the speed limit starts at |v0| and
   // comes down to vm at this fraction of am, so the reference must slow down, not jump.
-  double overspeed_decel_fraction = 0.7;
+  double overspeed_decel_fraction = 0.5;
   // NLopt LD_LBFGS stopping rules.
   double relative_cost_tolerance = 1.0e-5;
   double relative_step_tolerance = 1.0e-5;
