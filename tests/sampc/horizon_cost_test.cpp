@@ -116,7 +116,9 @@ TEST(HorizonCost, NoRefVxyDiffersFromCoverOnlyInTheHorizontalVelocityWeight) {
     EXPECT_EQ(a.nodes[k].attitude_weight, b.nodes[k].attitude_weight);
     EXPECT_EQ(a.nodes[k].squared_distance_weight, b.nodes[k].squared_distance_weight);
     EXPECT_EQ(a.nodes[k].input_weight, b.nodes[k].input_weight);
-    if (k > 0) EXPECT_EQ(a.nodes[k].velocity_weight, b.nodes[k].velocity_weight);
+    if (k > 0) {
+      EXPECT_EQ(a.nodes[k].velocity_weight, b.nodes[k].velocity_weight);
+    }
   }
   // Outside the transition stage the ablation changes nothing.
   const HorizonCost c = build(cover_params, example_input(Stage::Final));

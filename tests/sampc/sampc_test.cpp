@@ -292,7 +292,10 @@ TEST(Sampc, WildButFiniteInputsNeverGiveNanOrOutOfBoundCommands) {
   Sampc mpc(params);
   std::mt19937 rng(99);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
-  const auto wild = [&](double scale) { return Vector3d(uni(rng), uni(rng), uni(rng)) * scale; };
+  const auto wild = [&](double scale) -> Vector3d {
+    const double x = uni(rng), y = uni(rng), z = uni(rng);
+    return Vector3d(scale * x, scale * y, scale * z);
+  };
   int errors = 0;
   for (int trial = 0; trial < 200; ++trial) {
     SampcInput in;
