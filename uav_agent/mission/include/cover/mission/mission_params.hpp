@@ -37,7 +37,7 @@ struct MissionParams {
   // estimates that missing acceleration d and SAMPC sees it through its UGV specific-force
   // parameter (a - d in eq. 5). Gain in (m/s^2) per (m s); errors are clipped before
   // integrating (anti-windup during fast stage starts) and d is bounded.
-  double integral_gain_1_s3 = 4.0;
+  double integral_gain_1_s3 = 8.0;
   double integral_error_clip_m = 0.2;
   double integral_limit_m_s2 = 2.0;
   // Control period (the controller runs at 100 Hz).

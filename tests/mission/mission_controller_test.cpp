@@ -1,0 +1,117 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "cover/mission/mission_controller.hpp"
+#include "cover/sim/closed_loop.hpp"
+
+using cover::mission::Failsafe;
+using cover::mission::FailureReason;
+using cover::mission::MissionController;
+using cover::mission::MissionState;
+using cover::mission::RelativeMeasurement;
+using cover::mission::UgvImuMeasurement;
+
+namespace {
+
+MissionController make_controller() {
+  const auto config = cover::sim::ControllerConfig::load_default(cover::sampc::Mode::Cover);
+  const cover::mission::Task task = cover::mission::load_task_file(
+      cover::config::default_config_dir() + "/tasks/scenario2.yaml", 2);
+  return MissionController(task, 2, config.mission, config.planner, config.sampc);
+}
+
+// The UAV resting on both decks' origins, both UGVs at rest: a valid input set at `t`.
+void feed_at_rest(MissionController& controller, double t) {
+  for (int k = 0; k < 2; ++k) {
+    RelativeMeasurement state;
+    state.stamp_s = t;
+    controller.set_relative_state(k, state);
+    UgvImuMeasurement imu;
+    imu.stamp_s = t;
+    controller.set_ugv_imu(k, imu);
+  }
+}
+
+void expect_finite(const cover::mission::ControlCommand& command) {
+  EXPECT_TRUE(std::isfinite(command.thrust_m_s2));
+  EXPECT_TRUE(command.body_rate_rad_s.allFinite());
+}
+
+}  // namespace
+
+TEST(MissionController, StaysIdleAndDisarmedUntilInputsArrive) {
+  MissionController controller = make_controller();
+  const auto& out = controller.step(0.0);
+  EXPECT_FALSE(out.command.armed);
+  EXPECT_EQ(out.command.thrust_m_s2, 0.0);
+  EXPECT_EQ(out.status.failsafe, Failsafe::WaitingForInputs);
+  EXPECT_EQ(out.status.stage.state, MissionState::NotStarted);
+}
+
+TEST(MissionController, StartsTheTaskAndPlansTheFirstStage) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  const auto& out = controller.step(0.0);
+  EXPECT_TRUE(out.command.armed);
+  EXPECT_TRUE(out.status.planned);
+  EXPECT_EQ(out.status.failsafe, Failsafe::None);
+  EXPECT_EQ(out.status.stage.state, MissionState::Running);
+  EXPECT_EQ(out.status.stage.reference_ugv, 0);
+  expect_finite(out.command);
+  // Taking off towards [0, 0, 1]: more than hover thrust.
+  EXPECT_GT(out.command.thrust_m_s2, cover::model::kGravity_m_s2);
+  EXPECT_DOUBLE_EQ(controller.reference_trajectory().position(1e9).z(), 1.0);
+}
+
+TEST(MissionController, StaleInputsHoverThenFailTheMission) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  controller.step(0.0);
+  const auto& stale = controller.step(0.2);  // inputs 0.2 s old (> 0.1 s)
+  EXPECT_EQ(stale.status.failsafe, Failsafe::StaleInput);
+  EXPECT_TRUE(stale.command.armed);
+  EXPECT_DOUBLE_EQ(stale.command.thrust_m_s2, cover::model::kGravity_m_s2);
+  EXPECT_TRUE(stale.command.body_rate_rad_s.isZero());
+  EXPECT_EQ(stale.status.stage.state, MissionState::Running);
+  const auto& failed = controller.step(1.0);  // stale for 0.8 s (> 0.5 s)
+  EXPECT_EQ(failed.status.stage.state, MissionState::Failed);
+  EXPECT_EQ(failed.status.stage.failure, FailureReason::StaleInput);
+  // Fresh inputs again: it holds its position (tracking), with the failure still shown.
+  feed_at_rest(controller, 1.01);
+  const auto& holding = controller.step(1.01);
+  EXPECT_EQ(holding.status.failsafe, Failsafe::MissionFailed);
+  expect_finite(holding.command);
+}
+
+TEST(MissionController, NonFiniteStateNeverReachesTheCommand) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  controller.step(0.0);
+  RelativeMeasurement bad;
+  bad.stamp_s = 0.01;
+  bad.position_m.x() = std::numeric_limits<double>::quiet_NaN();
+  controller.set_relative_state(0, bad);
+  UgvImuMeasurement imu;
+  imu.stamp_s = 0.01;
+  imu.motion.angular_velocity_rad_s.z() = std::numeric_limits<double>::infinity();
+  controller.set_ugv_imu(0, imu);
+  const auto& out = controller.step(0.01);
+  EXPECT_EQ(out.status.failsafe, Failsafe::StaleInput);
+  expect_finite(out.command);
+}
+
+TEST(MissionController, IgnoresInputsForUnknownUgvs) {
+  MissionController controller = make_controller();
+  controller.set_relative_state(5, RelativeMeasurement{});
+  controller.set_ugv_imu(-1, UgvImuMeasurement{});
+  EXPECT_EQ(controller.ignored_inputs(), 2);
+}
+
+TEST(MissionController, RejectsAnInvalidTaskAtConstruction) {
+  const auto config = cover::sim::ControllerConfig::load_default(cover::sampc::Mode::Cover);
+  cover::mission::Task task;  // no process
+  EXPECT_THROW(MissionController(task, 2, config.mission, config.planner, config.sampc),
+               cover::config::ConfigError);
+}
