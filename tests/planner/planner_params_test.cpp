@@ -40,6 +40,8 @@ TEST(PlannerParams, ShippedFileMatchesDefaults) {
   EXPECT_EQ(shipped.max_evaluations, defaults.max_evaluations);
   EXPECT_EQ(shipped.max_solve_time_s, defaults.max_solve_time_s);
   EXPECT_EQ(shipped.lbfgs_memory, defaults.lbfgs_memory);
+  EXPECT_EQ(shipped.min_piece_duration_s, defaults.min_piece_duration_s);
+  EXPECT_EQ(shipped.max_abs_speed_m_s, defaults.max_abs_speed_m_s);
   EXPECT_EQ(shipped.default_vmax_m_s, defaults.default_vmax_m_s);
   EXPECT_EQ(shipped.default_amax_m_s2, defaults.default_amax_m_s2);
   EXPECT_NO_THROW(defaults.validate());

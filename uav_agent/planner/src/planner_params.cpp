@@ -17,6 +17,7 @@ PlannerParams PlannerParams::load(config::YamlReader& reader) {
   reader.optional("max_evaluations", params.max_evaluations);
   reader.optional("max_solve_time_s", params.max_solve_time_s);
   reader.optional("lbfgs_memory", params.lbfgs_memory);
+  reader.optional("min_piece_duration_s", params.min_piece_duration_s);
   reader.optional("default_vmax_m_s", params.default_vmax_m_s);
   reader.optional("default_amax_m_s2", params.default_amax_m_s2);
   reader.optional("at_goal_tolerance_m", params.at_goal_tolerance_m);
@@ -64,6 +65,9 @@ void PlannerParams::validate() const {
   check(max_evaluations >= 1, ctx + ".max_evaluations", "must be >= 1");
   positive(max_solve_time_s, "max_solve_time_s");
   check(lbfgs_memory >= 1 && lbfgs_memory <= 50, ctx + ".lbfgs_memory", "must be in [1, 50]");
+  check(std::isfinite(min_piece_duration_s) && min_piece_duration_s >= 0.0 &&
+            min_piece_duration_s <= 1.0,
+        ctx + ".min_piece_duration_s", "must be in [0, 1] s");
   positive(default_vmax_m_s, "default_vmax_m_s");
   positive(default_amax_m_s2, "default_amax_m_s2");
   positive(at_goal_tolerance_m, "at_goal_tolerance_m");

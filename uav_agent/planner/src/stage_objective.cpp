@@ -1,5 +1,6 @@
 #include "cover/planner/stage_objective.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -82,7 +83,10 @@ double StageObjective::duration_derivative(double tau) {
 
 void StageObjective::encode(const Eigen::Matrix3Xd& waypoints, const Eigen::VectorXd& durations,
                             double* x) const {
-  for (int i = 0; i < pieces_; ++i) x[i] = tau_from_duration(durations(i));
+  for (int i = 0; i < pieces_; ++i) {
+    const double above_floor = durations(i) - params_.min_piece_duration_s;
+    x[i] = tau_from_duration(std::max(above_floor, 1e-3));
+  }
   for (int i = 0; i < pieces_ - 1; ++i) {
     for (int axis = 0; axis < 3; ++axis) x[pieces_ + 3 * i + axis] = waypoints(axis, i);
   }
@@ -91,7 +95,7 @@ void StageObjective::encode(const Eigen::Matrix3Xd& waypoints, const Eigen::Vect
 void StageObjective::decode(const double* x) {
   for (int i = 0; i < pieces_; ++i) {
     taus_(i) = x[i];
-    durations_(i) = duration_from_tau(x[i]);
+    durations_(i) = params_.min_piece_duration_s + duration_from_tau(x[i]);
   }
   for (int i = 0; i < pieces_ - 1; ++i) {
     for (int axis = 0; axis < 3; ++axis) waypoints_(axis, i) = x[pieces_ + 3 * i + axis];

@@ -29,6 +29,9 @@ struct PlannerParams {
   int max_evaluations = 400;
   double max_solve_time_s = 0.05;
   int lbfgs_memory = 8;
+  // Floor added to every piece duration by the time map: keeps MINCO's matrix (powers of T
+  // up to T^5) well conditioned when the optimum would collapse a piece (tiny stages).
+  double min_piece_duration_s = 0.02;
   // Limits used when the caller gives none (cover-plan without --vmax/--amax).
   double default_vmax_m_s = 1.0;
   double default_amax_m_s2 = 2.0;
@@ -37,7 +40,7 @@ struct PlannerParams {
   double at_rest_tolerance_m_s = 1.0e-6;
   // Input sanity bounds: anything beyond is InvalidInput (a corrupted estimate, not a stage).
   double max_abs_position_m = 1000.0;
-  double max_abs_speed_m_s = 30.0;
+  double max_abs_speed_m_s = 10.0;
   double max_abs_angular_rate_rad_s = 10.0;
   double max_limit_m_s = 30.0;    // vmax above this is absurd
   double max_limit_m_s2 = 100.0;  // amax above this is absurd

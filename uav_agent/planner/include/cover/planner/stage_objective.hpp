@@ -44,7 +44,8 @@ class StageObjective {
   void reset_tracking();
 
   // Positive, C1, monotone time map: T = (tau/2 + 1) tau + 1 for tau > 0, else
-  // 1 / ((tau/2 - 1) tau + 1). Quadratic growth keeps long stages well scaled.
+  // 1 / ((tau/2 - 1) tau + 1); quadratic growth keeps long stages well scaled. The
+  // objective adds params.min_piece_duration_s to it (see duration_of).
   static double duration_from_tau(double tau);
   static double tau_from_duration(double duration_s);
   static double duration_derivative(double tau);
