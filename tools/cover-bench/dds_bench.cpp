@@ -13,6 +13,7 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "bench_stats.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/process/shutdown_signal.hpp"
@@ -36,12 +37,7 @@ struct SeriesResult {
   double p99_us = 0;
 };
 
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  const auto index = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<long>(index), values.end());
-  return values[index];
-}
+using cover::bench::percentile;
 
 // Receives pongs and lets the pinger wait for a given sequence number.
 class PongWaiter {

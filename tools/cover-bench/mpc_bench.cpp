@@ -14,6 +14,7 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "bench_stats.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/model/dynamics.hpp"
 #include "cover/sampc/reference_solver.hpp"
@@ -40,13 +41,7 @@ double thread_cpu_us() {
   return 1e6 * static_cast<double>(ts.tv_sec) + 1e-3 * static_cast<double>(ts.tv_nsec);
 }
 
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const auto index =
-      static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1) + 0.5);
-  return values[std::min(index, values.size() - 1)];
-}
+using cover::bench::percentile;
 
 // A rest-to-rest quintic from `from` to `to` over `duration_s`: the bench's own smooth
 // reference (no planner dependency).

@@ -11,6 +11,7 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "bench_stats.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/planner/benchmark_problems.hpp"
 #include "cover/planner/stage_planner.hpp"
@@ -18,13 +19,7 @@
 
 namespace {
 
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const auto index =
-      static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1) + 0.5);
-  return values[std::min(index, values.size() - 1)];
-}
+using cover::bench::percentile;
 
 // A problem fails when the planner gives no optimised trajectory, or its boundary
 // conditions are off by more than 1e-6 (the limits are reported separately).

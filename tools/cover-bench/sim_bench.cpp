@@ -11,6 +11,7 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "bench_stats.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sim/svg_plot.hpp"
 #include "cover/sim/world.hpp"
@@ -20,13 +21,7 @@ namespace {
 const char* const kWorlds[] = {"world_default", "world_figure_eight", "world_star",
                                "world_s_curve", "world_lines",        "world_three_circles"};
 
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const auto index =
-      static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1) + 0.5);
-  return values[std::min(index, values.size() - 1)];
-}
+using cover::bench::percentile;
 
 struct WorldTiming {
   std::string name;
