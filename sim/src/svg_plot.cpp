@@ -10,7 +10,8 @@ namespace cover::sim {
 namespace {
 
 constexpr double kMarginLeftPx = 70.0;
-constexpr double kMarginRightPx = 200.0;  // room for the legend
+constexpr double kMinMarginRightPx = 200.0;  // room for the legend
+constexpr double kLegendCharPx = 7.0;        // mean glyph width at font-size 12, generous
 constexpr double kMarginTopPx = 50.0;
 constexpr double kMarginBottomPx = 60.0;
 
@@ -142,7 +143,12 @@ std::string SvgPlot::render() const {
 
   // Equal scale on both axes; the picture is then cropped to the data's aspect ratio
   // (keeping room for the legend) instead of leaving a band of white.
-  const double plot_w = width_px_ - kMarginLeftPx - kMarginRightPx;
+  std::size_t longest_label = 0;
+  for (const SvgStyle* style : entries)
+    longest_label = std::max(longest_label, style->legend.size());
+  const double margin_right_px =
+      std::max(kMinMarginRightPx, 60.0 + kLegendCharPx * static_cast<double>(longest_label));
+  const double plot_w = width_px_ - kMarginLeftPx - margin_right_px;
   const double max_plot_h = height_px_ - kMarginTopPx - kMarginBottomPx;
   const double scale = std::min(plot_w / (hi.x() - lo.x()), max_plot_h / (hi.y() - lo.y()));
   const double legend_h = 20.0 * static_cast<double>(entries.size()) + 20.0;
