@@ -203,4 +203,36 @@ TEST(TopicCatalog, EveryEntryHasAKnownTypeAndProfileAndIsDocumented) {
   }
 }
 
+// The field configuration (no multicast, static unicast peers) on loopback, across vendors.
+class UnicastPeers : public testing::TestWithParam<std::pair<Vendor, Vendor>> {};
+
+TEST_P(UnicastPeers, DiscoverEachOtherWithoutMulticast) {
+  ParticipantOptions writer_options;
+  writer_options.vendor = GetParam().first;
+  writer_options.domain_id = cover::test::private_domain_id();
+  writer_options.peers = {"127.0.0.1"};
+  ParticipantOptions reader_options = writer_options;
+  reader_options.vendor = GetParam().second;
+  Participant writer_side(writer_options);
+  Participant reader_side(reader_options);
+  const std::string topic = cover::test::private_prefix("peers") + "/task";
+  auto reader = reader_side.make_reader<cover::msg::TaskStatus>(topic, state_qos());
+  auto writer = writer_side.make_writer<cover::msg::TaskStatus>(topic, state_qos());
+  ASSERT_TRUE(writer.wait_for_readers(1, 30s));
+  cover::msg::TaskStatus status;
+  status.task_id = "peers";
+  status.state = cover::msg::TaskState::TASK_RUNNING;
+  ASSERT_TRUE(writer.write(status));
+  ASSERT_TRUE(reader.wait_for_sample(10s));
+  EXPECT_EQ(reader.latest()->sample, status);
+}
+
+INSTANTIATE_TEST_SUITE_P(VendorPairs, UnicastPeers,
+                         testing::Values(std::pair{Vendor::FastDds, Vendor::Cyclone},
+                                         std::pair{Vendor::Cyclone, Vendor::FastDds}),
+                         [](const auto& info) {
+                           return std::string(vendor_name(info.param.first)) + "_to_" +
+                                  vendor_name(info.param.second);
+                         });
+
 }  // namespace
