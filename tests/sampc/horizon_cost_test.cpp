@@ -58,7 +58,10 @@ TEST(HorizonCost, TrackingStagesFollowThePlanWithTable2Weights) {
 
 TEST(HorizonCost, TransitionStageUsesXyZRefWithTheCustomisedVelocityAndYaw) {
   const SampcParams params;
-  const SampcInput in = example_input(Stage::Transition);
+  SampcInput in = example_input(Stage::Transition);
+  // Already facing the UGV: the rate-limited yaw reference sits on its target at every node.
+  in.uav_state.segment<4>(6) =
+      model::yaw_quaternion(std::atan2(-in.uav_state(1), -in.uav_state(0)));
   const HorizonCost cost = build(params, in);
   EXPECT_EQ(cost.reference_mode, ReferenceMode::XyZRef);
 
@@ -77,7 +80,7 @@ TEST(HorizonCost, TransitionStageUsesXyZRefWithTheCustomisedVelocityAndYaw) {
     const NodeCost& n = cost.nodes[k];
     const double decay = std::exp(-params.e0 * k);
     EXPECT_LT((n.position_weight - decay * Vector3d(0, 0, 200)).norm(), 1e-9);
-    if (k > 0) {
+    if (k > params.custom_velocity_nodes) {
       EXPECT_LT((n.velocity_weight - decay * Vector3d(0, 0, 100)).norm(), 1e-9);
       EXPECT_EQ(n.velocity_ref_m_s.z(), in.reference.velocity_m_s[k].z());
     }
@@ -108,6 +111,10 @@ TEST(HorizonCost, NoRefVxyDiffersFromCoverOnlyInTheHorizontalVelocityWeight) {
   const SampcInput in = example_input(Stage::Transition);
   const HorizonCost a = build(cover_params, in), b = build(ablation, in);
   EXPECT_EQ(b.nodes[0].velocity_weight, Vector3d(0, 0, 100));
+  // The customised velocity acts where the state is free: the first predicted node differs.
+  EXPECT_EQ(a.nodes[1].velocity_weight.head<2>(),
+            std::exp(-cover_params.e0) * Eigen::Vector2d(350, 350));
+  EXPECT_EQ(b.nodes[1].velocity_weight, std::exp(-cover_params.e0) * Vector3d(0, 0, 100));
   for (int k = 0; k <= cover_params.horizon_steps; ++k) {
     EXPECT_EQ(a.nodes[k].position_weight, b.nodes[k].position_weight);
     EXPECT_EQ(a.nodes[k].position_ref_m, b.nodes[k].position_ref_m);
@@ -116,7 +123,7 @@ TEST(HorizonCost, NoRefVxyDiffersFromCoverOnlyInTheHorizontalVelocityWeight) {
     EXPECT_EQ(a.nodes[k].attitude_weight, b.nodes[k].attitude_weight);
     EXPECT_EQ(a.nodes[k].squared_distance_weight, b.nodes[k].squared_distance_weight);
     EXPECT_EQ(a.nodes[k].input_weight, b.nodes[k].input_weight);
-    if (k > 0) {
+    if (k > cover_params.custom_velocity_nodes) {
       EXPECT_EQ(a.nodes[k].velocity_weight, b.nodes[k].velocity_weight);
     }
   }
@@ -150,6 +157,43 @@ TEST(HorizonCost, YawIsHeldOnTheUgvAxis) {
   EXPECT_TRUE(cost.nodes[0].velocity_ref_m_s.allFinite());
 }
 
+TEST(HorizonCost, CustomisedVelocityIsOnTheFirstFreeNodes) {
+  SampcParams params;
+  params.custom_velocity_nodes = 3;
+  const SampcInput in = example_input(Stage::Transition);
+  const HorizonCost cost = build(params, in);
+  for (int k = 1; k <= 3; ++k) {
+    EXPECT_EQ(cost.nodes[k].velocity_ref_m_s.head<2>(), cost.nodes[0].velocity_ref_m_s.head<2>());
+    EXPECT_GT(cost.nodes[k].velocity_weight.x(), 0.0);
+  }
+  EXPECT_EQ(cost.nodes[4].velocity_weight.head<2>(), Eigen::Vector2d::Zero());
+}
+
+// After a frame switch the target yaw can be 180 deg from the UAV's: the reference must
+// turn toward it at the configured rate from the measured yaw, never jump.
+TEST(HorizonCost, YawReferenceIsRateLimitedFromTheMeasuredYaw) {
+  const SampcParams params;
+  for (Stage stage : {Stage::Transition, Stage::Final}) {
+    SampcInput in = example_input(stage);
+    const double target =
+        stage == Stage::Transition ? std::atan2(-in.uav_state(1), -in.uav_state(0)) : 0.0;
+    const double start = target + 3.1;  // nearly opposite
+    in.uav_state.segment<4>(6) = model::yaw_quaternion(start);
+    const HorizonCost cost = build(params, in);
+    double previous = start;
+    for (int k = 0; k <= params.horizon_steps; ++k) {
+      const Eigen::Vector4d& r = cost.nodes[k].attitude_ref;
+      const double yaw = 2.0 * std::atan2(r(3), r(0));
+      const double step = std::remainder(yaw - previous, 2.0 * 3.141592653589793);
+      EXPECT_LE(std::abs(step), params.yaw_reference_rate_rad_s * params.step_s + 1e-9) << k;
+      if (k > 0) EXPECT_LT(step, 0.0) << "turns the short way round, k = " << k;
+      previous = yaw;
+    }
+    EXPECT_NEAR(std::remainder(previous - start, 2.0 * 3.141592653589793),
+                -params.yaw_reference_rate_rad_s * params.step_s * params.horizon_steps, 1e-9);
+  }
+}
+
 TEST(HorizonCost, AttitudeCostIsSignInvariant) {
   const SampcParams params;
   const HorizonCost cost = build(params, example_input(Stage::Transition));
@@ -171,6 +215,8 @@ TEST(SampcParams, ShippedConfigLoadsAndEqualsTheDefaults) {
   EXPECT_EQ(loaded.transition_weights.velocity, defaults.transition_weights.velocity);
   EXPECT_EQ(loaded.tracking_weights.input, defaults.tracking_weights.input);
   EXPECT_EQ(loaded.yaw_rate_max_rad_s, defaults.yaw_rate_max_rad_s);
+  EXPECT_EQ(loaded.yaw_reference_rate_rad_s, defaults.yaw_reference_rate_rad_s);
+  EXPECT_EQ(loaded.custom_velocity_nodes, defaults.custom_velocity_nodes);
 }
 
 TEST(SampcParams, RejectsBadValuesNamingTheKey) {
@@ -189,6 +235,8 @@ TEST(SampcParams, RejectsBadValuesNamingTheKey) {
   }
   EXPECT_THROW(load("tracking_weights: {input: [1, 0, 20, 5]}"), config::ConfigError);
   EXPECT_THROW(load("thrust_max_m_s2: 9.0"), config::ConfigError);
+  EXPECT_THROW(load("yaw_reference_rate_rad_s: 2.0"), config::ConfigError);  // > yaw rate bound
+  EXPECT_THROW(load("custom_velocity_nodes: 0"), config::ConfigError);
 }
 
 }  // namespace

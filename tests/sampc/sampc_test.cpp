@@ -287,6 +287,63 @@ TEST(Sampc, ResetAfterAFrameSwitchFliesOnWithoutErrors) {
   EXPECT_NEAR(in.uav_state(2), 1.5, 0.05);
 }
 
+// A sensor may hand over -q for q (e.g. as the yaw passes 180 deg). Before the measurement
+// was aligned with the plan's hemisphere, that flip commanded full thrust for a few steps.
+TEST(Sampc, QuaternionSignFlipOfTheMeasurementChangesNothing) {
+  const SampcParams params;
+  Sampc mpc(params);
+  SampcInput in;
+  in.stage = Stage::Transition;
+  in.uav_state = model::uav_state_at_rest(Vector3d(2.0, 1.0, 1.5));
+  in.uav_state.segment<4>(6) = model::yaw_quaternion(3.0);
+  in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.3);
+  in.reference = HorizonReference::hold(Vector3d(1.0, 0.5, 1.5));
+  Sampc twin(params);  // fed the same inputs: the same warm start
+  for (int step = 0; step < 30; ++step) {
+    twin.solve(in);
+    in.uav_state = plant_step(in.uav_state, mpc.solve(in).command, in.ugv);
+  }
+  SampcInput flipped = in;
+  flipped.uav_state.segment<4>(6) *= -1.0;
+  const SampcOutput a = mpc.solve(in);
+  const SampcOutput b = twin.solve(flipped);
+  ASSERT_EQ(b.status, SolveStatus::Ok);
+  EXPECT_LT((a.command - b.command).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// Right after a frame switch the UAV can face away from the new target yaw by ~180 deg:
+// the rate-limited yaw reference turns it without a thrust or body-rate spike.
+TEST(Sampc, HalfTurnYawAfterAFrameSwitchGivesNoSpike) {
+  const SampcParams params;
+  for (Stage stage : {Stage::Transition, Stage::Final}) {
+    Sampc mpc(params);
+    SampcInput in;
+    in.stage = stage;
+    in.uav_state = model::uav_state_at_rest(Vector3d(-1.0, 0.0, 1.5));
+    // Transition: nose at the UGV is yaw 0; final: the UGV's x axis, also 0. Start at 179 deg.
+    in.uav_state.segment<4>(6) = model::yaw_quaternion(3.12);
+    in.ugv.angular_velocity_rad_s.setZero();  // a turning frame would add a steady yaw lag
+    in.reference = HorizonReference::hold(Vector3d(-1.0, 0.0, 1.5));
+    double previous_thrust = model::kGravity_m_s2;
+    double peak_thrust_change = 0.0;
+    for (int step = 0; step < 700; ++step) {
+      const SampcOutput out = mpc.solve(in);
+      ASSERT_EQ(out.status, SolveStatus::Ok) << out.reason;
+      if (step > 0) {
+        peak_thrust_change =
+            std::max(peak_thrust_change, std::abs(out.command(0) - previous_thrust));
+      }
+      previous_thrust = out.command(0);
+      in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
+    }
+    EXPECT_LT(peak_thrust_change, 1.0);
+    const Eigen::Vector4d q = in.uav_state.segment<4>(6);
+    const double yaw =
+        std::atan2(2.0 * (q(0) * q(3) + q(1) * q(2)), 1.0 - 2.0 * (q(2) * q(2) + q(3) * q(3)));
+    EXPECT_LT(std::abs(yaw), 0.1) << "turned to the target yaw";
+  }
+}
+
 TEST(Sampc, WildButFiniteInputsNeverGiveNanOrOutOfBoundCommands) {
   const SampcParams params;
   Sampc mpc(params);

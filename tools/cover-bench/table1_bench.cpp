@@ -123,6 +123,16 @@ int run(const std::vector<std::string>& args) {
     out["transitions_per_run"] = transitions;
     out["rows"] = nlohmann::json::array();
     for (const Row& r : rows) {
+      // Per stage, to see which geometry bends the path.
+      nlohmann::json stages = nlohmann::json::array();
+      for (const cover::sim::TransitionRecord& t : r.result.transitions) {
+        stages.push_back({{"from", t.from_ugv},
+                          {"to", t.to_ugv},
+                          {"completed", t.completed},
+                          {"duration_s", t.end_time_s - t.start_time_s},
+                          {"Ls", t.straight_length_m},
+                          {"Lt", t.path_length_m}});
+      }
       out["rows"].push_back({{"v", r.v},
                              {"w", r.w},
                              {"method", r.method},
@@ -132,7 +142,8 @@ int run(const std::vector<std::string>& args) {
                              {"transitions", r.completed()},
                              {"failures", r.requested - r.completed()},
                              {"status", r.result.status},
-                             {"realtime_factor", r.result.realtime_factor}});
+                             {"realtime_factor", r.result.realtime_factor},
+                             {"per_transition", stages}});
     }
     if (plot->count() > 0) out["plot"] = plot_file;
     std::cout << out.dump(2) << "\n";

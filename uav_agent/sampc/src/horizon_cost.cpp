@@ -1,6 +1,8 @@
 #include "cover/sampc/horizon_cost.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "cover/model/quaternion.hpp"
 
@@ -52,10 +54,84 @@ double NodeCost::evaluate(const model::UavState& x, const model::Input& u, model
 
 namespace {
 
+constexpr double kPi = 3.141592653589793;
+constexpr double kTwoPi = 2.0 * kPi;
+
+double wrapped_angle(double angle_rad) {
+  return std::remainder(angle_rad, kTwoPi);  // in [-pi, pi]
+}
+
+// Yaw of the UAV in the reference frame, from its attitude quaternion [w, x, y, z].
+double measured_yaw(const model::UavState& x) {
+  const Eigen::Vector4d q = x.segment<4>(kQuaternion);
+  return std::atan2(2.0 * (q(0) * q(3) + q(1) * q(2)), 1.0 - 2.0 * (q(2) * q(2) + q(3) * q(3)));
+}
+
+// Which way the yaw reference turns: the shorter way round, except that a turn in progress
+// keeps its direction until the other way is shorter by more than yaw_flip_hysteresis_rad.
+// When the target moves faster than the UAV can turn (a UGV turning hard rotates the frame),
+// the error drifts through 180 deg; flipping the turn there reverses the whole yaw plan in
+// one control step.
+double yaw_error_to_target(const SampcParams& params, double from_yaw_rad, double target_yaw_rad,
+                           int turn_sign) {
+  double error = wrapped_angle(target_yaw_rad - from_yaw_rad);
+  if (turn_sign * error < 0.0 && std::abs(error) > kPi - params.yaw_flip_hysteresis_rad) {
+    error += turn_sign * kTwoPi;
+  }
+  return error;
+}
+
+int turn_sign_of(double yaw_error_rad) {
+  constexpr double kAlignedYaw_rad = 0.05;  // closer than this: no turn in progress
+  if (std::abs(yaw_error_rad) < kAlignedYaw_rad) return 0;
+  return yaw_error_rad > 0.0 ? 1 : -1;
+}
+
+// The yaw reference is a rate-limited trajectory toward the stage's target yaw (nose at the
+// UGV, or the UGV's x axis): its start (the anchor) moves at most yaw_reference_rate_rad_s
+// per elapsed second, stays within yaw_reference_max_lag_rad of the measured yaw, and node k
+// lies at most rate * k * dt further on. A step to the target would, after a frame switch,
+// ask for up to 180 deg at once (a thrust and body-rate spike); re-starting it at the
+// measured yaw every step instead would leave almost no pull (the error at node 1 is tiny).
+struct YawPlan {
+  YawTrack track;        // the anchor (node 0's yaw) and the turn direction
+  double error_rad = 0;  // from the anchor to the target, the way the reference turns
+};
+
+YawPlan plan_yaw(const SampcParams& params, const SampcInput& input, double target_yaw_rad,
+                 const YawTrack& previous, double elapsed_s) {
+  const double measured = measured_yaw(input.uav_state);
+  YawPlan plan;
+  plan.track.valid = true;
+  plan.track.anchor_rad = measured;
+  if (previous.valid) {
+    const double error =
+        yaw_error_to_target(params, previous.anchor_rad, target_yaw_rad, previous.turn_sign);
+    const double step = params.yaw_reference_rate_rad_s * elapsed_s;
+    const double anchor = previous.anchor_rad + std::clamp(error, -step, step);
+    const double lag =
+        std::clamp(wrapped_angle(anchor - measured), -params.yaw_reference_max_lag_rad,
+                   params.yaw_reference_max_lag_rad);
+    plan.track.anchor_rad = measured + lag;
+  }
+  plan.error_rad =
+      yaw_error_to_target(params, plan.track.anchor_rad, target_yaw_rad, previous.turn_sign);
+  plan.track.turn_sign = turn_sign_of(plan.error_rad);
+  return plan;
+}
+
+Eigen::Vector4d yaw_reference(const SampcParams& params, const YawPlan& plan, int k) {
+  const double reachable = params.yaw_reference_rate_rad_s * params.step_s * k;
+  return model::yaw_quaternion(plan.track.anchor_rad +
+                               std::clamp(plan.error_rad, -reachable, reachable));
+}
+
 // x-y-z-ref (eqs. 25-27 with the initial/final weights): follow the plan in full, nose
-// along the UGV's x axis.
-void build_tracking_cost(const SampcParams& params, const SampcInput& input, HorizonCost& cost) {
+// turning toward the UGV's x axis.
+void build_tracking_cost(const SampcParams& params, const SampcInput& input,
+                         const YawTrack& previous_yaw, double elapsed_s, HorizonCost& cost) {
   const WeightSet& w = params.tracking_weights;
+  const YawPlan yaw = plan_yaw(params, input, 0.0, previous_yaw, elapsed_s);
   for (int k = 0; k <= params.horizon_steps; ++k) {
     NodeCost& node = cost.nodes[k];
     const double state_decay = std::exp(-params.e0 * k);
@@ -63,7 +139,7 @@ void build_tracking_cost(const SampcParams& params, const SampcInput& input, Hor
     node.position_weight = state_decay * w.position;
     node.velocity_ref_m_s = input.reference.velocity_m_s[k];
     node.velocity_weight = state_decay * w.velocity;
-    node.attitude_ref = Eigen::Vector4d(1.0, 0.0, 0.0, 0.0);
+    node.attitude_ref = yaw_reference(params, yaw, k);
     node.attitude_weight = state_decay * w.attitude;
     node.squared_distance_ref_m2 = 0.0;
     node.squared_distance_weight = 0.0;
@@ -71,12 +147,13 @@ void build_tracking_cost(const SampcParams& params, const SampcInput& input, Hor
     node.input_weight = std::exp(-params.e3 * k) * w.input;
   }
   cost.yaw_ref_rad = 0.0;
+  cost.yaw_track = yaw.track;
 }
 
 // xy-z-ref (eqs. 28-35): track height and the squared horizontal distance to the UGV's
-// axis; the velocity reference of eq. 30 at k = 0 only; nose at the UGV.
+// axis; the eq. 30 velocity reference; nose turning toward the UGV.
 void build_transition_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
-                           HorizonCost& cost) {
+                           const YawTrack& previous_yaw, double elapsed_s, HorizonCost& cost) {
   WeightSet w = params.transition_weights;
   if (params.mode == Mode::NoRefVxy) w.velocity.head<2>().setZero();
 
@@ -84,50 +161,55 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
   const double d0 = p.head<2>().squaredNorm();
   const double horizontal_distance = std::sqrt(d0);
   const bool direction_defined = horizontal_distance > params.yaw_hold_radius_m;
-  const double yaw = direction_defined ? std::atan2(-p.y(), -p.x()) : held_yaw_rad;
+  const double target_yaw = direction_defined ? std::atan2(-p.y(), -p.x()) : held_yaw_rad;
+  const YawPlan yaw = plan_yaw(params, input, target_yaw, previous_yaw, elapsed_s);
   const double reference_speed_xy = input.reference.velocity_m_s[0].head<2>().norm();
   const double distance_weight0 =
       w.distance_gain * std::exp(params.e2_per_m2 * d0) + w.distance_offset;
 
   // Eq. 30: cancel the frame-rotation-induced motion and head at the UGV at the plan's speed.
-  Eigen::Vector3d velocity_ref0 = -input.ugv.angular_velocity_rad_s.cross(p);
+  Eigen::Vector3d custom_velocity = -input.ugv.angular_velocity_rad_s.cross(p);
   if (direction_defined) {
-    velocity_ref0.head<2>() -= p.head<2>() / horizontal_distance * reference_speed_xy;
+    custom_velocity.head<2>() -= p.head<2>() / horizontal_distance * reference_speed_xy;
   }
-  velocity_ref0.z() = input.reference.velocity_m_s[0].z();
 
   for (int k = 0; k <= params.horizon_steps; ++k) {
     NodeCost& node = cost.nodes[k];
     const double state_decay = std::exp(-params.e0 * k);
     node.position_ref_m = input.reference.position_m[k];
     node.position_weight = state_decay * w.position;
-    if (k == 0) {
-      node.velocity_ref_m_s = velocity_ref0;
+    // NOTES.md puts eq. 30 "at k = 0", but x0 is fixed to the measurement in multiple
+    // shooting, so a cost there steers nothing. It is kept there (the paper's reading) and
+    // also put on the first free nodes 1..custom_velocity_nodes, the first predicted states,
+    // where it acts; later nodes weigh only the vertical velocity.
+    node.velocity_ref_m_s = Eigen::Vector3d(0.0, 0.0, input.reference.velocity_m_s[k].z());
+    if (k <= params.custom_velocity_nodes) {
+      node.velocity_ref_m_s.head<2>() = custom_velocity.head<2>();
       node.velocity_weight = state_decay * w.velocity;
     } else {
-      node.velocity_ref_m_s = Eigen::Vector3d(0.0, 0.0, input.reference.velocity_m_s[k].z());
       node.velocity_weight = Eigen::Vector3d(0.0, 0.0, state_decay * w.velocity.z());
     }
-    node.attitude_ref = model::yaw_quaternion(yaw);
+    node.attitude_ref = yaw_reference(params, yaw, k);
     node.attitude_weight = state_decay * w.attitude;
     node.squared_distance_ref_m2 = input.reference.position_m[k].head<2>().squaredNorm();
     node.squared_distance_weight = std::exp(-params.e1 * k) * distance_weight0;
     node.input_ref = model::hover_input();
     node.input_weight = std::exp(-params.e3 * k) * w.input;
   }
-  cost.yaw_ref_rad = yaw;
+  cost.yaw_ref_rad = target_yaw;
+  cost.yaw_track = yaw.track;
 }
 
 }  // namespace
 
 void build_horizon_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
-                        HorizonCost& cost) {
+                        HorizonCost& cost, const YawTrack& previous_yaw, double elapsed_s) {
   cost.horizon_steps = params.horizon_steps;
   cost.reference_mode = reference_mode_for(params.mode, input.stage);
   if (cost.reference_mode == ReferenceMode::XyzRef) {
-    build_tracking_cost(params, input, cost);
+    build_tracking_cost(params, input, previous_yaw, elapsed_s, cost);
   } else {
-    build_transition_cost(params, input, held_yaw_rad, cost);
+    build_transition_cost(params, input, held_yaw_rad, previous_yaw, elapsed_s, cost);
   }
   // Terminal node: scaled state weights, no input.
   NodeCost& terminal = cost.nodes[params.horizon_steps];

@@ -81,9 +81,24 @@ struct Sampc::Workspace {
   bool needs_shift = false;  // a feedback happened since the last preparation
   model::Stage prepared_stage = model::Stage::Initial;
   double held_yaw_rad = 0.0;
+  // The yaw reference's start at the previous control step (see YawTrack); repeated
+  // preparations within one step (SQP iterations) all start from the same one.
+  YawTrack previous_yaw_track;
   double prepare_us = 0.0;
 
   int N() const { return params.horizon_steps; }
+
+  // The measurement with its quaternion on the plan's side: q and -q are the same attitude,
+  // and a sensor may hand over either (its sign flips e.g. as the yaw passes 180 deg). Taken
+  // as is, a flipped sign is a state jump of |2q| = 2 against the warm start, and the one
+  // RTI step that absorbs it commanded full thrust.
+  model::UavState measured_state(const SampcInput& input) const {
+    model::UavState x0 = normalised(input.uav_state);
+    if (has_guess && x0.segment<4>(kQuaternion).dot(x[0].segment<4>(kQuaternion)) < 0.0) {
+      x0.segment<4>(kQuaternion) *= -1.0;
+    }
+    return x0;
+  }
 
   void initialise_guess(const model::UavState& x0) {
     x[0] = x0;
@@ -157,15 +172,18 @@ struct Sampc::Workspace {
     prepared = false;
     if (check_input(params, input) != nullptr) return;  // feedback reports it
     for (int k = 0; k <= N(); ++k) ugv[k] = input.ugv.advanced(k * params.step_s);
-    const model::UavState x0 = normalised(input.uav_state);
+    const model::UavState x0 = measured_state(input);
     if (!has_guess) {
       initialise_guess(x0);
+      previous_yaw_track = YawTrack{};
     } else if (shift && needs_shift) {
       shift_guess();
+      previous_yaw_track = cost.yaw_track;
     }
     needs_shift = false;
     x[0] = x0;
-    build_horizon_cost(params, input, held_yaw_rad, cost);
+    build_horizon_cost(params, input, held_yaw_rad, cost, previous_yaw_track,
+                       params.control_period_s);
     linearise();
     qp.prepare(N());
     prepared = true;
@@ -185,6 +203,7 @@ struct Sampc::Workspace {
     prepared = false;
     needs_shift = false;
     held_yaw_rad = 0.0;
+    previous_yaw_track = YawTrack{};
   }
 
   SampcOutput hover(SolveStatus status, const char* reason) {
@@ -208,7 +227,7 @@ struct Sampc::Workspace {
     }
     if (!prepared || prepared_stage != input.stage) prepare(input, true);
 
-    const model::UavState x0 = normalised(input.uav_state);
+    const model::UavState x0 = measured_state(input);
     const QpResult qp_result = qp.solve_prepared(x0 - x[0], params.max_qp_iterations);
     last_step = 0.0;
     for (int k = 0; k <= N(); ++k) {

@@ -87,6 +87,10 @@ SampcParams SampcParams::load(config::YamlReader& reader) {
   load_weights(reader.child("tracking_weights"), p.tracking_weights, false);
   reader.optional("terminal_weight_scale", p.terminal_weight_scale);
   reader.optional("yaw_hold_radius_m", p.yaw_hold_radius_m);
+  reader.optional("yaw_reference_rate_rad_s", p.yaw_reference_rate_rad_s);
+  reader.optional("custom_velocity_nodes", p.custom_velocity_nodes);
+  reader.optional("yaw_flip_hysteresis_rad", p.yaw_flip_hysteresis_rad);
+  reader.optional("yaw_reference_max_lag_rad", p.yaw_reference_max_lag_rad);
   reader.optional("max_sqp_iterations", p.max_sqp_iterations);
   reader.optional("cold_start_iterations", p.cold_start_iterations);
   reader.optional("sqp_step_tolerance", p.sqp_step_tolerance);
@@ -130,6 +134,17 @@ void SampcParams::validate() const {
   config::check(positive(terminal_weight_scale), c + ".terminal_weight_scale", "must be > 0");
   config::check(std::isfinite(yaw_hold_radius_m) && yaw_hold_radius_m >= 0,
                 c + ".yaw_hold_radius_m", "must be finite and >= 0");
+  config::check(
+      positive(yaw_reference_rate_rad_s) && yaw_reference_rate_rad_s <= yaw_rate_max_rad_s,
+      c + ".yaw_reference_rate_rad_s", "must be > 0 and <= yaw_rate_max_rad_s");
+  config::check(std::isfinite(yaw_flip_hysteresis_rad) && yaw_flip_hysteresis_rad >= 0 &&
+                    yaw_flip_hysteresis_rad < 3.14,
+                c + ".yaw_flip_hysteresis_rad", "must be in [0, pi)");
+  config::check(std::isfinite(yaw_reference_max_lag_rad) && yaw_reference_max_lag_rad > 0 &&
+                    yaw_reference_max_lag_rad < 1.5,
+                c + ".yaw_reference_max_lag_rad", "must be in (0, 1.5)");
+  config::check(custom_velocity_nodes >= 1 && custom_velocity_nodes <= horizon_steps,
+                c + ".custom_velocity_nodes", "must be in [1, horizon_steps]");
   config::check(max_sqp_iterations >= 1, c + ".max_sqp_iterations", "must be >= 1");
   config::check(cold_start_iterations >= 1, c + ".cold_start_iterations", "must be >= 1");
   config::check(positive(sqp_step_tolerance), c + ".sqp_step_tolerance", "must be > 0");

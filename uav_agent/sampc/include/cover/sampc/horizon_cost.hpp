@@ -45,18 +45,33 @@ struct NodeCost {
                   model::UavState* grad_x = nullptr, model::Input* grad_u = nullptr) const;
 };
 
+// The start of the rate-limited yaw reference, carried from one control step to the next.
+struct YawTrack {
+  bool valid = false;       // false: start at the measured yaw (first solve, frame switch)
+  double anchor_rad = 0.0;  // yaw reference of node 0
+  int turn_sign = 0;        // +1 turning left, -1 right, 0 aligned with the target
+};
+
 // The whole horizon's costs for one solve: references and stage-adaptive weights.
 struct HorizonCost {
   int horizon_steps = 0;
   ReferenceMode reference_mode = ReferenceMode::XyzRef;
-  double yaw_ref_rad = 0.0;  // the yaw reference used (xy-z-ref), for holding near the UGV
+  // The target yaw the reference turns toward (xy-z-ref: nose at the UGV), for holding it
+  // near the UGV axis.
+  double yaw_ref_rad = 0.0;
+  // The yaw reference's start and turn direction, for the next control step's build.
+  YawTrack yaw_track;
   std::array<NodeCost, kMaxHorizon + 1> nodes;
 };
 
 // Builds the references and weights of eqs. 25-35 for `input` (the UAV state is the
 // measurement: d0, the eq. 30 velocity and the yaw reference depend on it). `held_yaw_rad`
 // is used as yaw reference when the UAV is within yaw_hold_radius_m of the UGV's axis.
+// `previous_yaw` is the yaw_track of the previous control step, `elapsed_s` the time since
+// it: the yaw reference moves on from there at the configured rate (default: start at the
+// measured yaw).
 void build_horizon_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
-                        HorizonCost& cost);
+                        HorizonCost& cost, const YawTrack& previous_yaw = {},
+                        double elapsed_s = 0.0);
 
 }  // namespace cover::sampc

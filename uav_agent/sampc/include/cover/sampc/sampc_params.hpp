@@ -75,6 +75,21 @@ struct SampcParams {
   // Below this horizontal distance to the UGV the nose-at-UGV yaw is ill-defined: the last
   // yaw reference is held, and the eq. 30 direction term is dropped.
   double yaw_hold_radius_m = 0.2;
+  // The yaw reference over the horizon starts at the UAV's measured yaw and turns toward the
+  // stage's target yaw (nose at the UGV, or the UGV's x axis) at most this fast: a frame
+  // switch can put the target 180 deg away, and a step reference there gives a thrust and
+  // body-rate spike (and an attitude error whose sign can flip). Must be <= yaw_rate_max_rad_s.
+  double yaw_reference_rate_rad_s = 0.8;
+  // The yaw reference's start stays within this of the measured yaw (rad): when the UAV
+  // cannot keep up (a frame turning faster than the yaw rate bound) the error stays bounded.
+  double yaw_reference_max_lag_rad = 0.6;
+  // A turn in progress keeps its direction until the other way round is shorter by more
+  // than this (rad): the error drifting through 180 deg must not reverse the yaw plan.
+  double yaw_flip_hysteresis_rad = 0.8;
+  // Eq. 30's customised velocity reference sits on the first `custom_velocity_nodes` free
+  // nodes k = 1..n (x0 is fixed to the measurement in multiple shooting, so at k = 0 it
+  // would cost nothing and steer nothing). Must be in [1, horizon_steps].
+  int custom_velocity_nodes = 1;
 
   // Solver: 1 SQP iteration per call is the real-time iteration. After reset() (no warm
   // start) `cold_start_iterations` are spent instead. `max_sqp_iterations` > 1 iterates
