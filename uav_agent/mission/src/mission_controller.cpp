@@ -48,7 +48,9 @@ MissionController::MissionController(Task task, int ugv_count, MissionParams mis
       machine_(validated(std::move(task), ugv_count), mission),
       planner_(std::move(planner)),
       sampc_((sampc.validate(), sampc)),
-      inputs_(static_cast<std::size_t>(ugv_count)) {
+      inputs_(static_cast<std::size_t>(ugv_count)),
+      observer_(static_cast<int>(std::lround(mission.observer_window_s / mission.control_period_s)),
+                mission.control_period_s, mission.observer_time_constant_s) {
   output_.status.stage = machine_.decision();
   idle(Failsafe::WaitingForInputs);
 }
@@ -127,6 +129,7 @@ const ControllerOutput& MissionController::step(double now_s) {
     // Frames are level (planar UGVs): the vertical estimate (mass) carries over, the
     // horizontal one (drag in this frame's motion) does not.
     disturbance_m_s2_.head<2>().setZero();
+    observer_.reset();
     last_reference_ugv_ = reference;
   }
   if (!inputs_fresh(reference, now_s)) {
@@ -200,8 +203,9 @@ void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s
   output_.status.reference_position_m = sampc_input_.reference.position_m[0];
   integrate_disturbance(inputs.state.position_m, sampc_input_.reference.position_m[0]);
   sampc_input_.ugv = inputs.imu.motion;
-  sampc_input_.ugv.specific_force_m_s2 -= disturbance_m_s2_;
-  output_.status.disturbance_m_s2 = disturbance_m_s2_;
+  const Eigen::Vector3d disturbance = disturbance_m_s2_ + observer_.estimate_m_s2();
+  sampc_input_.ugv.specific_force_m_s2 -= disturbance;
+  output_.status.disturbance_m_s2 = disturbance;
 
   const sampc::SampcOutput out = sampc_.solve(sampc_input_);
   output_.status.solve_status = out.status;
@@ -210,6 +214,18 @@ void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s
   output_.command.body_rate_rad_s = out.command.tail<3>();
   output_.command.armed = true;
   output_.status.failsafe = sampc::is_error(out.status) ? Failsafe::SolverError : Failsafe::None;
+  update_observer(out.command, now_s);
+}
+
+void MissionController::update_observer(const model::Input& applied, double now_s) {
+  if (params_.observer_window_s <= 0.0) return;
+  // Only consecutive control steps describe the model's prediction of one period.
+  const bool consecutive =
+      observer_time_s_ >= 0.0 && std::abs(now_s - observer_time_s_ - params_.control_period_s) <
+                                     0.5 * params_.control_period_s;
+  if (!consecutive) observer_.reset();
+  observer_.update(sampc_input_.uav_state, sampc_input_.ugv, applied);
+  observer_time_s_ = now_s;
 }
 
 void MissionController::integrate_disturbance(const Eigen::Vector3d& position_m,

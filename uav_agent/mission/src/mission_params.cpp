@@ -26,6 +26,8 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
   reader.optional("integral_gain_1_s3", params.integral_gain_1_s3);
   reader.optional("integral_error_clip_m", params.integral_error_clip_m);
   reader.optional("integral_limit_m_s2", params.integral_limit_m_s2);
+  reader.optional("observer_window_s", params.observer_window_s);
+  reader.optional("observer_time_constant_s", params.observer_time_constant_s);
   reader.optional("control_period_s", params.control_period_s);
   reader.reject_unknown_keys();
   params.validate();
@@ -59,6 +61,12 @@ void MissionParams::validate() const {
   config::check(
       std::isfinite(integral_gain_1_s3) && integral_gain_1_s3 >= 0.0 && integral_gain_1_s3 <= 20.0,
       ctx + ".integral_gain_1_s3", "must be in [0, 20] (0 disables)");
+  config::check(
+      std::isfinite(observer_window_s) && observer_window_s >= 0.0 && observer_window_s <= 5.0,
+      ctx + ".observer_window_s", "must be in [0, 5] (0 disables)");
+  config::check(std::isfinite(observer_time_constant_s) && observer_time_constant_s >= 0.1 &&
+                    observer_time_constant_s <= 20.0,
+                ctx + ".observer_time_constant_s", "must be in [0.1, 20]");
   config::check(positive(integral_error_clip_m), ctx + ".integral_error_clip_m", "must be > 0");
   config::check(positive(integral_limit_m_s2) && integral_limit_m_s2 <= 10.0,
                 ctx + ".integral_limit_m_s2", "must be in (0, 10]");

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cover/mission/disturbance_observer.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/mission/stage_machine.hpp"
 #include "cover/mission/task.hpp"
@@ -61,7 +62,8 @@ struct ControllerStatus {
   double plan_ms = 0.0;                                       // of the last plan
   // Reference trajectory z(s, t) now, in the reference frame (for tracking metrics).
   Eigen::Vector3d reference_position_m = Eigen::Vector3d::Zero();
-  // Integral estimate of the unmodelled acceleration (mass, drag) fed to SAMPC, m/s^2.
+  // Estimate of the unmodelled acceleration (mass, drag) fed to SAMPC, m/s^2: the
+  // observer's part plus the tracking-error integral's.
   Eigen::Vector3d disturbance_m_s2 = Eigen::Vector3d::Zero();
 };
 
@@ -107,6 +109,7 @@ class MissionController {
   void fill_reference(double t_s, sampc::HorizonReference& reference) const;
   void command_from_sampc(const UgvInputs& inputs, double now_s);
   void integrate_disturbance(const Eigen::Vector3d& position_m, const Eigen::Vector3d& reference_m);
+  void update_observer(const model::Input& applied, double now_s);
   void hover(Failsafe reason);
   void idle(Failsafe reason);
 
@@ -126,6 +129,10 @@ class MissionController {
   int ignored_inputs_ = 0;
   // Integral estimate of the acceleration SAMPC's model misses, in the reference frame.
   Eigen::Vector3d disturbance_m_s2_ = Eigen::Vector3d::Zero();
+  // Velocity-based estimate of the same (see DisturbanceObserver); fed only by consecutive
+  // SAMPC steps in one frame.
+  DisturbanceObserver observer_;
+  double observer_time_s_ = -1.0;  // time of its last update, < 0: none
   sampc::SampcInput sampc_input_;
   ControllerOutput output_;
 };

@@ -40,6 +40,12 @@ struct MissionParams {
   double integral_gain_1_s3 = 8.0;
   double integral_error_clip_m = 0.2;
   double integral_limit_m_s2 = 2.0;
+  // Velocity-based disturbance observer (DisturbanceObserver): the missing acceleration
+  // measured as (measured - predicted) velocity change over this window, in s (0 disables),
+  // integrated with this time constant, s. Works at every stage, so the final stage starts
+  // knowing its frame's drag; the integral above removes what remains.
+  double observer_window_s = 0.5;
+  double observer_time_constant_s = 0.5;
   // Control period (the controller runs at 100 Hz).
   double control_period_s = 0.01;
 
