@@ -129,6 +129,9 @@ const ControllerOutput& MissionController::step(double now_s) {
     // Frames are level (planar UGVs): the vertical estimate (mass) carries over, the
     // horizontal one (drag in this frame's motion) does not.
     disturbance_m_s2_.head<2>().setZero();
+    // The observer restarts its window in the new frame; its vertical part moves into the
+    // integral's so that the thrust does not step at the switch.
+    disturbance_m_s2_.z() += observer_.estimate_m_s2().z();
     observer_.reset();
     last_reference_ugv_ = reference;
   }
