@@ -20,8 +20,16 @@ void print_table(int number, const std::string& method, const cover::sim::Scenar
               method.c_str());
   std::printf("  result            %s\n", r.success ? "SUCCESS" : "FAILED");
   std::printf("  status            %s\n", r.status.c_str());
-  std::printf("  landing error     %.1f cm (horizontal, on the deck)\n", cm(r.landing_error_m));
-  std::printf("  delivery error    %.1f cm (horizontal, on the deck)\n", cm(r.delivery_error_m));
+  // A scenario without a landing or a delivery reports NaN for it: say so in words.
+  auto print_error = [&](const char* label, double error_m) {
+    if (std::isfinite(error_m)) {
+      std::printf("  %-17s %.1f cm (horizontal, on the deck)\n", label, cm(error_m));
+    } else {
+      std::printf("  %-17s n/a (the task has none)\n", label);
+    }
+  };
+  print_error("landing error", r.landing_error_m);
+  print_error("delivery error", r.delivery_error_m);
   std::printf("  final tracking    x %.1f  y %.1f  z %.1f cm (mean |error|, %d samples)\n",
               cm(r.final_tracking_error_m.x()), cm(r.final_tracking_error_m.y()),
               cm(r.final_tracking_error_m.z()), r.final_tracking_samples);
