@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <fstream>
 
 #include "cover/config/yaml_reader.hpp"
 
@@ -8,7 +9,9 @@ using cover::config::ConfigError;
 using cover::config::YamlReader;
 
 namespace {
-YAML::Node parse(const char* text) { return YAML::Load(text); }
+YAML::Node parse(const char* text) {
+  return YAML::Load(text);
+}
 }  // namespace
 
 TEST(YamlReader, DefaultsStandWhenKeysAreAbsent) {
@@ -75,4 +78,17 @@ TEST(YamlReader, ChildMappingsCarryTheirPath) {
 
 TEST(YamlFile, MissingFileAndSyntaxErrorAreClear) {
   EXPECT_THROW(cover::config::load_yaml_file("/nonexistent/cover.yaml"), ConfigError);
+}
+
+TEST(YamlFile, OpenSectionChecksTheTopLevel) {
+  const std::string path = testing::TempDir() + "/section.yaml";
+  std::ofstream(path) << "planner:\n  rho: 2\nplaner:\n  rho: 3\n";
+  EXPECT_THROW(cover::config::open_section(path, "planner", false), ConfigError);  // typo'd key
+  std::ofstream(path) << "planner:\n  rho: 2\n";
+  auto reader = cover::config::open_section(path, "planner", false);
+  double rho = 0;
+  reader.optional("rho", rho);
+  EXPECT_EQ(rho, 2.0);
+  EXPECT_THROW(cover::config::open_section(path, "sampc", true), ConfigError);
+  EXPECT_THROW(cover::config::open_section(path + ".missing", "x", false), ConfigError);
 }

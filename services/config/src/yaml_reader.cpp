@@ -48,6 +48,14 @@ void YamlReader::reject_unknown_keys() const {
   }
 }
 
+YamlReader open_section(const std::string& path, const std::string& section, bool required) {
+  YamlReader root(load_yaml_file(path), path);
+  check(!required || root.has(section), path, "missing section '" + section + "'");
+  YamlReader reader = root.child(section);
+  root.reject_unknown_keys();
+  return reader;
+}
+
 void check(bool condition, const std::string& context, const std::string& message) {
   if (!condition) throw ConfigError(context + ": " + message);
 }

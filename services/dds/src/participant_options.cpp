@@ -24,15 +24,13 @@ void ParticipantOptions::validate() const {
 
 ParticipantOptions ParticipantOptions::load_file(const std::string& path) {
   ParticipantOptions options;
-  config::YamlReader root(config::load_yaml_file(path), path);
-  auto dds = root.child("dds");
+  config::YamlReader dds = config::open_section(path, "dds", /*required=*/false);
   std::string vendor = vendor_name(options.vendor);
   dds.optional("vendor", vendor);
   dds.optional("domain_id", options.domain_id);
   dds.optional("interface", options.interface_name);
   dds.optional("peers", options.peers);
   dds.reject_unknown_keys();
-  root.reject_unknown_keys();
   try {
     options.vendor = parse_vendor(vendor);
     options.validate();

@@ -35,9 +35,7 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
 }
 
 MissionParams MissionParams::load_file(const std::string& path) {
-  config::YamlReader root(config::load_yaml_file(path), path);
-  config::YamlReader section = root.child("mission");
-  root.reject_unknown_keys();
+  config::YamlReader section = config::open_section(path, "mission", /*required=*/false);
   return load(section);
 }
 

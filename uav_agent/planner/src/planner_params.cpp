@@ -33,12 +33,8 @@ PlannerParams PlannerParams::load(config::YamlReader& reader) {
 }
 
 PlannerParams PlannerParams::load_file(const std::string& path) {
-  const YAML::Node root = config::load_yaml_file(path);
-  config::YamlReader file_reader(root, path);
-  config::YamlReader reader = file_reader.child("planner");
-  file_reader.reject_unknown_keys();
-  PlannerParams params = load(reader);
-  return params;
+  config::YamlReader reader = config::open_section(path, "planner", /*required=*/false);
+  return load(reader);
 }
 
 void PlannerParams::validate() const {

@@ -104,9 +104,7 @@ SampcParams SampcParams::load(config::YamlReader& reader) {
 }
 
 SampcParams SampcParams::load_file(const std::string& path) {
-  const YAML::Node root = config::load_yaml_file(path);
-  config::check(root.IsMap() && root["sampc"], path, "missing section 'sampc'");
-  config::YamlReader reader(root["sampc"], path + ":sampc");
+  config::YamlReader reader = config::open_section(path, "sampc", /*required=*/true);
   return load(reader);
 }
 

@@ -50,6 +50,11 @@ class YamlReader {
   std::vector<std::string> read_keys_;
 };
 
+// Opens a parameter file and returns a reader on its top-level `section` (e.g. "planner");
+// any other top-level key is an error. A missing section is an error when `required`,
+// otherwise the struct's defaults stand. Use in `Params::load_file`.
+YamlReader open_section(const std::string& path, const std::string& section, bool required);
+
 // Throws ConfigError("<context>: <message>") when `condition` is false. For `valid()`.
 void check(bool condition, const std::string& context, const std::string& message);
 
