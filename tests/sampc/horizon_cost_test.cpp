@@ -217,6 +217,8 @@ TEST(SampcParams, ShippedConfigLoadsAndEqualsTheDefaults) {
   EXPECT_EQ(loaded.yaw_rate_max_rad_s, defaults.yaw_rate_max_rad_s);
   EXPECT_EQ(loaded.yaw_reference_rate_rad_s, defaults.yaw_reference_rate_rad_s);
   EXPECT_EQ(loaded.custom_velocity_nodes, defaults.custom_velocity_nodes);
+  EXPECT_EQ(loaded.switch_smoothing_s, defaults.switch_smoothing_s);
+  EXPECT_EQ(loaded.switch_input_rate_weight, defaults.switch_input_rate_weight);
 }
 
 TEST(SampcParams, RejectsBadValuesNamingTheKey) {
@@ -237,6 +239,8 @@ TEST(SampcParams, RejectsBadValuesNamingTheKey) {
   EXPECT_THROW(load("thrust_max_m_s2: 9.0"), config::ConfigError);
   EXPECT_THROW(load("yaw_reference_rate_rad_s: 2.0"), config::ConfigError);  // > yaw rate bound
   EXPECT_THROW(load("custom_velocity_nodes: 0"), config::ConfigError);
+  EXPECT_THROW(load("switch_smoothing_s: -0.1"), config::ConfigError);
+  EXPECT_THROW(load("switch_input_rate_weight: [0, -1, 0, 0]"), config::ConfigError);
 }
 
 }  // namespace

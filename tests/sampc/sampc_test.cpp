@@ -287,6 +287,71 @@ TEST(Sampc, ResetAfterAFrameSwitchFliesOnWithoutErrors) {
   EXPECT_NEAR(in.uav_state(2), 1.5, 0.05);
 }
 
+// Flies 0.5 s in one frame, switches to another (3 m away, turned 90 deg, rotating) with
+// `switch_frame`, then flies 6 s there. Returns the peak body-rate command change per step
+// in the first 0.5 s after the switch; the final state is left in `in`.
+template <typename SwitchFrame>
+double peak_rate_step_after_switch(const SampcParams& params, SampcInput& in,
+                                   SwitchFrame switch_frame) {
+  Sampc mpc(params);
+  in = SampcInput{};
+  in.stage = Stage::Initial;
+  in.uav_state = model::uav_state_at_rest(Vector3d(0.5, 0.5, 1.2));
+  in.uav_state.segment<3>(3) = Vector3d(0.4, -0.2, 0.0);
+  in.reference = HorizonReference::hold(Vector3d(1.0, 0.0, 1.5));
+  Eigen::Vector3d previous_rates = Vector3d::Zero();
+  for (int step = 0; step < 50; ++step) {
+    const SampcOutput out = mpc.solve(in);
+    previous_rates = out.command.tail<3>();
+    in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
+  }
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ()).toRotationMatrix();
+  model::UavState switched = in.uav_state;
+  switched.head<3>() = turn.transpose() * (in.uav_state.head<3>() - Vector3d(3.0, 0.0, 0.0));
+  switched.segment<3>(3) = turn.transpose() * in.uav_state.segment<3>(3);
+  switched.segment<4>(6) =
+      model::multiply(model::yaw_quaternion(-M_PI / 2), in.uav_state.segment<4>(6));
+  in.uav_state = switched;
+  in.stage = Stage::Transition;
+  in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.3);
+  in.reference = HorizonReference::hold(Vector3d(0.0, 0.0, 1.5));
+  switch_frame(mpc);
+  double peak_step = 0.0;
+  for (int step = 0; step < 600; ++step) {
+    const SampcOutput out = mpc.solve(in);
+    EXPECT_EQ(out.status, SolveStatus::Ok) << out.reason;
+    expect_within_bounds(params, out.command);
+    if (step < 50) {
+      peak_step = std::max(peak_step, (out.command.tail<3>() - previous_rates).norm());
+    }
+    previous_rates = out.command.tail<3>();
+    in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
+  }
+  return peak_step;
+}
+
+// reset_frame() keeps the body-frame inputs and walks the body rates to the new stage's
+// optimum: a smaller step than a full reset, and the same destination.
+TEST(Sampc, FrameSwitchSmoothingLowersTheBodyRateStep) {
+  const SampcParams params;
+  SampcInput reset_run, smoothed_run;
+  const double reset_step =
+      peak_rate_step_after_switch(params, reset_run, [](Sampc& mpc) { mpc.reset(); });
+  const double smoothed_step =
+      peak_rate_step_after_switch(params, smoothed_run, [](Sampc& mpc) { mpc.reset_frame(); });
+  EXPECT_LT(smoothed_step, 0.5 * reset_step);
+  EXPECT_LT(smoothed_run.uav_state.head<2>().norm(), 0.1);
+  EXPECT_NEAR(smoothed_run.uav_state(2), 1.5, 0.05);
+
+  // With the smoothing off, reset_frame() differs from reset() only in the warm start.
+  SampcParams unsmoothed = params;
+  unsmoothed.switch_smoothing_s = 0.0;
+  SampcInput unsmoothed_run;
+  const double unsmoothed_step = peak_rate_step_after_switch(unsmoothed, unsmoothed_run,
+                                                             [](Sampc& mpc) { mpc.reset_frame(); });
+  EXPECT_GT(unsmoothed_step, smoothed_step);
+}
+
 // A sensor may hand over -q for q (e.g. as the yaw passes 180 deg). Before the measurement
 // was aligned with the plan's hemisphere, that flip commanded full thrust for a few steps.
 TEST(Sampc, QuaternionSignFlipOfTheMeasurementChangesNothing) {

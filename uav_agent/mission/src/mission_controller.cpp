@@ -121,11 +121,11 @@ const ControllerOutput& MissionController::step(double now_s) {
     return output_;
   }
 
-  // 3. The frame may have switched (transition stage): its own inputs are needed, and the
-  // previous frame's warm start means nothing there.
+  // 3. The frame may have switched (transition stage): its own inputs are needed; the
+  // previous plan's states mean nothing there, its body-frame inputs still do.
   reference = machine_.reference_ugv();
   if (reference != last_reference_ugv_) {
-    sampc_.reset();
+    sampc_.reset_frame();
     // Frames are level (planar UGVs): the vertical estimate (mass) carries over, the
     // horizontal one (drag in this frame's motion) does not.
     disturbance_m_s2_.head<2>().setZero();

@@ -76,7 +76,11 @@ struct Sampc::Workspace {
   double cost_value = 0.0;
   double last_step = 0.0;  // largest |dx|, |du| component of the last SQP step
 
-  bool has_guess = false;    // false until the first solve and after reset()
+  bool has_guess = false;      // false until the first solve and after reset()
+  bool reroll_states = false;  // reset_frame(): keep u, roll x out from the new measurement
+  // The last command handed out, and how long node 0 still pays for moving away from it.
+  model::Input last_command = model::hover_input();
+  double smoothing_left_s = 0.0;
   bool prepared = false;     // a factorisation waits for its feedback
   bool needs_shift = false;  // a feedback happened since the last preparation
   model::Stage prepared_stage = model::Stage::Initial;
@@ -124,6 +128,19 @@ struct Sampc::Workspace {
     }
   }
 
+  // Node 0's input-rate term after a frame switch (see SampcParams::switch_smoothing_s):
+  // adds its gradient and weight, returns its cost.
+  double add_switch_smoothing(const model::Input& u0, model::Input& grad_u,
+                              model::Input& input_weight) const {
+    if (!(smoothing_left_s > 0.0) || !(params.switch_smoothing_s > 0.0)) return 0.0;
+    const double ramp = std::min(1.0, smoothing_left_s / params.switch_smoothing_s);
+    const model::Input weight = ramp * params.switch_input_rate_weight;
+    const model::Input change = u0 - last_command;
+    grad_u += 2.0 * weight.cwiseProduct(change);
+    input_weight += weight;
+    return weight.dot(change.cwiseAbs2());
+  }
+
   // Gauss-Newton model of the cost and linearised dynamics at the current plan.
   void linearise() {
     cost_value = 0.0;
@@ -156,8 +173,10 @@ struct Sampc::Workspace {
             4.0 * c.squared_distance_weight * distance_residual;
       }
       if (terminal) break;
+      model::Input input_weight = c.input_weight;
+      if (k == 0) cost_value += add_switch_smoothing(uk, grad_u, input_weight);
       node.r = grad_u;
-      node.R = (2.0 * c.input_weight).asDiagonal();
+      node.R = (2.0 * input_weight).asDiagonal();
       node.S.setZero();
       node.lower = lower - u[k];
       node.upper = upper - u[k];
@@ -179,9 +198,19 @@ struct Sampc::Workspace {
     } else if (shift && needs_shift) {
       shift_guess();
       previous_yaw_track = cost.yaw_track;
+      smoothing_left_s = std::max(0.0, smoothing_left_s - params.control_period_s);
     }
     needs_shift = false;
     x[0] = x0;
+    if (reroll_states) {
+      // The old frame's states mean nothing here (and its yaw track neither); its inputs do.
+      for (int k = 0; k < N(); ++k) {
+        x[k + 1] = model::uav_rk4_step(x[k], u[k], ugv[k], params.step_s);
+      }
+      previous_yaw_track = YawTrack{};
+      smoothing_left_s = params.switch_smoothing_s;
+      reroll_states = false;
+    }
     build_horizon_cost(params, input, held_yaw_rad, cost, previous_yaw_track,
                        params.control_period_s);
     linearise();
@@ -200,6 +229,8 @@ struct Sampc::Workspace {
 
   void reset() {
     has_guess = false;
+    reroll_states = false;
+    smoothing_left_s = 0.0;
     prepared = false;
     needs_shift = false;
     held_yaw_rad = 0.0;
@@ -247,6 +278,7 @@ struct Sampc::Workspace {
       out.feedback_us = elapsed_us(start);
       return out;
     }
+    last_command = u[0];
     SampcOutput out;
     out.command = u[0];
     out.status = qp_result.converged ? SolveStatus::Ok : SolveStatus::QpNotConverged;
@@ -281,7 +313,7 @@ SampcOutput Sampc::feedback(const SampcInput& input) {
 
 SampcOutput Sampc::solve(const SampcInput& input) {
   Workspace& ws = *ws_;
-  const bool cold = !ws.has_guess;
+  const bool cold = !ws.has_guess || ws.reroll_states;
   const int max_iterations =
       cold ? std::max(ws.params.cold_start_iterations, ws.params.max_sqp_iterations)
            : ws.params.max_sqp_iterations;
@@ -313,6 +345,14 @@ SampcOutput Sampc::solve(const SampcInput& input) {
 
 void Sampc::reset() {
   ws_->reset();
+}
+
+void Sampc::reset_frame() {
+  Workspace& ws = *ws_;
+  if (!ws.has_guess) return;  // nothing to carry over: the next call starts from hover
+  ws.prepared = false;
+  ws.reroll_states = true;
+  ws.held_yaw_rad = 0.0;
 }
 
 const SampcParams& Sampc::params() const {

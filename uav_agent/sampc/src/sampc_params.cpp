@@ -89,6 +89,8 @@ SampcParams SampcParams::load(config::YamlReader& reader) {
   reader.optional("yaw_hold_radius_m", p.yaw_hold_radius_m);
   reader.optional("yaw_reference_rate_rad_s", p.yaw_reference_rate_rad_s);
   reader.optional("custom_velocity_nodes", p.custom_velocity_nodes);
+  reader.optional("switch_smoothing_s", p.switch_smoothing_s);
+  reader.optional("switch_input_rate_weight", p.switch_input_rate_weight);
   reader.optional("yaw_flip_hysteresis_rad", p.yaw_flip_hysteresis_rad);
   reader.optional("yaw_reference_max_lag_rad", p.yaw_reference_max_lag_rad);
   reader.optional("max_sqp_iterations", p.max_sqp_iterations);
@@ -143,6 +145,12 @@ void SampcParams::validate() const {
                 c + ".yaw_reference_max_lag_rad", "must be in (0, 1.5)");
   config::check(custom_velocity_nodes >= 1 && custom_velocity_nodes <= horizon_steps,
                 c + ".custom_velocity_nodes", "must be in [1, horizon_steps]");
+  config::check(
+      std::isfinite(switch_smoothing_s) && switch_smoothing_s >= 0.0 && switch_smoothing_s <= 10.0,
+      c + ".switch_smoothing_s", "must be in [0, 10]");
+  config::check(
+      switch_input_rate_weight.allFinite() && (switch_input_rate_weight.array() >= 0.0).all(),
+      c + ".switch_input_rate_weight", "must be finite and >= 0");
   config::check(max_sqp_iterations >= 1, c + ".max_sqp_iterations", "must be >= 1");
   config::check(cold_start_iterations >= 1, c + ".cold_start_iterations", "must be >= 1");
   config::check(positive(sqp_step_tolerance), c + ".sqp_step_tolerance", "must be > 0");

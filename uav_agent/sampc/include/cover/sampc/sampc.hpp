@@ -36,9 +36,12 @@ struct SampcOutput {
 // or simply `out = sampc.solve(measured)`. References and weights are built in prepare()
 // from `predicted` (its uav_state should be the expected measurement, e.g. the last one);
 // feedback() re-prepares with its own input if none was prepared or the stage changed.
-// After a frame switch call reset(): the next call starts from a hover roll-out and spends
-// cold_start_iterations SQP iterations. No heap allocation after construction; no
-// exceptions thrown by prepare/feedback/solve.
+// After a frame switch call reset_frame(): the inputs (thrust, body rates) are body-frame
+// quantities, so the previous input sequence stays the initial guess and only the states
+// are re-rolled from the new frame's measurement; for switch_smoothing_s node 0 also pays
+// for moving away from the previous command. reset() forgets everything: the next call
+// starts from a hover roll-out. Both spend cold_start_iterations SQP iterations next. No heap
+// allocation after construction; no exceptions thrown by prepare/feedback/solve.
 class Sampc {
  public:
   explicit Sampc(const SampcParams& params);
@@ -52,6 +55,7 @@ class Sampc {
   SampcOutput feedback(const SampcInput& input);
   SampcOutput solve(const SampcInput& input);
   void reset();
+  void reset_frame();
 
   const SampcParams& params() const;
   // The cost (references, weights) of the last preparation: for logging and tests.

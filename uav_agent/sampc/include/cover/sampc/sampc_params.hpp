@@ -90,6 +90,13 @@ struct SampcParams {
   // nodes k = 1..n (x0 is fixed to the measurement in multiple shooting, so at k = 0 it
   // would cost nothing and steer nothing). Must be in [1, horizon_steps].
   int custom_velocity_nodes = 1;
+  // Frame switch (Sampc::reset_frame()): for `switch_smoothing_s` after it, node 0 also pays
+  // switch_input_rate_weight * (u0 - previous command)^2, the weight ramping linearly from
+  // full to 0. The new stage's optimum can differ sharply from the old plan (e.g. a pitch
+  // step of -1.3 rad/s on the circle); this lets the command walk there over a few steps
+  // instead of jumping. Order [F, wx, wy, wz], each >= 0; 0 s disables it.
+  double switch_smoothing_s = 0.5;
+  Eigen::Vector4d switch_input_rate_weight{0.0, 1000.0, 1000.0, 300.0};
 
   // Solver: 1 SQP iteration per call is the real-time iteration. After reset() (no warm
   // start) `cold_start_iterations` are spent instead. `max_sqp_iterations` > 1 iterates
