@@ -120,9 +120,7 @@ TEST_P(OnEachVendor, BadDomainIdIsAClearError) {
 }
 
 TEST_P(OnEachVendor, VendorFailureIsReportedWithTheVendorName) {
-  ParticipantOptions options;
-  options.vendor = GetParam();
-  options.domain_id = cover::test::private_domain_id();
+  ParticipantOptions options = cover::test::private_options(GetParam());
   options.interface_name = "no_such_if0";
   const auto text = message_of([&] { Participant participant(options); });
   ASSERT_FALSE(text.empty()) << "a participant on a missing interface must not be created";
@@ -132,9 +130,7 @@ TEST_P(OnEachVendor, VendorFailureIsReportedWithTheVendorName) {
 }
 
 TEST_P(OnEachVendor, PublishesAndReceivesInProcessWithBothReaderStyles) {
-  ParticipantOptions options;
-  options.vendor = GetParam();
-  options.domain_id = cover::test::private_domain_id();
+  ParticipantOptions options = cover::test::private_options(GetParam());
   Participant participant(options);
   const std::string topic = cover::test::private_prefix("layer") + "/status";
   std::atomic<int> callbacks{0};
@@ -154,9 +150,7 @@ TEST_P(OnEachVendor, PublishesAndReceivesInProcessWithBothReaderStyles) {
 }
 
 TEST_P(OnEachVendor, SensorDeadlineMissesAreCounted) {
-  ParticipantOptions options;
-  options.vendor = GetParam();
-  options.domain_id = cover::test::private_domain_id();
+  ParticipantOptions options = cover::test::private_options(GetParam());
   Participant participant(options);
   const std::string topic = cover::test::private_prefix("deadline") + "/imu";
   auto reader = participant.make_reader<cover::msg::UgvImu>(topic, sensor_qos());
@@ -207,9 +201,7 @@ TEST(TopicCatalog, EveryEntryHasAKnownTypeAndProfileAndIsDocumented) {
 class UnicastPeers : public testing::TestWithParam<std::pair<Vendor, Vendor>> {};
 
 TEST_P(UnicastPeers, DiscoverEachOtherWithoutMulticast) {
-  ParticipantOptions writer_options;
-  writer_options.vendor = GetParam().first;
-  writer_options.domain_id = cover::test::private_domain_id();
+  ParticipantOptions writer_options = cover::test::private_options(GetParam().first);
   writer_options.peers = {"127.0.0.1"};
   ParticipantOptions reader_options = writer_options;
   reader_options.vendor = GetParam().second;

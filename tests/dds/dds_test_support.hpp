@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "cover/dds/participant_options.hpp"
+
 namespace cover::test {
 
 // A domain id and topic prefix of this test process's own, so that test binaries run in
@@ -13,6 +15,14 @@ inline int private_domain_id() {
 }
 inline std::string private_prefix(const std::string& name) {
   return "cover_test/" + name + "/p" + std::to_string(getpid());
+}
+
+// Participant options on this process's private domain, for `vendor`.
+inline cover::dds::ParticipantOptions private_options(cover::dds::Vendor vendor) {
+  cover::dds::ParticipantOptions options;
+  options.vendor = vendor;
+  options.domain_id = private_domain_id();
+  return options;
 }
 
 }  // namespace cover::test

@@ -55,9 +55,7 @@ void expect_round_trip(cover::dds::Participant& participant, const std::string& 
 
 TEST_P(RoundTrip, EveryTypeSurvivesFieldByField) {
   const std::string prefix = cover::test::private_prefix("roundtrip");
-  cover::dds::ParticipantOptions options;
-  options.domain_id = cover::test::private_domain_id();
-  options.vendor = GetParam().local;
+  const auto options = cover::test::private_options(GetParam().local);
 
   cover::process::ChildProcess peer(
       {COVER_DDS_PEER, "--dds", cover::dds::vendor_name(GetParam().remote), "--domain",
