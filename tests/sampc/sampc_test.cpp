@@ -253,6 +253,17 @@ TEST(Sampc, FeedbackInANewStageRePreparesWithThatStagesCost) {
   EXPECT_EQ(mpc.horizon_cost().reference_mode, ReferenceMode::XyZRef);
 }
 
+// The UAV state re-expressed in a frame 3 m along x and turned by 90 deg about z: the
+// jump a frame switch causes (position, velocity and attitude all change).
+model::UavState in_switched_frame(const model::UavState& state) {
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ()).toRotationMatrix();
+  model::UavState switched = state;
+  switched.head<3>() = turn.transpose() * (state.head<3>() - Vector3d(3.0, 0.0, 0.0));
+  switched.segment<3>(3) = turn.transpose() * state.segment<3>(3);
+  switched.segment<4>(6) = model::multiply(model::yaw_quaternion(-M_PI / 2), state.segment<4>(6));
+  return switched;
+}
+
 TEST(Sampc, ResetAfterAFrameSwitchFliesOnWithoutErrors) {
   const SampcParams params;
   Sampc mpc(params);
@@ -266,13 +277,7 @@ TEST(Sampc, ResetAfterAFrameSwitchFliesOnWithoutErrors) {
     in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
   }
   // Switch to a frame 3 m away and turned by 90 deg: the state jumps, the guess is stale.
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ()).toRotationMatrix();
-  model::UavState switched = in.uav_state;
-  switched.head<3>() = turn.transpose() * (in.uav_state.head<3>() - Vector3d(3.0, 0.0, 0.0));
-  switched.segment<3>(3) = turn.transpose() * in.uav_state.segment<3>(3);
-  switched.segment<4>(6) =
-      model::multiply(model::yaw_quaternion(-M_PI / 2), in.uav_state.segment<4>(6));
-  in.uav_state = switched;
+  in.uav_state = in_switched_frame(in.uav_state);
   in.stage = Stage::Transition;
   in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.3);
   in.reference = HorizonReference::hold(Vector3d(0.0, 0.0, 1.5));
@@ -305,13 +310,7 @@ double peak_rate_step_after_switch(const SampcParams& params, SampcInput& in,
     previous_rates = out.command.tail<3>();
     in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
   }
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ()).toRotationMatrix();
-  model::UavState switched = in.uav_state;
-  switched.head<3>() = turn.transpose() * (in.uav_state.head<3>() - Vector3d(3.0, 0.0, 0.0));
-  switched.segment<3>(3) = turn.transpose() * in.uav_state.segment<3>(3);
-  switched.segment<4>(6) =
-      model::multiply(model::yaw_quaternion(-M_PI / 2), in.uav_state.segment<4>(6));
-  in.uav_state = switched;
+  in.uav_state = in_switched_frame(in.uav_state);
   in.stage = Stage::Transition;
   in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.3);
   in.reference = HorizonReference::hold(Vector3d(0.0, 0.0, 1.5));
