@@ -49,9 +49,9 @@ TEST(PlannerParams, ShippedFileMatchesDefaults) {
 
 TEST(PlannerParams, ReadsValues) {
   const auto path =
-      write_temp_yaml("planner_ok.yaml", "planner:\n  pieces: 5\n  time_weight: 10.0\n");
+      write_temp_yaml("planner_ok.yaml", "planner:\n  pieces: 7\n  time_weight: 10.0\n");
   const PlannerParams params = PlannerParams::load_file(path);
-  EXPECT_EQ(params.pieces, 5);
+  EXPECT_EQ(params.pieces, 7);
   EXPECT_EQ(params.time_weight, 10.0);
 }
 

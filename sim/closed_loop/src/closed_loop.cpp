@@ -87,6 +87,7 @@ class TransitionTracker {
     r.start_time_s = world.time_s;
     // The stage started with the last measured position: the path starts where the UAV was.
     r.start_world_m = last_position_;
+    r.start_world_velocity_m_s = world.uav.velocity_m_s.eigen();
     records.push_back(r);
     open_ = true;
     rate_change_square_sum_ = 0.0;
@@ -131,6 +132,25 @@ void fill_action_errors(const Scenario& scenario, const World& world, ClosedLoop
     result.landing_error_m = (on_deck.position_m - last.final_point_m).head<2>().norm();
     result.landed_on_target_deck = ws.uav_contact.resting && ws.uav_contact.surface == last.to_ugv;
     result.landing_points.push_back(ws.uav.position_m.eigen().head<2>());
+  }
+}
+
+// Flies every completed transition's start again with the eq. 30 law (approach_law.hpp).
+void fill_ideal_transitions(const Scenario& scenario, const mission::MissionParams& mission,
+                            ClosedLoopResult& result) {
+  for (TransitionRecord& r : result.transitions) {
+    if (!r.completed) continue;
+    const mission::TransitionProcess& process = scenario.task.processes[r.process_index];
+    ApproachLawParams law;
+    law.vmax_m_s = process.vmax_m_s;
+    law.amax_m_s2 = process.amax_m_s2;
+    law.reach_tolerance_m = mission.transition_reach_tolerance_m;
+    law.speed_threshold_m_s = mission.speed_threshold_m_s;
+    const UgvMotionPattern target(scenario.world.ugvs[process.to_ugv].pattern);
+    r.ideal = fly_approach_law(target, r.start_time_s, r.start_world_m.head<2>(),
+                               r.start_world_velocity_m_s.head<2>(), law);
+    result.ideal_path_length_m += r.ideal.path_length_m;
+    result.ideal_straight_length_m += r.ideal.straight_length_m;
   }
 }
 
@@ -258,6 +278,7 @@ ClosedLoopResult ClosedLoop::run() const {
     result.final_tracking_error_m = abs_error_sum / result.final_tracking_samples;
   }
   fill_action_errors(scenario_, world, result);
+  fill_ideal_transitions(scenario_, mission_, result);
   result.success = task_succeeded(scenario_, world, result);
   result.mpc_median_us = percentile(mpc_us, 0.5);
   result.mpc_p99_us = percentile(mpc_us, 0.99);

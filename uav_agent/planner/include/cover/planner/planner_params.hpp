@@ -10,16 +10,16 @@ namespace cover::planner {
 // optional; the defaults below are the shipped values and are documented there too.
 struct PlannerParams {
   // MINCO pieces M per stage; the optimiser has 3(M-1) waypoint and M duration variables.
-  int pieces = 3;
+  int pieces = 5;
   // rho: cost per second of duration, traded against integral ||jerk||^2 (m^2/s^5).
-  double time_weight = 64.0;
+  double time_weight = 256.0;
   // Weights of the cubic time-integral penalties on the normalised excess
   // (|v|^2 - vm^2) / vm^2 and (|a|^2 - am^2) / am^2 (eqs. 16-18, normalised so one weight
   // fits every limit).
   double speed_penalty_weight = 2.0e5;
   double acc_penalty_weight = 1.0e6;
   // kappa: trapezoid samples per piece for the penalties (kappa + 1 points).
-  int samples_per_piece = 16;
+  int samples_per_piece = 8;
   // Initial speed above vm (unavoidable at t = 0): the speed limit starts at |v0| and
   // comes down to vm at this fraction of am, so the reference must slow down, not jump.
   double overspeed_decel_fraction = 0.5;
