@@ -41,13 +41,18 @@ struct Row {
   }
 };
 
-// Table 1's world with both UGVs on circles of speed v and turn rate w.
-cover::sim::Scenario table1_scenario(double v, double w, int transitions) {
+// Table 1's world with both UGVs on circles of speed v and turn rate w; a positive
+// `separation_m` moves the two circle centres that far apart (symmetric about the origin).
+cover::sim::Scenario table1_scenario(double v, double w, int transitions, double separation_m) {
   cover::sim::Scenario scenario =
       cover::sim::Scenario::load_file(cover::sim::scenario_path("table1"));
   for (auto& ugv : scenario.world.ugvs) {
     ugv.pattern.speed_m_s = v;
     ugv.pattern.yaw_rate_rad_s = w;
+  }
+  if (separation_m > 0.0 && scenario.world.ugvs.size() == 2) {
+    scenario.world.ugvs[0].pattern.origin_m = {-0.5 * separation_m, 0.0};
+    scenario.world.ugvs[1].pattern.origin_m = {0.5 * separation_m, 0.0};
   }
   scenario.task = cover::mission::repeat_processes(scenario.task, transitions);
   // Each process (take-off height, transit, descend) takes well under a minute.
@@ -87,6 +92,10 @@ int run(const std::vector<std::string>& args) {
   app.add_option("--transitions", transitions, "transition processes per run (default 20)")
       ->check(CLI::Range(1, 100));
   app.add_option("--seed", seed, "world seed (default: the scenario file's)");
+  double separation_m = 0.0;
+  app.add_option("--separation-m", separation_m,
+                 "distance between the two circle centres, m (default: the scenario file's, 5)")
+      ->check(CLI::Range(0.5, 50.0));
   CLI::Option* plot = app.add_option(
       "--plot", plot_file,
       "SVG of the first setting's cover run (default table1.svg); baselines get _<method>");
@@ -103,7 +112,7 @@ int run(const std::vector<std::string>& args) {
   for (std::size_t s = 0; s < settings.size(); ++s) {
     for (const char* method : {"coni-mpc", "no-ref-vxy", "cover"}) {
       cover::sim::Scenario scenario =
-          table1_scenario(settings[s].first, settings[s].second, transitions);
+          table1_scenario(settings[s].first, settings[s].second, transitions, separation_m);
       if (app.count("--seed") > 0) scenario.world.seed = seed;
       const auto config =
           cover::sim::ControllerConfig::load_default(*cover::sim::parse_method(method));
@@ -143,7 +152,8 @@ int run(const std::vector<std::string>& args) {
                           {"Ls", t.straight_length_m},
                           {"Lt", t.path_length_m},
                           {"ideal_Ls", t.ideal.straight_length_m},
-                          {"ideal_Lt", t.ideal.path_length_m}});
+                          {"ideal_Lt", t.ideal.path_length_m},
+                          {"ideal_duration_s", t.ideal.duration_s}});
       }
       out["rows"].push_back({{"v", r.v},
                              {"w", r.w},
