@@ -92,6 +92,9 @@ int run(const std::vector<std::string>& args) {
   app.add_option("--transitions", transitions, "transition processes per run (default 20)")
       ->check(CLI::Range(1, 100));
   app.add_option("--seed", seed, "world seed (default: the scenario file's)");
+  std::vector<std::string> methods = {"coni-mpc", "no-ref-vxy", "cover"};
+  app.add_option("--method", methods, "methods to run (default: all three)")
+      ->check(CLI::IsMember({"coni-mpc", "no-ref-vxy", "cover"}));
   double separation_m = 0.0;
   app.add_option("--separation-m", separation_m,
                  "distance between the two circle centres, m (default: the scenario file's, 5)")
@@ -110,7 +113,7 @@ int run(const std::vector<std::string>& args) {
 
   std::vector<Row> rows;
   for (std::size_t s = 0; s < settings.size(); ++s) {
-    for (const char* method : {"coni-mpc", "no-ref-vxy", "cover"}) {
+    for (const std::string& method : methods) {
       cover::sim::Scenario scenario =
           table1_scenario(settings[s].first, settings[s].second, transitions, separation_m);
       if (app.count("--seed") > 0) scenario.world.seed = seed;
