@@ -34,9 +34,9 @@ struct Row {
                : std::nan("");
   }
   // What the eq. 30 law would reach from the same starts with a perfect controller.
-  double ideal_ratio() const {
-    return result.ideal_straight_length_m > 0.0
-               ? result.ideal_path_length_m / result.ideal_straight_length_m
+  double eq30_law_ratio() const {
+    return result.eq30_law_straight_length_m > 0.0
+               ? result.eq30_law_path_length_m / result.eq30_law_straight_length_m
                : std::nan("");
   }
 };
@@ -68,7 +68,7 @@ void print_table(const std::vector<Row>& rows) {
   for (const Row& r : rows) {
     std::printf("%6.2f %6.2f  %-11s %9.2f %9.2f %8.3f %9.3f %7d / %-4d %9d\n", r.v, r.w,
                 r.method.c_str(), r.result.total_straight_length_m, r.result.total_path_length_m,
-                r.ratio(), r.ideal_ratio(), r.completed(), r.requested,
+                r.ratio(), r.eq30_law_ratio(), r.completed(), r.requested,
                 r.requested - r.completed());
   }
   std::printf(
@@ -154,9 +154,9 @@ int run(const std::vector<std::string>& args) {
                           {"duration_s", t.end_time_s - t.start_time_s},
                           {"Ls", t.straight_length_m},
                           {"Lt", t.path_length_m},
-                          {"ideal_Ls", t.ideal.straight_length_m},
-                          {"ideal_Lt", t.ideal.path_length_m},
-                          {"ideal_duration_s", t.ideal.duration_s}});
+                          {"eq30_law_Ls", t.eq30_law.straight_length_m},
+                          {"eq30_law_Lt", t.eq30_law.path_length_m},
+                          {"eq30_law_duration_s", t.eq30_law.duration_s}});
       }
       out["rows"].push_back({{"v", r.v},
                              {"w", r.w},
@@ -164,7 +164,7 @@ int run(const std::vector<std::string>& args) {
                              {"Ls", r.result.total_straight_length_m},
                              {"Lt", r.result.total_path_length_m},
                              {"ratio", cover::sim::number_or_null(r.ratio())},
-                             {"eq30_law_ratio", cover::sim::number_or_null(r.ideal_ratio())},
+                             {"eq30_law_ratio", cover::sim::number_or_null(r.eq30_law_ratio())},
                              {"transitions", r.completed()},
                              {"failures", r.requested - r.completed()},
                              {"status", r.result.status},

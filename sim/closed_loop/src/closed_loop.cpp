@@ -136,8 +136,8 @@ void fill_action_errors(const Scenario& scenario, const World& world, ClosedLoop
 }
 
 // Flies every completed transition's start again with the eq. 30 law (approach_law.hpp).
-void fill_ideal_transitions(const Scenario& scenario, const mission::MissionParams& mission,
-                            ClosedLoopResult& result) {
+void fill_eq30_law_transitions(const Scenario& scenario, const mission::MissionParams& mission,
+                               ClosedLoopResult& result) {
   for (TransitionRecord& r : result.transitions) {
     if (!r.completed) continue;
     const mission::TransitionProcess& process = scenario.task.processes[r.process_index];
@@ -147,10 +147,10 @@ void fill_ideal_transitions(const Scenario& scenario, const mission::MissionPara
     law.reach_tolerance_m = mission.transition_reach_tolerance_m;
     law.speed_threshold_m_s = mission.speed_threshold_m_s;
     const UgvMotionPattern target(scenario.world.ugvs[process.to_ugv].pattern);
-    r.ideal = fly_approach_law(target, r.start_time_s, r.start_world_m.head<2>(),
-                               r.start_world_velocity_m_s.head<2>(), law);
-    result.ideal_path_length_m += r.ideal.path_length_m;
-    result.ideal_straight_length_m += r.ideal.straight_length_m;
+    r.eq30_law = fly_approach_law(target, r.start_time_s, r.start_world_m.head<2>(),
+                                  r.start_world_velocity_m_s.head<2>(), law);
+    result.eq30_law_path_length_m += r.eq30_law.path_length_m;
+    result.eq30_law_straight_length_m += r.eq30_law.straight_length_m;
   }
 }
 
@@ -278,7 +278,7 @@ ClosedLoopResult ClosedLoop::run() const {
     result.final_tracking_error_m = abs_error_sum / result.final_tracking_samples;
   }
   fill_action_errors(scenario_, world, result);
-  fill_ideal_transitions(scenario_, mission_, result);
+  fill_eq30_law_transitions(scenario_, mission_, result);
   result.success = task_succeeded(scenario_, world, result);
   result.mpc_median_us = percentile(mpc_us, 0.5);
   result.mpc_p99_us = percentile(mpc_us, 0.99);

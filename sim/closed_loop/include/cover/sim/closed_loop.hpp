@@ -34,7 +34,7 @@ struct TransitionRecord {
   double path_length_m = 0.0;      // L_t of this stage: UAV world path length
   double straight_length_m = 0.0;  // L_s of this stage: |end - start| in the world
   // The same start flown by the eq. 30 law with a perfect controller (approach_law.hpp).
-  ApproachLawResult ideal;
+  ApproachLawResult eq30_law;
   // Over switch_window_s after the frame switch, per control step:
   double peak_rate_change_rad_s = 0.0;  // max |w_k - w_(k-1)| of the body-rate command
   double rms_rate_change_rad_s = 0.0;
@@ -59,8 +59,8 @@ struct ClosedLoopResult {
   double total_path_length_m = 0.0;      // L_t, summed over completed transition stages
   double total_straight_length_m = 0.0;  // L_s, summed over completed transition stages
   // The same sums for the eq. 30 law flown from the same starts (approach_law.hpp).
-  double ideal_path_length_m = 0.0;
-  double ideal_straight_length_m = 0.0;
+  double eq30_law_path_length_m = 0.0;
+  double eq30_law_straight_length_m = 0.0;
 
   // Mean absolute error per axis of the UAV (true relative position) to the reference
   // trajectory in the final stages, in the reference frame. NaN if no final stage ran.
