@@ -126,10 +126,10 @@ int run(const std::vector<std::string>& args) {
       Row row{settings[s].first, settings[s].second, method, loop.run(), transitions};
       if (options.record_paths) {
         const std::string file =
-            std::string(method) == "cover" ? plot_file : cover::sim::with_suffix(plot_file, method);
+            method == "cover" ? plot_file : cover::sim::with_suffix(plot_file, method);
         char title[160];
         std::snprintf(title, sizeof(title), "Table 1, v = %.2f m/s, w = %.2f rad/s: %s", row.v,
-                      row.w, method);
+                      row.w, method.c_str());
         if (!cover::sim::write_path_plot(row.result, scenario, title, file)) {
           std::cerr << "cannot write " << file << "\n";
           return 1;
