@@ -66,6 +66,7 @@ TEST(CoverBench, Table1PrintsEveryMethodAndPlotsEachRun) {
   // The plot names its setting and method in the title (a mangled title once slipped by).
   EXPECT_NE(read_file(svg).find("Table 1, v = 0.50 m/s, w = 0.35 rad/s: cover"), std::string::npos);
   EXPECT_NE(read_file(temp_dir() / "t1_coni-mpc.svg").find("rad/s: coni-mpc"), std::string::npos);
+  std::filesystem::remove_all(temp_dir());
 }
 
 TEST(CoverBench, ScenarioTwoReportsTheIssueKeys) {
