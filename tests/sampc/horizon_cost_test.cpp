@@ -169,6 +169,32 @@ TEST(HorizonCost, CustomisedVelocityIsOnTheFirstFreeNodes) {
   EXPECT_EQ(cost.nodes[4].velocity_weight.head<2>(), Eigen::Vector2d::Zero());
 }
 
+// Eq. 30 is a velocity at a position: given the warm start, a free node takes it at its own
+// predicted position, with the plan's speed now (v0d).
+TEST(HorizonCost, FreeNodesTakeEq30AtTheirPredictedPosition) {
+  SampcParams params;
+  params.custom_velocity_nodes = 2;
+  const SampcInput in = example_input(Stage::Transition);
+  std::array<model::UavState, kMaxHorizon + 1> predicted;
+  for (int k = 0; k <= kMaxHorizon; ++k) {
+    predicted[k] = model::uav_state_at_rest(Vector3d(1.5 - 0.3 * k, -2.0 + 0.5 * k, 1.2));
+  }
+  HorizonCost cost;
+  build_horizon_cost(params, in, 0.3, cost, {}, 0.0, predicted.data());
+  const Vector3d omega = in.ugv.angular_velocity_rad_s;
+  const double speed = in.reference.velocity_m_s[0].head<2>().norm();
+  for (int k = 1; k <= 2; ++k) {
+    const Vector3d p = predicted[k].segment<3>(model::idx::kPosition);
+    const Eigen::Vector2d expected =
+        -omega.cross(p).head<2>() - p.head<2>() / p.head<2>().norm() * speed;
+    EXPECT_LT((cost.nodes[k].velocity_ref_m_s.head<2>() - expected).norm(), 1e-12) << k;
+  }
+  // Node 0 is the measurement itself.
+  const HorizonCost without = build(params, in);
+  EXPECT_EQ(cost.nodes[0].velocity_ref_m_s, without.nodes[0].velocity_ref_m_s);
+  EXPECT_NE(cost.nodes[1].velocity_ref_m_s, without.nodes[1].velocity_ref_m_s);
+}
+
 // After a frame switch the target yaw can be 180 deg from the UAV's: the reference must
 // turn toward it at the configured rate from the measured yaw, never jump.
 TEST(HorizonCost, YawReferenceIsRateLimitedFromTheMeasuredYaw) {

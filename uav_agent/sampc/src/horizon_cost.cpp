@@ -150,10 +150,24 @@ void build_tracking_cost(const SampcParams& params, const SampcInput& input,
   cost.yaw_track = yaw.track;
 }
 
+// Eq. 30 at position `p`: cancel the frame-rotation-induced motion and head at the UGV's
+// axis at the plan's horizontal speed. On the axis the direction is undefined: rotation
+// part only.
+Eigen::Vector2d eq30_velocity(const SampcParams& params, const Eigen::Vector3d& angular_velocity,
+                              const Eigen::Vector3d& p, double speed_xy) {
+  Eigen::Vector2d velocity = -angular_velocity.cross(p).head<2>();
+  const double horizontal_distance = p.head<2>().norm();
+  if (horizontal_distance > params.yaw_hold_radius_m) {
+    velocity -= p.head<2>() / horizontal_distance * speed_xy;
+  }
+  return velocity;
+}
+
 // xy-z-ref (eqs. 28-35): track height and the squared horizontal distance to the UGV's
 // axis; the eq. 30 velocity reference; nose turning toward the UGV.
 void build_transition_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
-                           const YawTrack& previous_yaw, double elapsed_s, HorizonCost& cost) {
+                           const YawTrack& previous_yaw, double elapsed_s,
+                           const model::UavState* predicted_states, HorizonCost& cost) {
   WeightSet w = params.transition_weights;
   if (params.mode == Mode::NoRefVxy) w.velocity.head<2>().setZero();
 
@@ -167,12 +181,6 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
   const double distance_weight0 =
       w.distance_gain * std::exp(params.e2_per_m2 * d0) + w.distance_offset;
 
-  // Eq. 30: cancel the frame-rotation-induced motion and head at the UGV at the plan's speed.
-  Eigen::Vector3d custom_velocity = -input.ugv.angular_velocity_rad_s.cross(p);
-  if (direction_defined) {
-    custom_velocity.head<2>() -= p.head<2>() / horizontal_distance * reference_speed_xy;
-  }
-
   for (int k = 0; k <= params.horizon_steps; ++k) {
     NodeCost& node = cost.nodes[k];
     const double state_decay = std::exp(-params.e0 * k);
@@ -181,10 +189,16 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
     // NOTES.md puts eq. 30 "at k = 0", but x0 is fixed to the measurement in multiple
     // shooting, so a cost there steers nothing. It is kept there (the paper's reading) and
     // also put on the first free nodes 1..custom_velocity_nodes, the first predicted states,
-    // where it acts; later nodes weigh only the vertical velocity.
+    // where it acts; later nodes weigh only the vertical velocity. Eq. 30 is a velocity at
+    // a position, so a free node takes it at its own predicted position (the frame turns
+    // and the UAV moves by then); v0d stays the plan's speed now, as in the paper.
     node.velocity_ref_m_s = Eigen::Vector3d(0.0, 0.0, input.reference.velocity_m_s[k].z());
     if (k <= params.custom_velocity_nodes) {
-      node.velocity_ref_m_s.head<2>() = custom_velocity.head<2>();
+      const Eigen::Vector3d at = k > 0 && predicted_states != nullptr
+                                     ? Eigen::Vector3d(predicted_states[k].segment<3>(kPosition))
+                                     : p;
+      node.velocity_ref_m_s.head<2>() =
+          eq30_velocity(params, input.ugv.angular_velocity_rad_s, at, reference_speed_xy);
       node.velocity_weight = state_decay * w.velocity;
     } else {
       node.velocity_weight = Eigen::Vector3d(0.0, 0.0, state_decay * w.velocity.z());
@@ -203,13 +217,15 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
 }  // namespace
 
 void build_horizon_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
-                        HorizonCost& cost, const YawTrack& previous_yaw, double elapsed_s) {
+                        HorizonCost& cost, const YawTrack& previous_yaw, double elapsed_s,
+                        const model::UavState* predicted_states) {
   cost.horizon_steps = params.horizon_steps;
   cost.reference_mode = reference_mode_for(params.mode, input.stage);
   if (cost.reference_mode == ReferenceMode::XyzRef) {
     build_tracking_cost(params, input, previous_yaw, elapsed_s, cost);
   } else {
-    build_transition_cost(params, input, held_yaw_rad, previous_yaw, elapsed_s, cost);
+    build_transition_cost(params, input, held_yaw_rad, previous_yaw, elapsed_s, predicted_states,
+                          cost);
   }
   // Terminal node: scaled state weights, no input.
   NodeCost& terminal = cost.nodes[params.horizon_steps];

@@ -212,7 +212,7 @@ struct Sampc::Workspace {
       reroll_states = false;
     }
     build_horizon_cost(params, input, held_yaw_rad, cost, previous_yaw_track,
-                       params.control_period_s);
+                       params.control_period_s, x.data());
     linearise();
     qp.prepare(N());
     prepared = true;

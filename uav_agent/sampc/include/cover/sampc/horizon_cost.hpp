@@ -69,9 +69,11 @@ struct HorizonCost {
 // is used as yaw reference when the UAV is within yaw_hold_radius_m of the UGV's axis.
 // `previous_yaw` is the yaw_track of the previous control step, `elapsed_s` the time since
 // it: the yaw reference moves on from there at the configured rate (default: start at the
-// measured yaw).
+// measured yaw). `predicted_states` (horizon_steps + 1 entries, or null) is the solver's
+// warm start: the free nodes that carry eq. 30 evaluate it at their own predicted
+// position (null: at the measured one).
 void build_horizon_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
                         HorizonCost& cost, const YawTrack& previous_yaw = {},
-                        double elapsed_s = 0.0);
+                        double elapsed_s = 0.0, const model::UavState* predicted_states = nullptr);
 
 }  // namespace cover::sampc
