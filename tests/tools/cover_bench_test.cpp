@@ -49,11 +49,12 @@ std::filesystem::path temp_dir() {
 
 TEST(CoverBench, Table1PrintsEveryMethodAndPlotsEachRun) {
   const auto svg = temp_dir() / "t1.svg";
-  const BenchRun run = run_bench({"table1", "--v", "0.5", "--w", "0.35", "--transitions", "2",
-                                  "--json", "--plot", svg.string()});
+  const BenchRun run = run_bench({"table1", "--v", "0.5", "--w", "0.35", "--transitions", "1",
+                                  "--phases", "2", "--json", "--plot", svg.string()});
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const auto out = nlohmann::json::parse(run.out);
   ASSERT_EQ(out["rows"].size(), 3u);
+  EXPECT_EQ(out["runs_per_row"], 2);
   for (const auto& row : out["rows"]) {
     for (const char* key :
          {"v", "w", "method", "Ls", "Lt", "ratio", "transitions", "failures", "eq30_law_ratio"}) {

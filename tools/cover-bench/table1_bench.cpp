@@ -1,6 +1,14 @@
 // cover-bench table1: the paper's Table 1. The UAV transits cyclically G0 <-> G1 while both
 // UGVs drive circles; for each (v, w) and method it reports the world-frame transition path
 // length L_t, the straight-line length L_s and their ratio (1 = no detour).
+//
+// One long cyclic run locks into a few relative geometries (its period against the UGVs'
+// turn), and each method into different ones, since their stages last differently: over
+// 20 transitions cover's (0.8, 0.35) ratio moved between 1.17 and 1.30 with planner
+// settings whose plans hardly differ. So each cell is `--phases` short cyclic runs
+// (default 12 x there-and-back) with G1 starting a further 1/phases of a turn each time:
+// every method starts its first transitions from the same, evenly spread geometries, and
+// cover's ratios agree within 0.015 between 12 and 24 phases.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -16,34 +24,62 @@
 
 namespace {
 
+// One (v, w, method) cell of the table, summed over the runs (one per starting phase).
 struct Row {
   double v = 0.0;
   double w = 0.0;
   std::string method;
-  cover::sim::ClosedLoopResult result;
-  int requested = 0;
+  int requested = 0;  // transition processes asked for, over all runs
+  std::vector<cover::sim::TransitionRecord> transitions;
+  std::vector<int> run_of_transition;  // which run (phase) each transition belongs to
+  std::vector<std::string> statuses;   // one per run
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
 
+  void add_run(const cover::sim::ClosedLoopResult& result, int requested_in_run) {
+    const int run = static_cast<int>(statuses.size());
+    for (const auto& t : result.transitions) {
+      transitions.push_back(t);
+      run_of_transition.push_back(run);
+    }
+    statuses.push_back(result.status);
+    requested += requested_in_run;
+    sim_time_s += result.realtime_factor * result.wall_time_s;
+    wall_time_s += result.wall_time_s;
+  }
   int completed() const {
     int n = 0;
-    for (const auto& t : result.transitions) n += t.completed ? 1 : 0;
+    for (const auto& t : transitions) n += t.completed ? 1 : 0;
     return n;
   }
-  double ratio() const {
-    return result.total_straight_length_m > 0.0
-               ? result.total_path_length_m / result.total_straight_length_m
-               : std::nan("");
+  // Sums over the completed transitions of `length(record)`.
+  template <typename Length>
+  double sum(Length length) const {
+    double total = 0.0;
+    for (const auto& t : transitions) total += t.completed ? length(t) : 0.0;
+    return total;
   }
+  double Ls() const {
+    return sum([](const auto& t) { return t.straight_length_m; });
+  }
+  double Lt() const {
+    return sum([](const auto& t) { return t.path_length_m; });
+  }
+  double ratio() const { return Ls() > 0.0 ? Lt() / Ls() : std::nan(""); }
   // What the eq. 30 law would reach from the same starts with a perfect controller.
   double eq30_law_ratio() const {
-    return result.eq30_law_straight_length_m > 0.0
-               ? result.eq30_law_path_length_m / result.eq30_law_straight_length_m
-               : std::nan("");
+    const double ls = sum([](const auto& t) { return t.eq30_law.straight_length_m; });
+    const double lt = sum([](const auto& t) { return t.eq30_law.path_length_m; });
+    return ls > 0.0 ? lt / ls : std::nan("");
   }
+  double realtime_factor() const { return wall_time_s > 0.0 ? sim_time_s / wall_time_s : 0.0; }
 };
 
 // Table 1's world with both UGVs on circles of speed v and turn rate w; a positive
-// `separation_m` moves the two circle centres that far apart (symmetric about the origin).
-cover::sim::Scenario table1_scenario(double v, double w, int transitions, double separation_m) {
+// `separation_m` moves the two circle centres that far apart (symmetric about the origin);
+// G1 starts `phase_offset_rad` further round its circle than the scenario file says.
+cover::sim::Scenario table1_scenario(double v, double w, int transitions, double separation_m,
+                                     double phase_offset_rad) {
   cover::sim::Scenario scenario =
       cover::sim::Scenario::load_file(cover::sim::scenario_path("table1"));
   for (auto& ugv : scenario.world.ugvs) {
@@ -54,6 +90,7 @@ cover::sim::Scenario table1_scenario(double v, double w, int transitions, double
     scenario.world.ugvs[0].pattern.origin_m = {-0.5 * separation_m, 0.0};
     scenario.world.ugvs[1].pattern.origin_m = {0.5 * separation_m, 0.0};
   }
+  if (scenario.world.ugvs.size() == 2) scenario.world.ugvs[1].pattern.phase_rad += phase_offset_rad;
   scenario.task = cover::mission::repeat_processes(scenario.task, transitions);
   // Each process (take-off height, transit, descend) takes well under a minute.
   scenario.max_duration_s = 60.0 * transitions;
@@ -67,9 +104,8 @@ void print_table(const std::vector<Row>& rows) {
               "Lt m", "Lt/Ls", "eq30 law", "transitions", "failures");
   for (const Row& r : rows) {
     std::printf("%6.2f %6.2f  %-11s %9.2f %9.2f %8.3f %9.3f %7d / %-4d %9d\n", r.v, r.w,
-                r.method.c_str(), r.result.total_straight_length_m, r.result.total_path_length_m,
-                r.ratio(), r.eq30_law_ratio(), r.completed(), r.requested,
-                r.requested - r.completed());
+                r.method.c_str(), r.Ls(), r.Lt(), r.ratio(), r.eq30_law_ratio(), r.completed(),
+                r.requested, r.requested - r.completed());
   }
   std::printf(
       "Lt/Ls = 1 is the straight line; the paper reports < 1.1 for COVER and a detour\n"
@@ -83,14 +119,19 @@ int run(const std::vector<std::string>& args) {
   bool json = false;
   double v = 0.0;
   double w = 0.0;
-  int transitions = 20;
+  int transitions = 2;
+  int phases = 12;
   std::uint64_t seed = 0;
   std::string plot_file;
   app.add_flag("--json", json, "print JSON instead of a table");
   auto* v_opt = app.add_option("--v", v, "UGV speed, m/s (with --w; default: the paper's three)");
   auto* w_opt = app.add_option("--w", w, "UGV turn rate, rad/s");
-  app.add_option("--transitions", transitions, "transition processes per run (default 20)")
+  app.add_option("--transitions", transitions,
+                 "transition processes per run (default 2: there and back)")
       ->check(CLI::Range(1, 100));
+  app.add_option("--phases", phases,
+                 "runs per cell, G1 starting 1/phases of a turn further each time (default 12)")
+      ->check(CLI::Range(1, 36));
   app.add_option("--seed", seed, "world seed (default: the scenario file's)");
   std::vector<std::string> methods = {"coni-mpc", "no-ref-vxy", "cover"};
   app.add_option("--method", methods, "methods to run (default: all three)")
@@ -111,26 +152,32 @@ int run(const std::vector<std::string>& args) {
   if (v_opt->count() > 0) settings = {{v, w}};
   if (plot->count() > 0 && plot_file.empty()) plot_file = "table1.svg";
 
+  // A cyclic run tends to lock into a few geometries (its period against the UGVs' turn);
+  // runs from spread starting phases sample the relative positions more evenly.
+  constexpr double kTwoPi = 6.283185307179586;
   std::vector<Row> rows;
   for (std::size_t s = 0; s < settings.size(); ++s) {
     for (const std::string& method : methods) {
-      cover::sim::Scenario scenario =
-          table1_scenario(settings[s].first, settings[s].second, transitions, separation_m);
-      if (app.count("--seed") > 0) scenario.world.seed = seed;
+      Row row{settings[s].first, settings[s].second, method};
       const auto config =
           cover::sim::ControllerConfig::load_default(*cover::sim::parse_method(method));
-      cover::sim::ClosedLoopOptions options;
-      options.record_paths = plot->count() > 0 && s == 0;
-      const cover::sim::ClosedLoop loop(scenario, config.mission, config.planner, config.sampc,
-                                        options);
-      Row row{settings[s].first, settings[s].second, method, loop.run(), transitions};
-      if (options.record_paths) {
+      for (int phase = 0; phase < phases; ++phase) {
+        cover::sim::Scenario scenario =
+            table1_scenario(row.v, row.w, transitions, separation_m, kTwoPi * phase / phases);
+        if (app.count("--seed") > 0) scenario.world.seed = seed;
+        cover::sim::ClosedLoopOptions options;
+        options.record_paths = plot->count() > 0 && s == 0 && phase == 0;
+        const cover::sim::ClosedLoop loop(scenario, config.mission, config.planner, config.sampc,
+                                          options);
+        const cover::sim::ClosedLoopResult result = loop.run();
+        row.add_run(result, transitions);
+        if (!options.record_paths) continue;
         const std::string file =
             method == "cover" ? plot_file : cover::sim::with_suffix(plot_file, method);
         char title[160];
         std::snprintf(title, sizeof(title), "Table 1, v = %.2f m/s, w = %.2f rad/s: %s", row.v,
                       row.w, method.c_str());
-        if (!cover::sim::write_path_plot(row.result, scenario, title, file)) {
+        if (!cover::sim::write_path_plot(result, scenario, title, file)) {
           std::cerr << "cannot write " << file << "\n";
           return 1;
         }
@@ -142,12 +189,15 @@ int run(const std::vector<std::string>& args) {
   if (json) {
     nlohmann::json out;
     out["transitions_per_run"] = transitions;
+    out["runs_per_row"] = phases;
     out["rows"] = nlohmann::json::array();
     for (const Row& r : rows) {
       // Per stage, to see which geometry bends the path.
       nlohmann::json stages = nlohmann::json::array();
-      for (const cover::sim::TransitionRecord& t : r.result.transitions) {
-        stages.push_back({{"from", t.from_ugv},
+      for (std::size_t i = 0; i < r.transitions.size(); ++i) {
+        const cover::sim::TransitionRecord& t = r.transitions[i];
+        stages.push_back({{"run", r.run_of_transition[i]},
+                          {"from", t.from_ugv},
                           {"to", t.to_ugv},
                           {"completed", t.completed},
                           {"start_s", t.start_time_s},
@@ -161,14 +211,14 @@ int run(const std::vector<std::string>& args) {
       out["rows"].push_back({{"v", r.v},
                              {"w", r.w},
                              {"method", r.method},
-                             {"Ls", r.result.total_straight_length_m},
-                             {"Lt", r.result.total_path_length_m},
+                             {"Ls", r.Ls()},
+                             {"Lt", r.Lt()},
                              {"ratio", cover::sim::number_or_null(r.ratio())},
                              {"eq30_law_ratio", cover::sim::number_or_null(r.eq30_law_ratio())},
                              {"transitions", r.completed()},
                              {"failures", r.requested - r.completed()},
-                             {"status", r.result.status},
-                             {"realtime_factor", r.result.realtime_factor},
+                             {"statuses", r.statuses},
+                             {"realtime_factor", r.realtime_factor()},
                              {"per_transition", stages}});
     }
     if (plot->count() > 0) out["plot"] = plot_file;
