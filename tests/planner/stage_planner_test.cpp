@@ -125,6 +125,19 @@ TEST_F(StagePlannerTest, InitialSpeedFarAboveLimitComesDown) {
   }
 }
 
+// A transition start 7.2 m out, moving at 1.5 m/s about 50 degrees off the goal (Table 1 at
+// (0.8, 0.35)): the plan turns and cruises. An initial guess bent by v0 * t once left
+// L-BFGS in a wobbly local minimum, 14.6 s long.
+TEST_F(StagePlannerTest, FastSidewaysStartTurnsAndCruises) {
+  auto problem = make_problem({3.43, 6.28, 1.47}, {-1.45, -0.37, 0.29}, {0.0, 0.0, 1.5}, 1.0, 2.0);
+  const PlanResult result = planner.plan(problem);
+  ASSERT_TRUE(is_usable(result.status)) << result.reason;
+  const double distance = (problem.goal_position_m - problem.start_position_m).norm();
+  // Cruising at vmax with a turn and a stop takes about distance / vmax + 1 s.
+  EXPECT_LT(result.trajectory.duration_s(), distance / problem.vmax_m_s + 1.5);
+  expect_boundaries_met(measure_trajectory(result.trajectory, problem));
+}
+
 TEST_F(StagePlannerTest, NonFiniteOrAbsurdInputIsRejectedWithAFiniteHold) {
   const auto good = make_problem({1.0, 1.0, 1.0}, Eigen::Vector3d::Zero(), {0.0, 0.0, 1.5});
   std::vector<StageProblem> bad(8, good);
