@@ -88,7 +88,8 @@ struct SampcParams {
   double yaw_flip_hysteresis_rad = 0.8;
   // Eq. 30's customised velocity reference sits on the first `custom_velocity_nodes` free
   // nodes k = 1..n (x0 is fixed to the measurement in multiple shooting, so at k = 0 it
-  // would cost nothing and steer nothing). Must be in [1, horizon_steps].
+  // would cost nothing and steer nothing), each at its own predicted position. Must be in
+  // [1, horizon_steps].
   int custom_velocity_nodes = 1;
   // Frame switch (Sampc::reset_frame()): for `switch_smoothing_s` after it, node 0 also pays
   // switch_input_rate_weight * (u0 - previous command)^2, the weight ramping linearly from
