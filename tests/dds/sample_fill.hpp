@@ -22,7 +22,9 @@ class SampleFiller {
     if constexpr (std::is_same_v<T, bool>) {
       value = (counter_ % 2) == 1;
     } else if constexpr (std::is_enum_v<T>) {
-      value = static_cast<T>(1 + counter_ % 2);  // every catalogue enum has >= 3 values
+      // Never 0 (the default), never out of range (Cyclone rejects an unknown value).
+      constexpr std::uint32_t count = msg::EnumCount<T>::value;
+      value = static_cast<T>(count > 1 ? 1 + counter_ % (count - 1) : 0);
     } else if constexpr (std::is_floating_point_v<T>) {
       value = static_cast<T>(counter_) + 0.125 + 1e-9 * static_cast<T>(counter_);
     } else if constexpr (std::is_integral_v<T>) {
