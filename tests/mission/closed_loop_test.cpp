@@ -4,11 +4,13 @@
 
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/world.hpp"
+#include "cover/sim/world_uav_io.hpp"
+#include "cover/uav/uav_loop.hpp"
 
 using cover::sim::ClosedLoop;
 using cover::sim::ClosedLoopOptions;
-using cover::sim::ControllerConfig;
 using cover::sim::Scenario;
+using cover::uav::ControllerConfig;
 
 namespace {
 
@@ -28,43 +30,67 @@ TEST(ClosedLoop, HoversAboveCirclingUgvWithinFiveCentimetres) {
   const double end_s = 9.0;
   scenario.max_duration_s = end_s;
 
-  // Run the loop ourselves to watch the world-frame error at each step.
+  // Step the harness's own seams (the agent's loop, the world's sensors and plant) to
+  // watch the world-frame error at each step.
   cover::sim::World world(scenario.world);
-  cover::mission::MissionController controller(scenario.task, world.ugv_count(), config.mission,
-                                               config.planner, config.sampc);
+  cover::uav::UavLoop loop(0, world.ugv_count(), config);
+  ASSERT_TRUE(loop.give_task(scenario.task).accepted);
+  cover::sim::WorldUavInputs inputs(world);
+  cover::sim::PlantCommandOutput plant;
   double worst_after_settling_m = 0.0;
-  cover::sim::QuadrotorCommand command;
   while (world.state().time_s < end_s) {
     const double t = world.state().time_s;
-    for (int k = 0; k < world.ugv_count(); ++k) {
-      if (world.relative_sensor().has_measurement()) {
-        const auto& rel = world.relative_sensor().latest(k);
-        controller.set_relative_state(
-            k, {rel.stamp_s, rel.position_m, rel.velocity_m_s, rel.attitude});
-      }
-      if (world.imu_sensor().has_reading()) {
-        const auto& imu = world.imu_sensor().latest(k).filtered;
-        cover::mission::UgvImuMeasurement m;
-        m.stamp_s = imu.stamp_s;
-        m.motion.specific_force_m_s2 = imu.specific_force_m_s2;
-        m.motion.angular_velocity_rad_s = imu.angular_velocity_rad_s;
-        m.motion.angular_acceleration_rad_s2 = imu.angular_acceleration_rad_s2;
-        controller.set_ugv_imu(k, m);
-      }
-    }
-    const auto& out = controller.step(t);
+    const auto& out = loop.step(t, inputs, plant);
     ASSERT_TRUE(std::isfinite(out.command.thrust_m_s2));
-    command.thrust_m_s2 = out.command.armed ? out.command.thrust_m_s2 : 0.0;
-    command.body_rate_rad_s = cover::sim::Vec3(out.command.body_rate_rad_s);
     if (t >= settle_s) {
       const Eigen::Vector3d target = world.state().ugvs[0].to_world(Eigen::Vector3d(0, 0, 1.0));
       const double error = (world.state().uav.position_m.eigen() - target).norm();
       worst_after_settling_m = std::max(worst_after_settling_m, error);
     }
-    world.advance(command, 0.01);
+    world.advance(plant.command(), 0.01);
   }
-  EXPECT_EQ(controller.output().status.stage.state, cover::mission::MissionState::Running);
+  EXPECT_EQ(loop.task_state(), cover::mission::MissionState::Running);
   EXPECT_LT(worst_after_settling_m, 0.05);
+}
+
+// Abort in flight: the UAV holds the point where it was (in the reference frame), then
+// descends onto what is below it and disarms; a new task is accepted only afterwards.
+TEST(ClosedLoop, AbortHoldsThenLandsAndDisarms) {
+  Scenario scenario = Scenario::load_file(cover::sim::scenario_path("hover"));
+  ControllerConfig config = cover_config();
+  config.mission.reach_tolerance_m = 1e-9;  // keep flying the initial stage
+  config.mission.abort_hold_s = 1.0;
+  cover::sim::World world(scenario.world);
+  cover::uav::UavLoop loop(0, world.ugv_count(), config);
+  ASSERT_TRUE(loop.give_task(scenario.task).accepted);
+  EXPECT_FALSE(loop.give_task(scenario.task).accepted);  // busy
+  cover::sim::WorldUavInputs inputs(world);
+  cover::sim::PlantCommandOutput plant;
+  const double abort_at_s = 5.0;
+  Eigen::Vector3d held_m = Eigen::Vector3d::Zero();
+  double max_hold_drift_m = 0.0;
+  double disarmed_at_s = -1.0;
+  while (world.state().time_s < 20.0 && disarmed_at_s < 0.0) {
+    const double t = world.state().time_s;
+    if (std::abs(t - abort_at_s) < 1e-6) {
+      ASSERT_TRUE(loop.abort(t));
+      held_m = world.true_relative_state(0).position_m;
+    }
+    const auto& out = loop.step(t, inputs, plant);
+    if (t > abort_at_s && t < abort_at_s + config.mission.abort_hold_s) {
+      EXPECT_EQ(out.status.failsafe, cover::mission::Failsafe::Aborted);
+      max_hold_drift_m =
+          std::max(max_hold_drift_m, (world.true_relative_state(0).position_m - held_m).norm());
+    }
+    if (t > abort_at_s && !out.command.armed) disarmed_at_s = t;
+    world.advance(plant.command(), 0.01);
+  }
+  EXPECT_EQ(loop.task_state(), cover::mission::MissionState::Aborted);
+  EXPECT_LT(max_hold_drift_m, 0.05);
+  ASSERT_GT(disarmed_at_s, abort_at_s + config.mission.abort_hold_s);
+  // Disarmed on the deck it hovered above (the hover task's G0), not in the air.
+  EXPECT_LT(std::abs(world.true_relative_state(0).position_m.z()), 0.1);
+  EXPECT_TRUE(loop.give_task(scenario.task).accepted);
 }
 
 // The check: a Scenario 2 run (take off from G0, transit, land on G1) succeeds.
@@ -72,8 +98,8 @@ TEST(ClosedLoop, ScenarioTwoLandsOnTheTargetUgv) {
   const ControllerConfig config = cover_config();
   ClosedLoopOptions options;
   options.record_paths = false;
-  const ClosedLoop loop(Scenario::load_file(cover::sim::scenario_path("scenario2")), config.mission,
-                        config.planner, config.sampc, options);
+  const ClosedLoop loop(Scenario::load_file(cover::sim::scenario_path("scenario2")), config,
+                        options);
   const cover::sim::ClosedLoopResult result = loop.run();
   EXPECT_TRUE(result.success) << result.status;
   EXPECT_TRUE(result.landed_on_target_deck);
@@ -88,7 +114,7 @@ TEST(ClosedLoop, SameSeedGivesTheSameRun) {
   const ControllerConfig config = cover_config();
   Scenario scenario = Scenario::load_file(cover::sim::scenario_path("hover"));
   scenario.max_duration_s = 2.0;
-  const ClosedLoop loop(scenario, config.mission, config.planner, config.sampc);
+  const ClosedLoop loop(scenario, config);
   const auto a = loop.run();
   const auto b = loop.run();
   ASSERT_EQ(a.uav_path.size(), b.uav_path.size());
@@ -108,8 +134,7 @@ TEST(ClosedLoop, CoverDetoursLessThanConiMpcBetweenCirclingUgvs) {
     const ControllerConfig config = ControllerConfig::load_default(mode);
     ClosedLoopOptions options;
     options.record_paths = false;
-    const auto result =
-        ClosedLoop(scenario, config.mission, config.planner, config.sampc, options).run();
+    const auto result = ClosedLoop(scenario, config, options).run();
     EXPECT_TRUE(result.success) << result.status;
     EXPECT_EQ(result.transitions.size(), 4u);
     return result.total_path_length_m / result.total_straight_length_m;

@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "cover/mission/mission_controller.hpp"
-#include "cover/sim/closed_loop.hpp"
+#include "cover/uav/controller_config.hpp"
 
 using cover::mission::Failsafe;
 using cover::mission::FailureReason;
@@ -16,7 +16,7 @@ using cover::mission::UgvImuMeasurement;
 namespace {
 
 MissionController make_controller() {
-  const auto config = cover::sim::ControllerConfig::load_default(cover::sampc::Mode::Cover);
+  const auto config = cover::uav::ControllerConfig::load_default(cover::sampc::Mode::Cover);
   const cover::mission::Task task = cover::mission::load_task_file(
       cover::config::default_config_dir() + "/tasks/scenario2.yaml", 2);
   return MissionController(task, 2, config.mission, config.planner, config.sampc);
@@ -110,7 +110,7 @@ TEST(MissionController, IgnoresInputsForUnknownUgvs) {
 }
 
 TEST(MissionController, RejectsAnInvalidTaskAtConstruction) {
-  const auto config = cover::sim::ControllerConfig::load_default(cover::sampc::Mode::Cover);
+  const auto config = cover::uav::ControllerConfig::load_default(cover::sampc::Mode::Cover);
   cover::mission::Task task;  // no process
   EXPECT_THROW(MissionController(task, 2, config.mission, config.planner, config.sampc),
                cover::config::ConfigError);

@@ -62,8 +62,8 @@ int run(const std::vector<std::string>& args) {
   const std::string name = "scenario" + std::to_string(number);
   cover::sim::Scenario scenario = cover::sim::Scenario::load_file(cover::sim::scenario_path(name));
   if (app.count("--seed") > 0) scenario.world.seed = seed;
-  const auto config = cover::sim::ControllerConfig::load_default(*cover::sim::parse_method(method));
-  const cover::sim::ClosedLoop loop(scenario, config.mission, config.planner, config.sampc);
+  const auto config = cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
+  const cover::sim::ClosedLoop loop(scenario, config);
   const cover::sim::ClosedLoopResult result = loop.run();
 
   if (plot->count() > 0) {

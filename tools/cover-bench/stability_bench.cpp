@@ -106,10 +106,10 @@ int run(const std::vector<std::string>& args) {
       cover::sim::Scenario scenario = fig8_scenario(patterns[i]);
       if (app.count("--seed") > 0) scenario.world.seed = seed;
       const auto config =
-          cover::sim::ControllerConfig::load_default(*cover::sim::parse_method(method));
+          cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
       cover::sim::ClosedLoopOptions options;
       options.record_paths = plot->count() > 0 && i == 0;
-      const cover::sim::ClosedLoop loop(scenario, config.mission, config.planner, config.sampc,
+      const cover::sim::ClosedLoop loop(scenario, config,
                                         options);
       const cover::sim::ClosedLoopResult result = loop.run();
       Row row{patterns[i], method, !result.transitions.empty(), {}, result.status};

@@ -160,14 +160,14 @@ int run(const std::vector<std::string>& args) {
     for (const std::string& method : methods) {
       Row row{settings[s].first, settings[s].second, method};
       const auto config =
-          cover::sim::ControllerConfig::load_default(*cover::sim::parse_method(method));
+          cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
       for (int phase = 0; phase < phases; ++phase) {
         cover::sim::Scenario scenario =
             table1_scenario(row.v, row.w, transitions, separation_m, kTwoPi * phase / phases);
         if (app.count("--seed") > 0) scenario.world.seed = seed;
         cover::sim::ClosedLoopOptions options;
         options.record_paths = plot->count() > 0 && s == 0 && phase == 0;
-        const cover::sim::ClosedLoop loop(scenario, config.mission, config.planner, config.sampc,
+        const cover::sim::ClosedLoop loop(scenario, config,
                                           options);
         const cover::sim::ClosedLoopResult result = loop.run();
         row.add_run(result, transitions);

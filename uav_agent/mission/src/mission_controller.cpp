@@ -23,6 +23,8 @@ const char* to_string(Failsafe failsafe) {
       return "mission-failed";
     case Failsafe::Landed:
       return "landed";
+    case Failsafe::Aborted:
+      return "aborted";
   }
   return "unknown";
 }
@@ -85,7 +87,7 @@ const ControllerOutput& MissionController::step(double now_s) {
   output_.command.release_payload = false;
   output_.status.planned = false;
   output_.status.solve_us = 0.0;
-  if (!machine_.decision().armed) {
+  if (!machine_.decision().armed || disarmed_after_abort_) {
     idle(Failsafe::Landed);
     return output_;
   }
@@ -139,12 +141,15 @@ const ControllerOutput& MissionController::step(double now_s) {
     hover(Failsafe::StaleInput);
     return output_;
   }
-  if (decision.state == MissionState::Failed && !holding_) {
-    // Hold where the failure happened, in the current frame, with the tracking weights.
-    holding_ = true;
-    plan_pending_ = false;
-    trajectory_ = planner::Trajectory::hold(inputs_[reference].state.position_m);
-    stage_start_s_ = now_s;
+  const bool ended =
+      decision.state == MissionState::Failed || decision.state == MissionState::Aborted;
+  if (ended && !holding_) hold_current_point(now_s);
+  if (decision.state == MissionState::Aborted) {
+    run_abort_action(inputs_[reference].state, now_s);
+    if (disarmed_after_abort_) {
+      idle(Failsafe::Landed);
+      return output_;
+    }
   }
   if (plan_pending_ && !plan_stage(now_s) && ++plan_attempts_ >= params_.max_plan_attempts) {
     machine_.fail(FailureReason::PlanningFailed, now_s);
@@ -154,9 +159,53 @@ const ControllerOutput& MissionController::step(double now_s) {
   // 4. SAMPC on the horizon reference.
   command_from_sampc(inputs_[reference], now_s);
   if (holding_ && output_.status.failsafe == Failsafe::None) {
-    output_.status.failsafe = Failsafe::MissionFailed;
+    output_.status.failsafe =
+        decision.state == MissionState::Aborted ? Failsafe::Aborted : Failsafe::MissionFailed;
   }
   return output_;
+}
+
+bool MissionController::abort(double now_s) {
+  if (!machine_.abort(now_s)) return false;
+  abort_time_s_ = now_s;
+  output_.status.stage = machine_.decision();
+  return true;
+}
+
+void MissionController::hold_current_point(double now_s) {
+  // Hold where the task ended, in the current frame, with the tracking weights.
+  holding_ = true;
+  plan_pending_ = false;
+  trajectory_ = planner::Trajectory::hold(inputs_[machine_.reference_ugv()].state.position_m);
+  stage_start_s_ = now_s;
+}
+
+void MissionController::run_abort_action(const RelativeMeasurement& state, double now_s) {
+  if (params_.abort_action != AbortAction::Land) return;
+  if (!descending_ && now_s - abort_time_s_ >= params_.abort_hold_s) {
+    // A straight vertical line down from the held point at the descent rate; the deck or
+    // the ground stops the UAV long before its end.
+    const double depth_m = 20.0;
+    planner::TrajectoryPiece piece;
+    piece.duration_s = depth_m / params_.abort_descent_rate_m_s;
+    piece.coefficients.row(0) = trajectory_.position(now_s - stage_start_s_).transpose();
+    piece.coefficients(1, 2) = -params_.abort_descent_rate_m_s;
+    trajectory_ = planner::Trajectory({piece});
+    stage_start_s_ = now_s;
+    descending_ = true;
+    return;
+  }
+  if (!descending_) return;
+  const double reference_z = trajectory_.position(now_s - stage_start_s_).z();
+  const bool held_up = state.position_m.z() - reference_z > params_.land_detect_gap_m &&
+                       std::abs(state.velocity_m_s.z()) < params_.land_detect_speed_m_s;
+  if (!held_up) {
+    touchdown_since_s_ = -1.0;
+  } else if (touchdown_since_s_ < 0.0) {
+    touchdown_since_s_ = now_s;
+  } else if (now_s - touchdown_since_s_ >= params_.land_detect_time_s) {
+    disarmed_after_abort_ = true;
+  }
 }
 
 bool MissionController::plan_stage(double now_s) {

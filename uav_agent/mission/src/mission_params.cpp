@@ -7,7 +7,24 @@ namespace {
 bool positive(double value) {
   return std::isfinite(value) && value > 0.0;
 }
+
+AbortAction parse_abort_action(const std::string& text, const std::string& context) {
+  for (const AbortAction action : {AbortAction::Hover, AbortAction::Land}) {
+    if (text == to_string(action)) return action;
+  }
+  throw config::ConfigError(context + ".abort_action: '" + text + "' is not hover | land");
+}
 }  // namespace
+
+const char* to_string(AbortAction action) {
+  switch (action) {
+    case AbortAction::Hover:
+      return "hover";
+    case AbortAction::Land:
+      return "land";
+  }
+  return "unknown";
+}
 
 MissionParams MissionParams::load(config::YamlReader& reader) {
   MissionParams params;
@@ -28,6 +45,14 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
   reader.optional("integral_limit_m_s2", params.integral_limit_m_s2);
   reader.optional("observer_window_s", params.observer_window_s);
   reader.optional("observer_time_constant_s", params.observer_time_constant_s);
+  reader.optional("abort_hold_s", params.abort_hold_s);
+  std::string abort_action = to_string(params.abort_action);
+  reader.optional("abort_action", abort_action);
+  params.abort_action = parse_abort_action(abort_action, reader.context());
+  reader.optional("abort_descent_rate_m_s", params.abort_descent_rate_m_s);
+  reader.optional("land_detect_gap_m", params.land_detect_gap_m);
+  reader.optional("land_detect_speed_m_s", params.land_detect_speed_m_s);
+  reader.optional("land_detect_time_s", params.land_detect_time_s);
   reader.optional("control_period_s", params.control_period_s);
   reader.reject_unknown_keys();
   params.validate();
@@ -68,6 +93,13 @@ void MissionParams::validate() const {
   config::check(positive(integral_error_clip_m), ctx + ".integral_error_clip_m", "must be > 0");
   config::check(positive(integral_limit_m_s2) && integral_limit_m_s2 <= 10.0,
                 ctx + ".integral_limit_m_s2", "must be in (0, 10]");
+  config::check(std::isfinite(abort_hold_s) && abort_hold_s >= 0.0, ctx + ".abort_hold_s",
+                "must be >= 0");
+  config::check(positive(abort_descent_rate_m_s) && abort_descent_rate_m_s <= 2.0,
+                ctx + ".abort_descent_rate_m_s", "must be in (0, 2]");
+  config::check(positive(land_detect_gap_m), ctx + ".land_detect_gap_m", "must be > 0");
+  config::check(positive(land_detect_speed_m_s), ctx + ".land_detect_speed_m_s", "must be > 0");
+  config::check(positive(land_detect_time_s), ctx + ".land_detect_time_s", "must be > 0");
   config::check(positive(control_period_s) && control_period_s <= 0.1, ctx + ".control_period_s",
                 "must be in (0, 0.1]");
 }

@@ -18,6 +18,8 @@ const char* to_string(MissionState state) {
       return "complete";
     case MissionState::Failed:
       return "failed";
+    case MissionState::Aborted:
+      return "aborted";
   }
   return "unknown";
 }
@@ -49,9 +51,7 @@ const StageDecision& StageMachine::update(double time_s, const Eigen::Vector3d& 
   // One-step events are cleared every step; latched flags (armed, payload_released) stay.
   decision_.stage_started = false;
   decision_.release_payload = false;
-  if (decision_.state == MissionState::Complete || decision_.state == MissionState::Failed) {
-    return decision_;
-  }
+  if (is_terminal(decision_.state)) return decision_;
   if (task_.processes.empty()) {
     fail(FailureReason::InvalidState, time_s);
     return decision_;
@@ -110,8 +110,17 @@ void StageMachine::finish_final_stage(double time_s) {
   }
 }
 
+bool StageMachine::abort(double time_s) {
+  if (is_terminal(decision_.state)) return false;
+  if (std::isfinite(time_s) && decision_.state == MissionState::Running) {
+    decision_.stage_time_s = time_s - stage_start_s_;
+  }
+  decision_.state = MissionState::Aborted;
+  return true;
+}
+
 void StageMachine::fail(FailureReason reason, double time_s) {
-  if (decision_.state == MissionState::Complete || decision_.state == MissionState::Failed) return;
+  if (is_terminal(decision_.state)) return;
   if (std::isfinite(time_s) && decision_.state == MissionState::Running) {
     decision_.stage_time_s = time_s - stage_start_s_;
   }

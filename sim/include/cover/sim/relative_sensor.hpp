@@ -8,6 +8,7 @@
 #include <random>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/model/relative_state.hpp"
 #include "cover/sim/world_state.hpp"
 
 namespace cover::sim {
@@ -28,14 +29,9 @@ struct RelativeSensorParams {
   void validate(const std::string& context = "relative_sensor") const;
 };
 
-// The UAV state in G_k (NOTES.md): p = R_k^T (p_uav - p_ugv),
-// v = R_k^T (v_uav - v_ugv) - Omega x p (d/dt of p seen in G_k), q = q_k^-1 q_uav.
-struct RelativeState {
-  double stamp_s = 0.0;  // the instant the state describes (not when it arrived)
-  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
-  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();
-};
+// The UAV state in G_k, as the controller consumes it (one struct for the sensor, the
+// controller and the wire conversions).
+using RelativeState = model::RelativeState;
 
 RelativeState true_relative_state(const QuadrotorState& uav, const UgvState& ugv, double stamp_s);
 

@@ -4,97 +4,21 @@
 #include <string>
 #include <vector>
 
-#include "cover/mission/mission_controller.hpp"
-#include "cover/mission/mission_params.hpp"
-#include "cover/planner/planner_params.hpp"
-#include "cover/sampc/sampc_params.hpp"
-#include "cover/sim/approach_law.hpp"
+#include "cover/sim/run_options.hpp"
+#include "cover/sim/run_result.hpp"
 #include "cover/sim/scenario.hpp"
+#include "cover/uav/controller_config.hpp"
 
 namespace cover::sim {
 
-struct ClosedLoopOptions {
-  double control_rate_hz = 100.0;      // MissionController rate; must divide the physics rate
-  double switch_window_s = 2.0;        // command-change statistics window after each frame switch
-  bool record_paths = true;            // keep world-frame paths (for plots)
-  int record_every_control_steps = 5;  // path decimation (5: 20 Hz points)
-};
-
-// One transition stage as seen in the world frame (Table 1 and Fig. 8 metrics).
-struct TransitionRecord {
-  int process_index = 0;
-  int from_ugv = 0;
-  int to_ugv = 1;
-  double start_time_s = 0.0;
-  double end_time_s = 0.0;
-  bool completed = false;  // the stage ended by reaching its point (not by the run ending)
-  Eigen::Vector3d start_world_m = Eigen::Vector3d::Zero();
-  Eigen::Vector3d end_world_m = Eigen::Vector3d::Zero();
-  Eigen::Vector3d start_world_velocity_m_s = Eigen::Vector3d::Zero();
-  double path_length_m = 0.0;      // L_t of this stage: UAV world path length
-  double straight_length_m = 0.0;  // L_s of this stage: |end - start| in the world
-  // The same start flown by the eq. 30 law with a perfect controller (approach_law.hpp).
-  ApproachLawResult eq30_law;
-  // Over switch_window_s after the frame switch, per control step:
-  double peak_rate_change_rad_s = 0.0;  // max |w_k - w_(k-1)| of the body-rate command
-  double rms_rate_change_rad_s = 0.0;
-  double peak_thrust_change_m_s2 = 0.0;  // max |F_k - F_(k-1)|
-  double peak_world_speed_m_s = 0.0;     // max UAV world speed
-};
-
-struct StagedPoint {
-  Eigen::Vector2d uav_world_m = Eigen::Vector2d::Zero();
-  int stage_code = -1;  // cover::model::Stage as int; -1 before start / after the end
-};
-
-struct ClosedLoopResult {
-  bool success = false;
-  std::string status;  // the stage machine's last status line (names the failure)
-  mission::MissionState mission_state = mission::MissionState::NotStarted;
-  double duration_s = 0.0;   // simulated time until the task completed (or the run ended)
-  double wall_time_s = 0.0;  // wall-clock time of the whole run
-  double realtime_factor = 0.0;
-
-  std::vector<TransitionRecord> transitions;
-  double total_path_length_m = 0.0;      // L_t, summed over completed transition stages
-  double total_straight_length_m = 0.0;  // L_s, summed over completed transition stages
-  // The same sums for the eq. 30 law flown from the same starts (approach_law.hpp).
-  double eq30_law_path_length_m = 0.0;
-  double eq30_law_straight_length_m = 0.0;
-
-  // Mean absolute error per axis of the UAV (true relative position) to the reference
-  // trajectory in the final stages, in the reference frame. NaN if no final stage ran.
-  Eigen::Vector3d final_tracking_error_m = Eigen::Vector3d::Constant(std::nan(""));
-  int final_tracking_samples = 0;
-  // Horizontal distance on the target deck from the landing / delivery point (NaN if the
-  // task has no such action or it did not happen).
-  double landing_error_m = std::nan("");
-  bool landed_on_target_deck = false;
-  double delivery_error_m = std::nan("");
-
-  // Controller timing (medians / p99 over the run).
-  double mpc_median_us = 0.0;
-  double mpc_p99_us = 0.0;
-  double plan_median_ms = 0.0;
-  double plan_max_ms = 0.0;
-  int failsafe_steps = 0;  // control steps whose command was a failsafe (stale/solver)
-
-  // World-frame paths for plots (decimated).
-  std::vector<StagedPoint> uav_path;
-  std::vector<std::vector<Eigen::Vector2d>> ugv_paths;
-  std::vector<Eigen::Vector2d> release_points;
-  std::vector<Eigen::Vector2d> landing_points;
-};
-
 // Runs a scenario in one process at fixed rates: the simulator World (physics 1 kHz,
-// relative sensor, UGV IMU 200 Hz through the UGV IMU filter) and the MissionController at
-// 100 Hz, fed the sensor outputs only. Deterministic for a world seed: same inputs, same
-// result (except the wall-clock timings).
+// relative sensor, UGV IMU 200 Hz through the UGV IMU filter) and the UAV loop
+// (uav::UavLoop, the agent's loop) at 100 Hz, fed the sensor outputs only. Deterministic
+// for a world seed: same inputs, same result (except the wall-clock timings).
 class ClosedLoop {
  public:
   // Throws config::ConfigError for invalid parameters or a rate mismatch.
-  ClosedLoop(Scenario scenario, mission::MissionParams mission, planner::PlannerParams planner,
-             sampc::SampcParams sampc, ClosedLoopOptions options = {});
+  ClosedLoop(Scenario scenario, uav::ControllerConfig config, ClosedLoopOptions options = {});
 
   ClosedLoopResult run() const;
 
@@ -102,18 +26,8 @@ class ClosedLoop {
 
  private:
   Scenario scenario_;
-  mission::MissionParams mission_;
-  planner::PlannerParams planner_;
-  sampc::SampcParams sampc_;
+  uav::ControllerConfig config_;
   ClosedLoopOptions options_;
-};
-
-// Loads config/{mission,planner,sampc}.yaml (the shipped defaults) with SAMPC's method set.
-struct ControllerConfig {
-  mission::MissionParams mission;
-  planner::PlannerParams planner;
-  sampc::SampcParams sampc;
-  static ControllerConfig load_default(sampc::Mode mode);
 };
 
 // Fig. 7-like top view: UGV paths in greys, the UAV path coloured by stage, transition

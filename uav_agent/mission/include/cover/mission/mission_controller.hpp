@@ -9,6 +9,7 @@
 #include "cover/mission/mission_params.hpp"
 #include "cover/mission/stage_machine.hpp"
 #include "cover/mission/task.hpp"
+#include "cover/model/relative_state.hpp"
 #include "cover/model/ugv_motion.hpp"
 #include "cover/planner/planner_params.hpp"
 #include "cover/planner/stage_planner.hpp"
@@ -19,12 +20,7 @@ namespace cover::mission {
 
 // The UAV's state relative to one UGV, in that UGV's frame G_k (from the relative
 // estimator; the DDS adapter or the simulator fills it).
-struct RelativeMeasurement {
-  double stamp_s = 0.0;
-  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
-  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();  // A in G_k
-};
+using RelativeMeasurement = model::RelativeState;
 
 // The filtered IMU of one UGV (a, Omega, beta in G_k), as its agent publishes it.
 struct UgvImuMeasurement {
@@ -40,6 +36,7 @@ enum class Failsafe : std::uint8_t {
   SolverError = 3,       // SAMPC returned its hover fallback
   MissionFailed = 4,     // the stage machine failed: hold position in the frame
   Landed = 5,            // disarmed on the landing point: motors idle
+  Aborted = 6,           // the task was aborted: holding its point, then the safe action
 };
 
 const char* to_string(Failsafe failsafe);
@@ -91,6 +88,11 @@ class MissionController {
   // One control step at time `now_s` (same clock as the measurement stamps).
   const ControllerOutput& step(double now_s);
 
+  // Ends the task on the operator's request: the next steps hold the point where the UAV
+  // is, in its current reference frame, then MissionParams::abort_action. False when the
+  // task had already ended.
+  bool abort(double now_s);
+
   const ControllerOutput& output() const { return output_; }
   const StageMachine& stage_machine() const { return machine_; }
   const planner::Trajectory& reference_trajectory() const { return trajectory_; }
@@ -110,6 +112,8 @@ class MissionController {
   void command_from_sampc(const UgvInputs& inputs, double now_s);
   void integrate_disturbance(const Eigen::Vector3d& position_m, const Eigen::Vector3d& reference_m);
   void update_observer(const model::Input& applied, double now_s);
+  void hold_current_point(double now_s);
+  void run_abort_action(const RelativeMeasurement& state, double now_s);
   void hover(Failsafe reason);
   void idle(Failsafe reason);
 
@@ -124,7 +128,11 @@ class MissionController {
   int last_reference_ugv_ = -1;
   bool plan_pending_ = false;
   int plan_attempts_ = 0;
-  bool holding_ = false;  // mission failed: hold the position where it failed
+  bool holding_ = false;  // mission failed or aborted: hold the position where it ended
+  double abort_time_s_ = 0.0;
+  bool descending_ = false;          // the abort's landing descent is under way
+  double touchdown_since_s_ = -1.0;  // land detector: held up since then, < 0: not
+  bool disarmed_after_abort_ = false;
   double stale_since_s_ = -1.0;
   int ignored_inputs_ = 0;
   // Integral estimate of the acceleration SAMPC's model misses, in the reference frame.

@@ -1,10 +1,18 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "cover/config/yaml_reader.hpp"
 
 namespace cover::mission {
+
+// What an aborted task does once it has held its point for `abort_hold_s`.
+enum class AbortAction : std::uint8_t {
+  Hover = 0,  // keep holding the point in the reference frame
+  Land = 1,   // descend vertically in the reference frame and disarm on contact
+};
+const char* to_string(AbortAction action);
 
 // Stage-machine and mission-controller parameters (config/mission.yaml). The paper gives
 // no numbers for the stage-end test; NOTES.md suggests 0.15 m / 0.3 m/s.
@@ -46,6 +54,18 @@ struct MissionParams {
   // knowing its frame's drag; the integral above removes what remains.
   double observer_window_s = 0.5;
   double observer_time_constant_s = 0.5;
+  // Abort (operator request): hold the point where the UAV was, in the reference frame it
+  // was flying in, for this long (s), then the safe action.
+  double abort_hold_s = 2.0;
+  AbortAction abort_action = AbortAction::Land;
+  double abort_descent_rate_m_s = 0.3;
+  // A descent has touched down when its reference is this far below the UAV (something
+  // holds it up) ...
+  double land_detect_gap_m = 0.1;
+  // ... and the UAV has not moved vertically faster than this ...
+  double land_detect_speed_m_s = 0.1;
+  // ... for this long (s): the motors are disarmed.
+  double land_detect_time_s = 0.5;
   // Control period (the controller runs at 100 Hz).
   double control_period_s = 0.01;
 

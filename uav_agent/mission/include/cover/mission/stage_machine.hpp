@@ -11,7 +11,19 @@
 
 namespace cover::mission {
 
-enum class MissionState : std::uint8_t { NotStarted = 0, Running = 1, Complete = 2, Failed = 3 };
+enum class MissionState : std::uint8_t {
+  NotStarted = 0,
+  Running = 1,
+  Complete = 2,
+  Failed = 3,
+  Aborted = 4,  // ended by the operator (StageMachine::abort)
+};
+
+// True once the task can no longer change state (complete, failed or aborted).
+inline bool is_terminal(MissionState state) {
+  return state == MissionState::Complete || state == MissionState::Failed ||
+         state == MissionState::Aborted;
+}
 
 enum class FailureReason : std::uint8_t {
   None = 0,
@@ -64,6 +76,8 @@ class StageMachine {
 
   // Ends the mission with a failure the caller detected (stale inputs, planner failure).
   void fail(FailureReason reason, double time_s);
+  // Ends the mission on the operator's request; false when it had already ended.
+  bool abort(double time_s);
 
   // Human-readable one-line status, e.g. for a failure: which process, stage, why.
   std::string describe() const;
