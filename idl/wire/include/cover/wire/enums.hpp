@@ -1,0 +1,32 @@
+#pragma once
+
+#include <optional>
+
+#include "cover/mission/mission_controller.hpp"
+#include "cover/mission/stage_machine.hpp"
+#include "cover/mission/task.hpp"
+#include "cover/model/stage.hpp"
+#include "cover/msg/types.hpp"
+#include "cover/sampc/solve_status.hpp"
+
+namespace cover::wire {
+
+// Library enum -> wire enum, and back. A wire value the library has no counterpart for
+// (an out-of-range number from a foreign writer, STAGE_IDLE, TASK_REJECTED) reads as
+// nullopt: the caller decides what is safe.
+msg::Stage to_msg(model::Stage stage, mission::MissionState state);  // IDLE before a task starts
+std::optional<model::Stage> from_msg(msg::Stage stage);
+
+msg::TaskState to_msg(mission::MissionState state);
+std::optional<mission::MissionState> from_msg(msg::TaskState state);
+
+msg::FailsafeState to_msg(mission::Failsafe failsafe);
+std::optional<mission::Failsafe> from_msg(msg::FailsafeState failsafe);
+
+msg::SolverStatus to_msg(sampc::SolveStatus status);
+std::optional<sampc::SolveStatus> from_msg(msg::SolverStatus status);
+
+msg::FinalAction to_msg(mission::FinalAction action);
+std::optional<mission::FinalAction> from_msg(msg::FinalAction action);
+
+}  // namespace cover::wire

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "cover/mission/mission_controller.hpp"
+#include "cover/model/relative_state.hpp"
+#include "cover/msg/types.hpp"
+#include "cover/ugv/imu_filter.hpp"
+
+namespace cover::wire {
+
+// Relative state of UAV `uav_id` in G_`ugv_id`.
+msg::RelativeState to_msg(const model::RelativeState& state, std::uint32_t uav_id,
+                          std::uint32_t ugv_id, double position_std_m = 0.0);
+// nullopt when the sender marked the state invalid (its estimator lost the UGV).
+std::optional<model::RelativeState> from_msg(const msg::RelativeState& state);
+
+// The UGV agent's filtered IMU (a, Omega, beta in G_k).
+msg::UgvImu to_msg(const ugv::FilteredImu& imu, std::uint32_t ugv_id, std::uint32_t seq);
+mission::UgvImuMeasurement from_msg(const msg::UgvImu& imu);
+
+}  // namespace cover::wire

@@ -1,0 +1,107 @@
+#include "cover/wire/enums.hpp"
+
+#include <array>
+#include <utility>
+
+namespace cover::wire {
+namespace {
+
+// Each mapping is one table of (library, wire) pairs, read in both directions.
+template <typename Lib, typename Wire, std::size_t N>
+Wire lib_to_wire(const std::array<std::pair<Lib, Wire>, N>& table, Lib value, Wire fallback) {
+  for (const auto& [lib, wire] : table) {
+    if (lib == value) return wire;
+  }
+  return fallback;
+}
+
+template <typename Lib, typename Wire, std::size_t N>
+std::optional<Lib> wire_to_lib(const std::array<std::pair<Lib, Wire>, N>& table, Wire value) {
+  for (const auto& [lib, wire] : table) {
+    if (wire == value) return lib;
+  }
+  return std::nullopt;
+}
+
+using mission::Failsafe;
+using mission::MissionState;
+using model::Stage;
+using sampc::SolveStatus;
+
+constexpr std::array<std::pair<Stage, msg::Stage>, 3> kStages{{
+    {Stage::Initial, msg::Stage::STAGE_INITIAL},
+    {Stage::Transition, msg::Stage::STAGE_TRANSITION},
+    {Stage::Final, msg::Stage::STAGE_FINAL},
+}};
+
+constexpr std::array<std::pair<MissionState, msg::TaskState>, 5> kTaskStates{{
+    {MissionState::NotStarted, msg::TaskState::TASK_PENDING},
+    {MissionState::Running, msg::TaskState::TASK_RUNNING},
+    {MissionState::Complete, msg::TaskState::TASK_SUCCEEDED},
+    {MissionState::Failed, msg::TaskState::TASK_FAILED},
+    {MissionState::Aborted, msg::TaskState::TASK_CANCELLED},
+}};
+
+constexpr std::array<std::pair<Failsafe, msg::FailsafeState>, 7> kFailsafes{{
+    {Failsafe::None, msg::FailsafeState::FAILSAFE_NONE},
+    {Failsafe::WaitingForInputs, msg::FailsafeState::FAILSAFE_WAITING_FOR_INPUTS},
+    {Failsafe::StaleInput, msg::FailsafeState::FAILSAFE_STALE_INPUT},
+    {Failsafe::SolverError, msg::FailsafeState::FAILSAFE_SOLVER_ERROR},
+    {Failsafe::MissionFailed, msg::FailsafeState::FAILSAFE_MISSION_FAILED},
+    {Failsafe::Landed, msg::FailsafeState::FAILSAFE_LANDED},
+    {Failsafe::Aborted, msg::FailsafeState::FAILSAFE_ABORTED},
+}};
+
+constexpr std::array<std::pair<SolveStatus, msg::SolverStatus>, 5> kSolveStatuses{{
+    {SolveStatus::Ok, msg::SolverStatus::SOLVER_OK},
+    {SolveStatus::SqpNotConverged, msg::SolverStatus::SOLVER_SQP_NOT_CONVERGED},
+    {SolveStatus::QpNotConverged, msg::SolverStatus::SOLVER_QP_NOT_CONVERGED},
+    {SolveStatus::InvalidInput, msg::SolverStatus::SOLVER_INVALID_INPUT},
+    {SolveStatus::NonFiniteSolution, msg::SolverStatus::SOLVER_NON_FINITE},
+}};
+
+constexpr std::array<std::pair<mission::FinalAction, msg::FinalAction>, 3> kFinalActions{{
+    {mission::FinalAction::None, msg::FinalAction::FINAL_ACTION_NONE},
+    {mission::FinalAction::Land, msg::FinalAction::FINAL_ACTION_LAND},
+    {mission::FinalAction::Deliver, msg::FinalAction::FINAL_ACTION_DELIVER},
+}};
+
+}  // namespace
+
+msg::Stage to_msg(Stage stage, MissionState state) {
+  if (state == MissionState::NotStarted) return msg::Stage::STAGE_IDLE;
+  return lib_to_wire(kStages, stage, msg::Stage::STAGE_IDLE);
+}
+std::optional<Stage> from_msg(msg::Stage stage) {
+  return wire_to_lib(kStages, stage);
+}
+
+msg::TaskState to_msg(MissionState state) {
+  return lib_to_wire(kTaskStates, state, msg::TaskState::TASK_FAILED);
+}
+std::optional<MissionState> from_msg(msg::TaskState state) {
+  return wire_to_lib(kTaskStates, state);
+}
+
+msg::FailsafeState to_msg(Failsafe failsafe) {
+  return lib_to_wire(kFailsafes, failsafe, msg::FailsafeState::FAILSAFE_SOLVER_ERROR);
+}
+std::optional<Failsafe> from_msg(msg::FailsafeState failsafe) {
+  return wire_to_lib(kFailsafes, failsafe);
+}
+
+msg::SolverStatus to_msg(SolveStatus status) {
+  return lib_to_wire(kSolveStatuses, status, msg::SolverStatus::SOLVER_NON_FINITE);
+}
+std::optional<SolveStatus> from_msg(msg::SolverStatus status) {
+  return wire_to_lib(kSolveStatuses, status);
+}
+
+msg::FinalAction to_msg(mission::FinalAction action) {
+  return lib_to_wire(kFinalActions, action, msg::FinalAction::FINAL_ACTION_NONE);
+}
+std::optional<mission::FinalAction> from_msg(msg::FinalAction action) {
+  return wire_to_lib(kFinalActions, action);
+}
+
+}  // namespace cover::wire

@@ -1,0 +1,96 @@
+#include "cover/wire/task.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "cover/wire/eigen.hpp"
+#include "cover/wire/enums.hpp"
+
+namespace cover::wire {
+
+msg::TransitionTask to_msg(const mission::Task& task, double stamp_s) {
+  msg::TransitionTask m;
+  m.task_id = task.task_id;
+  m.uav_id = static_cast<std::uint32_t>(std::max(task.uav_id, 0));
+  m.stamp_ns = to_stamp_ns(stamp_s);
+  for (const mission::TransitionProcess& p : task.processes) {
+    msg::TransitionProcess w;
+    w.from_ugv = static_cast<std::uint32_t>(std::max(p.from_ugv, 0));
+    w.to_ugv = static_cast<std::uint32_t>(std::max(p.to_ugv, 0));
+    w.initial_point_m = to_msg(p.initial_point_m);
+    w.transition_point_m = to_msg(p.transition_point_m);
+    w.final_point_m = to_msg(p.final_point_m);
+    w.final_action = to_msg(p.final_action);
+    w.vmax_m_s = p.vmax_m_s;
+    w.amax_m_s2 = p.amax_m_s2;
+    m.processes.push_back(w);
+  }
+  return m;
+}
+
+namespace {
+// A wire id beyond int's range must not wrap into a valid UGV: it becomes -1 (invalid).
+int to_id(std::uint32_t id) {
+  return id > static_cast<std::uint32_t>(std::numeric_limits<int>::max()) ? -1
+                                                                          : static_cast<int>(id);
+}
+}  // namespace
+
+mission::Task from_msg(const msg::TransitionTask& m) {
+  mission::Task task;
+  task.task_id = m.task_id;
+  task.uav_id = to_id(m.uav_id);
+  for (const msg::TransitionProcess& w : m.processes) {
+    mission::TransitionProcess p;
+    p.from_ugv = to_id(w.from_ugv);
+    p.to_ugv = to_id(w.to_ugv);
+    p.initial_point_m = to_eigen(w.initial_point_m);
+    p.transition_point_m = to_eigen(w.transition_point_m);
+    p.final_point_m = to_eigen(w.final_point_m);
+    const auto action = from_msg(w.final_action);
+    p.final_action = action.value_or(mission::FinalAction::None);
+    if (!action) p.final_point_m.setConstant(std::numeric_limits<double>::quiet_NaN());
+    p.vmax_m_s = w.vmax_m_s;
+    p.amax_m_s2 = w.amax_m_s2;
+    task.processes.push_back(p);
+  }
+  return task;
+}
+
+double task_progress(const mission::StageDecision& decision, std::size_t process_count) {
+  if (process_count == 0) return 0.0;
+  if (decision.state == mission::MissionState::Complete) return 1.0;
+  if (decision.state == mission::MissionState::NotStarted) return 0.0;
+  const double stages_done = static_cast<double>(decision.process_index) * 3.0 +
+                             static_cast<double>(static_cast<int>(decision.stage));
+  return std::clamp(stages_done / (3.0 * static_cast<double>(process_count)), 0.0, 1.0);
+}
+
+msg::TaskStatus to_task_status(const std::string& task_id, std::uint32_t uav_id, double stamp_s,
+                               const mission::StageDecision& decision, std::size_t process_count,
+                               const std::string& message) {
+  msg::TaskStatus m;
+  m.task_id = task_id;
+  m.uav_id = uav_id;
+  m.stamp_ns = to_stamp_ns(stamp_s);
+  m.state = to_msg(decision.state);
+  m.process_index = static_cast<std::uint32_t>(decision.process_index);
+  m.stage = to_msg(decision.stage, decision.state);
+  m.progress = task_progress(decision, process_count);
+  m.message = message;
+  return m;
+}
+
+msg::TaskStatus rejected_task_status(const msg::TransitionTask& task, std::uint32_t uav_id,
+                                     double stamp_s, const std::string& reason) {
+  msg::TaskStatus m;
+  m.task_id = task.task_id;
+  m.uav_id = uav_id;
+  m.stamp_ns = to_stamp_ns(stamp_s);
+  m.state = msg::TaskState::TASK_REJECTED;
+  m.stage = msg::Stage::STAGE_IDLE;
+  m.message = reason;
+  return m;
+}
+
+}  // namespace cover::wire
