@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <new>
 #include <optional>
@@ -124,9 +125,53 @@ std::size_t segment_size(std::uint64_t payload_size) {
   return kPayloadOffset + static_cast<std::size_t>(payload_size);
 }
 
+// Sizes a segment just created as `fd` and maps it read-write; unlinks it and throws if
+// either fails.
+void* map_new(const std::string& name, int fd, std::size_t size) {
+  void* base = ftruncate(fd, static_cast<off_t>(size)) == 0
+                   ? mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0)
+                   : MAP_FAILED;
+  if (base != MAP_FAILED) return base;
+  const std::runtime_error error = system_error("ftruncate/mmap", name);
+  shm_unlink(name.c_str());
+  close(fd);
+  throw error;
+}
+
+void publish_header(void* base, std::uint32_t layout_version, std::uint64_t payload_size) {
+  // ftruncate zero-filled the memory; the header's objects begin their lifetime here.
+  auto* header = new (base) SegmentHeader{};
+  header->layout_version = layout_version;
+  header->writer_pid = static_cast<std::int32_t>(getpid());
+  header->payload_size = payload_size;
+  header->magic.store(kSegmentMagic, std::memory_order_release);  // publishes the rest
+}
+
 // Reasons a reader keeps waiting, for the timeout message.
 constexpr const char* kAbsent = "does not exist";
 constexpr const char* kNoHeader = "exists but its header is not complete";
+
+// Maps `name` read-only if it exists and is at least a header long (its `size` set);
+// nullptr otherwise, with `waiting_because` saying why.
+void* map_for_reading(const std::string& name, std::size_t& size, const char*& waiting_because) {
+  const int fd = shm_open(name.c_str(), O_RDONLY, 0);
+  if (fd < 0) {
+    if (errno == ENOENT) return nullptr;
+    throw system_error("shm_open", name);
+  }
+  waiting_because = kNoHeader;
+  struct stat st {};
+  if (fstat(fd, &st) != 0) {
+    const std::runtime_error error = system_error("fstat", name);
+    close(fd);
+    throw error;
+  }
+  size = static_cast<std::size_t>(st.st_size);
+  void* base =
+      size >= kPayloadOffset ? mmap(nullptr, size, PROT_READ, MAP_SHARED, fd, 0) : MAP_FAILED;
+  close(fd);  // the mapping keeps the memory; a reader needs no descriptor
+  return base == MAP_FAILED ? nullptr : base;
+}
 
 void check_header(const SegmentHeader& header, std::size_t size, const std::string& name,
                   std::uint32_t layout_version, std::uint64_t payload_size) {
@@ -171,21 +216,8 @@ Segment Segment::create(const std::string& name, std::uint32_t layout_version,
       continue;
     }
     const std::size_t size = segment_size(payload_size);
-    void* base = ftruncate(fd, static_cast<off_t>(size)) == 0
-                     ? mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0)
-                     : MAP_FAILED;
-    if (base == MAP_FAILED) {
-      const std::runtime_error error = system_error("ftruncate/mmap", name);
-      shm_unlink(name.c_str());
-      close(fd);
-      throw error;
-    }
-    // ftruncate zero-filled the memory; the header's objects begin their lifetime here.
-    auto* header = new (base) SegmentHeader{};
-    header->layout_version = layout_version;
-    header->writer_pid = static_cast<std::int32_t>(getpid());
-    header->payload_size = payload_size;
-    header->magic.store(kSegmentMagic, std::memory_order_release);  // publishes the header
+    void* base = map_new(name, fd, size);
+    publish_header(base, layout_version, payload_size);
     return Segment(name, fd, base, size, true);
   }
   throw std::runtime_error("shared-memory segment " + name + ": another process recreated it " +
@@ -198,25 +230,12 @@ Segment Segment::open(const std::string& name, std::uint32_t layout_version,
   const auto deadline = Clock::now() + wait;
   while (true) {
     const char* waiting_because = kAbsent;
-    const int fd = shm_open(name.c_str(), O_RDONLY, 0);
-    if (fd < 0 && errno != ENOENT) throw system_error("shm_open", name);
-    if (fd >= 0) {
-      waiting_because = kNoHeader;
-      struct stat st {};
-      if (fstat(fd, &st) != 0) {
-        close(fd);
-        throw system_error("fstat", name);
-      }
-      const auto size = static_cast<std::size_t>(st.st_size);
-      void* base =
-          size >= kPayloadOffset ? mmap(nullptr, size, PROT_READ, MAP_SHARED, fd, 0) : MAP_FAILED;
-      close(fd);  // the mapping keeps the memory; a reader needs no descriptor
-      if (base != MAP_FAILED) {
-        Segment segment(name, -1, base, size, false);
-        if (segment.header().magic.load(std::memory_order_acquire) != 0) {
-          check_header(segment.header(), size, name, layout_version, payload_size);
-          return segment;
-        }
+    std::size_t size = 0;
+    if (void* base = map_for_reading(name, size, waiting_because)) {
+      Segment segment(name, -1, base, size, false);
+      if (segment.header().magic.load(std::memory_order_acquire) != 0) {
+        check_header(segment.header(), size, name, layout_version, payload_size);
+        return segment;
       }
     }
     if (Clock::now() >= deadline) {

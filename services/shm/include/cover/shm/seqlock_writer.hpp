@@ -12,8 +12,8 @@
 
 namespace cover::shm {
 
-// The one writer of a shared-memory segment holding a T, published under a seqlock so
-// that readers in other processes never see a half-written value and never block it.
+// The one writer of a shared-memory segment holding a T (one thread writes), published under a
+// seqlock so that readers in other processes never see a half-written value and never block it.
 //
 // Seqlock, writer side: the sequence turns odd, a release fence keeps the payload stores
 // from moving above that, the payload is written, and the even sequence is stored with
