@@ -1,0 +1,66 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <type_traits>
+
+#include "cover/sim/world_state.hpp"
+#include "cover/ugv/imu_filter.hpp"
+
+namespace cover::sim {
+
+// The world as cover-sim shares it through POSIX shared memory (services/shm, seqlock):
+// ground truth for tests and viewers, and each UGV's raw IMU, which the UGV agents read
+// as they would read their device. Fixed capacity, no pointers: memcpy-able. Bump the
+// layout version whenever a field changes.
+inline constexpr std::uint32_t kWorldSegmentLayoutVersion = 1;
+inline constexpr int kMaxUavs = 4;
+// Raw IMU samples kept per UGV: 64 at 200 Hz is 320 ms, far more than a reader lags.
+inline constexpr int kImuRingCapacity = 64;
+
+// One raw IMU sample (what the chip outputs), in G_k.
+struct RawImuSample {
+  double stamp_s = 0.0;
+  Vec3 specific_force_m_s2;
+  Vec3 angular_velocity_rad_s;
+};
+
+// Sample n (0-based, counted since the start) lives in slots[n % kImuRingCapacity].
+struct ImuRing {
+  std::uint64_t written = 0;
+  std::array<RawImuSample, kImuRingCapacity> slots{};
+};
+
+// Why the simulated flight controller ignores the agent (PX4's offboard-loss failsafe).
+enum class OffboardState : std::uint8_t {
+  WaitingForAgent = 0,  // no command yet: motors off
+  Offboard = 1,         // flying the agent's commands
+  LossDescent = 2,      // no fresh command for offboard_timeout_s: level, descend, disarm
+  LossDisarmed = 3,     // touched down during the loss descent: motors off
+};
+const char* to_string(OffboardState state);
+
+struct SharedUav {
+  QuadrotorState state;
+  ContactState contact;
+  PayloadState payload;
+  QuadrotorCommand command;  // what the plant holds
+  OffboardState offboard = OffboardState::WaitingForAgent;
+};
+
+struct SharedWorld {
+  double time_s = 0.0;
+  std::uint64_t tick = 0;  // control periods since start
+  std::int32_t ugv_count = 0;
+  std::int32_t uav_count = 0;
+  std::array<UgvState, kMaxUgvs> ugvs{};
+  std::array<SharedUav, kMaxUavs> uavs{};
+  std::array<ImuRing, kMaxUgvs> imu{};
+};
+
+static_assert(std::is_trivially_copyable_v<SharedWorld>);
+
+RawImuSample to_raw(const ugv::ImuSample& sample);
+ugv::ImuSample from_raw(const RawImuSample& sample);
+
+}  // namespace cover::sim
