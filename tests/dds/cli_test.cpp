@@ -4,6 +4,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <fstream>
+#include <string>
+#include <vector>
+
 #include "cover/process/child_process.hpp"
 #include "dds_test_support.hpp"
 
@@ -60,6 +64,46 @@ TEST(CoverCliErrors, UnknownFieldTopicAndDomainAreClearErrors) {
   EXPECT_EQ(bad_domain.wait(20s), 2);
   cover::process::ChildProcess bad_vendor({COVER_CLI, "topics"}, {"COVER_DDS=opendds"});
   EXPECT_EQ(bad_vendor.wait(20s), 0) << "`cover topics` needs no DDS";
+}
+
+// The lines of docs/topics.md's topic table, header included.
+std::vector<std::string> documented_table() {
+  std::ifstream docs(std::string(COVER_SOURCE_DIR) + "/docs/topics.md");
+  std::vector<std::string> table;
+  std::string line;
+  while (std::getline(docs, line)) {
+    if (table.empty() && line.rfind("| topic | type |", 0) != 0) continue;
+    if (line.rfind("|", 0) != 0) break;
+    table.push_back(line);
+  }
+  return table;
+}
+
+std::vector<std::string> output_lines(const std::vector<std::string>& argv) {
+  cover::process::ChildProcess child(argv, {}, /*capture_stdout=*/true);
+  std::vector<std::string> lines;
+  while (auto line = child.read_line(20s)) lines.push_back(*line);
+  EXPECT_EQ(child.wait(20s), 0);
+  return lines;
+}
+
+TEST(CoverCliTopics, MarkdownIsTheTableOfTheDocs) {
+  const auto documented = documented_table();
+  ASSERT_GT(documented.size(), 2u) << "no topic table in docs/topics.md";
+  EXPECT_EQ(output_lines({COVER_CLI, "topics", "--markdown"}), documented)
+      << "regenerate the table in docs/topics.md with `cover topics --markdown`";
+}
+
+TEST(CoverCliTopics, JsonAndTableListEveryTopic) {
+  const auto rows = documented_table().size() - 2;
+  const auto json = output_lines({COVER_CLI, "topics", "--json"});
+  ASSERT_EQ(json.size(), rows);
+  const auto first = nlohmann::json::parse(json.front());
+  EXPECT_EQ(first["topic"], "cover/ugv/<k>/imu");
+  EXPECT_EQ(first["type"], "cover::idl::UgvImu");
+  EXPECT_EQ(first["qos"], "sensor");
+  EXPECT_TRUE(first.contains("publisher_subscribers"));
+  EXPECT_EQ(output_lines({COVER_CLI, "topics"}).size(), 2 * rows);  // entry + description
 }
 
 }  // namespace

@@ -37,9 +37,10 @@ template <typename T>
 struct TypedEcho : Echo {
   TypedEcho(cover::dds::Participant& participant, const std::string& prefix) {
     const std::string base = prefix + "/" + short_name();
-    writer = participant.make_writer<T>(base + "/out", cover::dds::state_qos());
-    reader = participant.make_reader<T>(base + "/in", cover::dds::state_qos(),
-                                        [this](const T& sample) { writer.write(sample); });
+    using Topic = cover::dds::Topic<T>;
+    writer = participant.make_writer(Topic::uncatalogued(base + "/out", cover::dds::state_qos()));
+    reader = participant.make_reader(Topic::uncatalogued(base + "/in", cover::dds::state_qos()),
+                                     [this](const T& sample) { writer.write(sample); });
   }
   static std::string short_name() {
     const std::string full = T::kTypeName;

@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <chrono>
+#include <functional>
 #include <string>
+#include <thread>
 
 #include "cover/dds/participant_options.hpp"
 
@@ -23,6 +26,16 @@ inline cover::dds::ParticipantOptions private_options(cover::dds::Vendor vendor)
   options.vendor = vendor;
   options.domain_id = private_domain_id();
   return options;
+}
+
+// Polls `condition` every millisecond until it holds or `timeout` passes; its final value.
+inline bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
+  const auto give_up = std::chrono::steady_clock::now() + timeout;
+  while (!condition()) {
+    if (std::chrono::steady_clock::now() >= give_up) return condition();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
 }
 
 }  // namespace cover::test

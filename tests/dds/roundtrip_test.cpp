@@ -38,8 +38,10 @@ void expect_round_trip(cover::dds::Participant& participant, const std::string& 
                        std::uint64_t seed) {
   SCOPED_TRACE(T::kTypeName);
   const std::string base = prefix + "/" + short_name<T>();
-  auto reader = participant.make_reader<T>(base + "/out", cover::dds::state_qos());
-  auto writer = participant.make_writer<T>(base + "/in", cover::dds::state_qos());
+  using Topic = cover::dds::Topic<T>;
+  auto reader =
+      participant.make_reader(Topic::uncatalogued(base + "/out", cover::dds::state_qos()));
+  auto writer = participant.make_writer(Topic::uncatalogued(base + "/in", cover::dds::state_qos()));
   ASSERT_TRUE(writer.wait_for_readers(1, 15s)) << "peer's reader never matched";
   ASSERT_TRUE(reader.wait_for_writers(1, 15s)) << "peer's writer never matched";
 

@@ -26,8 +26,9 @@ using namespace std::chrono_literals;
 
 // Reliable so that a lost sample would be retransmitted rather than counted as lost;
 // keep-last 1 because only one ping is in flight at a time.
-cover::dds::QosProfile ping_qos() {
-  return {"bench", cover::dds::Reliability::Reliable, cover::dds::Durability::Volatile, 1, 0.0};
+cover::dds::Topic<RelativeState> bench_topic(const std::string& name) {
+  return cover::dds::Topic<RelativeState>::uncatalogued(
+      name, {"bench", cover::dds::Reliability::Reliable, cover::dds::Durability::Volatile, 1, 0.0});
 }
 
 struct SeriesResult {
@@ -116,9 +117,9 @@ nlohmann::ordered_json run_pair(Vendor ping_vendor, Vendor pong_vendor, const Be
   options.participant_name = "cover-bench-ping";
   cover::dds::Participant participant(options);
   PongWaiter waiter;
-  auto pong_reader = participant.make_reader<RelativeState>(
-      opts.prefix + "/pong", ping_qos(), [&waiter](const RelativeState& s) { waiter.on_pong(s); });
-  auto ping = participant.make_writer<RelativeState>(opts.prefix + "/ping", ping_qos());
+  auto pong_reader = participant.make_reader(
+      bench_topic(opts.prefix + "/pong"), [&waiter](const RelativeState& s) { waiter.on_pong(s); });
+  auto ping = participant.make_writer(bench_topic(opts.prefix + "/ping"));
   if (!ping.wait_for_readers(1, 20s) || !pong_reader.wait_for_writers(1, 20s)) {
     throw std::runtime_error("ping and pong never matched");
   }
@@ -198,9 +199,9 @@ int run_dds_pong(const std::vector<std::string>& args) {
   options.domain_id = domain_id;
   options.participant_name = "cover-bench-pong";
   cover::dds::Participant participant(options);
-  auto pong = participant.make_writer<RelativeState>(prefix + "/pong", ping_qos());
-  auto ping = participant.make_reader<RelativeState>(
-      prefix + "/ping", ping_qos(), [&pong](const RelativeState& sample) { pong.write(sample); });
+  auto pong = participant.make_writer(bench_topic(prefix + "/pong"));
+  auto ping = participant.make_reader(bench_topic(prefix + "/ping"),
+                                      [&pong](const RelativeState& sample) { pong.write(sample); });
   std::cout << "ready" << std::endl;
   while (!cover::process::ShutdownSignal::wait_for(1000ms)) {
   }

@@ -13,8 +13,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   bool topics_json = false;
+  bool topics_markdown = false;
   auto* topics = app.add_subcommand("topics", "List the topic catalogue");
-  topics->add_flag("--json", topics_json, "JSON lines instead of a table");
+  auto* json_flag = topics->add_flag("--json", topics_json, "JSON lines instead of a table");
+  topics->add_flag("--markdown", topics_markdown, "The table of docs/topics.md")
+      ->excludes(json_flag);
 
   cover::cli::EchoRequest echo_request;
   cover::dds::DdsCliOptions echo_dds;
@@ -40,7 +43,12 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*topics) return cover::cli::list_topics(topics_json);
+    if (*topics) {
+      using cover::cli::TopicsFormat;
+      return cover::cli::list_topics(topics_json       ? TopicsFormat::Json
+                                     : topics_markdown ? TopicsFormat::Markdown
+                                                       : TopicsFormat::Table);
+    }
     if (*echo) return cover::cli::echo(echo_dds.resolve("cover-echo"), echo_request);
     if (*pub) return cover::cli::publish(pub_dds.resolve("cover-pub"), pub_request);
   } catch (const std::exception& e) {

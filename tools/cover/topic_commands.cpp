@@ -25,10 +25,9 @@ const dds::TopicInfo& lookup(const std::string& topic) {
 }
 
 template <typename T>
-int echo_typed(dds::Participant& participant, const dds::TopicInfo& info,
-               const EchoRequest& request) {
-  auto reader = participant.make_reader<T>(
-      request.topic, dds::qos_profile(info.qos_profile), [&request](const T& sample) {
+int echo_typed(dds::Participant& participant, const EchoRequest& request) {
+  auto reader =
+      participant.make_reader(dds::catalogued_topic<T>(request.topic), [&request](const T& sample) {
         const auto json = dds::to_json(sample);
         std::cout << (request.json ? json.dump() : json.dump(2)) << std::endl;
       });
@@ -47,10 +46,10 @@ int echo_typed(dds::Participant& participant, const dds::TopicInfo& info,
 }
 
 template <typename T>
-int publish_typed(dds::Participant& participant, const dds::TopicInfo& info,
-                  const PubRequest& request) {
+int publish_typed(dds::Participant& participant, const PubRequest& request) {
   const T sample = dds::from_json<T>(nlohmann::json::parse(request.json));
-  auto writer = participant.make_writer<T>(request.topic, dds::qos_profile(info.qos_profile));
+  const auto topic = dds::catalogued_topic<T>(request.topic);
+  auto writer = participant.make_writer(topic);
   const auto wait = std::chrono::milliseconds(static_cast<long>(request.wait_for_reader_s * 1000));
   if (!writer.wait_for_readers(1, wait)) {
     std::cerr << "cover pub: no subscriber on " << request.topic << " yet; publishing anyway\n";
@@ -68,29 +67,60 @@ int publish_typed(dds::Participant& participant, const dds::TopicInfo& info,
     std::this_thread::sleep_until(next);
   }
   // Reliable topics: make sure the subscribers have the samples before the writer goes.
-  if (dds::qos_profile(info.qos_profile).reliability == dds::Reliability::Reliable) {
-    writer.wait_for_acknowledgments(2s);
-  }
+  if (topic.qos().reliability == dds::Reliability::Reliable) writer.wait_for_acknowledgments(2s);
   return 0;
+}
+
+// "cover::idl::UgvImu" -> "UgvImu", as docs/topics.md writes types.
+std::string short_type_name(const std::string& type_name) {
+  return type_name.substr(type_name.rfind(':') + 1);
+}
+
+void print_markdown(const std::vector<dds::TopicInfo>& catalog) {
+  std::cout << "| topic | type | rate | QoS profile | publisher -> subscribers |\n"
+            << "| --- | --- | --- | --- | --- |\n";
+  for (const auto& entry : catalog) {
+    std::cout << "| `" << entry.pattern << "` | `" << short_type_name(entry.type_name) << "` | "
+              << entry.rate << " | " << entry.qos_profile << " | " << entry.flow << " |\n";
+  }
+}
+
+void print_json_lines(const std::vector<dds::TopicInfo>& catalog) {
+  for (const auto& entry : catalog) {
+    std::cout << nlohmann::json{{"topic", entry.pattern},
+                                {"type", entry.type_name},
+                                {"qos", entry.qos_profile},
+                                {"rate", entry.rate},
+                                {"publisher_subscribers", entry.flow},
+                                {"description", entry.description}}
+                     .dump()
+              << "\n";
+  }
+}
+
+void print_table(const std::vector<dds::TopicInfo>& catalog) {
+  for (const auto& entry : catalog) {
+    std::cout << std::left << std::setw(26) << entry.pattern << std::setw(21)
+              << short_type_name(entry.type_name) << std::setw(9) << entry.qos_profile
+              << std::setw(11) << entry.rate << entry.flow << "\n"
+              << std::setw(26) << "" << entry.description << "\n";
+  }
 }
 
 }  // namespace
 
-int list_topics(bool json) {
-  for (const auto& entry : dds::topic_catalog()) {
-    if (json) {
-      std::cout << nlohmann::json{{"topic", entry.pattern},
-                                  {"type", entry.type_name},
-                                  {"qos", entry.qos_profile},
-                                  {"rate", entry.rate},
-                                  {"description", entry.description}}
-                       .dump()
-                << "\n";
-    } else {
-      std::cout << std::left << std::setw(28) << entry.pattern << std::setw(34) << entry.type_name
-                << std::setw(9) << entry.qos_profile << std::setw(11) << entry.rate
-                << entry.description << "\n";
-    }
+int list_topics(TopicsFormat format) {
+  const auto& catalog = dds::topic_catalog();
+  switch (format) {
+    case TopicsFormat::Table:
+      print_table(catalog);
+      break;
+    case TopicsFormat::Json:
+      print_json_lines(catalog);
+      break;
+    case TopicsFormat::Markdown:
+      print_markdown(catalog);
+      break;
   }
   return 0;
 }
@@ -100,7 +130,7 @@ int echo(const dds::ParticipantOptions& options, const EchoRequest& request) {
   dds::Participant participant(options);
   int rc = 0;
   msg::with_type(info.type_name, [&](auto tag) {
-    rc = echo_typed<typename decltype(tag)::type>(participant, info, request);
+    rc = echo_typed<typename decltype(tag)::type>(participant, request);
   });
   return rc;
 }
@@ -116,7 +146,7 @@ int publish(const dds::ParticipantOptions& options, const PubRequest& request) {
   dds::Participant participant(options);
   int rc = 0;
   msg::with_type(info.type_name, [&](auto tag) {
-    rc = publish_typed<typename decltype(tag)::type>(participant, info, request);
+    rc = publish_typed<typename decltype(tag)::type>(participant, request);
   });
   return rc;
 }

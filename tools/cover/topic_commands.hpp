@@ -6,8 +6,13 @@
 
 namespace cover::cli {
 
-// `cover topics`: prints the topic catalogue (a table, or JSON lines with `json`).
-int list_topics(bool json);
+enum class TopicsFormat {
+  Table,     // for reading in a terminal
+  Json,      // one JSON object per topic and line
+  Markdown,  // exactly the table of docs/topics.md, which a test compares with the catalogue
+};
+// `cover topics`: prints the topic catalogue.
+int list_topics(TopicsFormat format);
 
 struct EchoRequest {
   std::string topic;

@@ -2,35 +2,17 @@
 
 #include <cctype>
 
-namespace cover::dds {
+#include "cover/dds/dds_error.hpp"
 
-const std::vector<TopicInfo>& topic_catalog() {
-  static const std::vector<TopicInfo> catalog = {
-      {"cover/ugv/<k>/imu", "cover::idl::UgvImu", "sensor", "200 Hz",
-       "UGV k's filtered IMU in G_k (ugv_agent)"},
-      {"cover/uav/<u>/rel/<k>", "cover::idl::RelativeState", "sensor", "100 Hz",
-       "UAV u's state relative to UGV k, in G_k (relative localisation / sim)"},
-      {"cover/uav/<u>/cmd", "cover::idl::UavCommand", "command", "100 Hz",
-       "thrust and body-rate command to UAV u (uav_agent)"},
-      {"cover/uav/<u>/status", "cover::idl::UavStatus", "state", "10 Hz",
-       "stage, reference frame, solver and failsafe state of UAV u (uav_agent)"},
-      {"cover/uav/<u>/trace", "cover::idl::ControlTrace", "command", "100 Hz",
-       "per control step: stage, failsafe, solver, reference point of UAV u (uav_agent)"},
-      {"cover/ugv/<k>/status", "cover::idl::UgvStatus", "state", "1 Hz",
-       "UGV k's agent heartbeat: IMU source, rate, health (ugv_agent)"},
-      {"cover/sim/clock", "cover::idl::SimClock", "command", "100 Hz",
-       "the simulator's time, one sample per control period (sim)"},
-      {"cover/uav/<u>/reference", "cover::idl::ReferenceTrajectory", "state", "per stage",
-       "sampled reference of the current stage, for display (uav_agent)"},
-      {"cover/task/request", "cover::idl::TransitionTask", "state", "on demand",
-       "task sequences dispatched to a UAV (task_manager)"},
-      {"cover/task/status", "cover::idl::TaskStatus", "state", "on change",
-       "progress and outcome of each task (uav_agent)"},
-  };
-  return catalog;
+namespace cover::dds {
+namespace {
+
+template <typename T, typename... Ids>
+TopicInfo info_of(const TopicDescriptor<T, Ids...>& row) {
+  return {std::string(row.pattern), T::kTypeName,          row.qos().name,
+          std::string(row.rate),    std::string(row.flow), std::string(row.description)};
 }
 
-namespace {
 // Matches `name` against `pattern`, where "<x>" stands for one or more digits.
 bool matches(std::string_view pattern, std::string_view name) {
   std::size_t p = 0, n = 0;
@@ -49,7 +31,23 @@ bool matches(std::string_view pattern, std::string_view name) {
   }
   return n == name.size();
 }
+
 }  // namespace
+
+std::string substitute(std::string_view pattern, std::string_view placeholder,
+                       std::uint32_t value) {
+  std::string name(pattern);
+  const std::size_t at = name.find(placeholder);
+  if (at != std::string::npos) name.replace(at, placeholder.size(), std::to_string(value));
+  return name;
+}
+
+const std::vector<TopicInfo>& topic_catalog() {
+  static const std::vector<TopicInfo> catalog =
+      std::apply([](const auto&... rows) { return std::vector<TopicInfo>{info_of(rows)...}; },
+                 topics::kCatalog);
+  return catalog;
+}
 
 const TopicInfo* find_topic(std::string_view topic_name) {
   for (const auto& info : topic_catalog()) {
@@ -58,20 +56,25 @@ const TopicInfo* find_topic(std::string_view topic_name) {
   return nullptr;
 }
 
-std::string ugv_imu_topic(std::uint32_t ugv_id) {
-  return "cover/ugv/" + std::to_string(ugv_id) + "/imu";
+const TopicInfo& require_catalogued(std::string_view name, std::string_view type_name) {
+  const TopicInfo* info = find_topic(name);
+  if (!info) {
+    throw DdsError("topic '" + std::string(name) +
+                   "' is not in the catalogue (see `cover topics`)");
+  }
+  if (info->type_name != type_name) {
+    throw DdsError("topic '" + std::string(name) + "' carries " + info->type_name + ", not " +
+                   std::string(type_name));
+  }
+  return *info;
 }
-std::string relative_state_topic(std::uint32_t uav_id, std::uint32_t ugv_id) {
-  return "cover/uav/" + std::to_string(uav_id) + "/rel/" + std::to_string(ugv_id);
-}
-std::string uav_command_topic(std::uint32_t uav_id) {
-  return "cover/uav/" + std::to_string(uav_id) + "/cmd";
-}
-std::string uav_status_topic(std::uint32_t uav_id) {
-  return "cover/uav/" + std::to_string(uav_id) + "/status";
-}
-std::string uav_reference_topic(std::uint32_t uav_id) {
-  return "cover/uav/" + std::to_string(uav_id) + "/reference";
+
+void require_uncatalogued(std::string_view name) {
+  if (const TopicInfo* info = find_topic(name)) {
+    throw DdsError("topic '" + std::string(name) + "' is catalogued as " + info->pattern + " (" +
+                   info->type_name + ", QoS " + info->qos_profile +
+                   "): use its cover::dds::topics accessor, not Topic::uncatalogued");
+  }
 }
 
 }  // namespace cover::dds

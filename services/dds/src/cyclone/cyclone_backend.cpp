@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -58,6 +59,17 @@ dds_qos_t* make_qos(const QosProfile& profile) {
   return qos;
 }
 
+dds_qos_t* make_writer_qos(const QosProfile& profile) {
+  dds_qos_t* qos = make_qos(profile);
+  // Cyclone keeps transient-local data for late joiners by the durability-service history
+  // (default keep-last 1), not the writer's history: give late joiners the full depth.
+  if (profile.durability == Durability::TransientLocal) {
+    dds_qset_durability_service(qos, 0, DDS_HISTORY_KEEP_LAST, profile.history_depth,
+                                DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
+  }
+  return qos;
+}
+
 // The participant handle, shared by writers and readers so it outlives them.
 class CycloneCore {
  public:
@@ -104,7 +116,7 @@ class CycloneWriter final : public WriterBackend {
   CycloneWriter(std::shared_ptr<CycloneCore> core, const TypeSupport& type,
                 const std::string& topic, const QosProfile& profile)
       : core_(std::move(core)), ops_(*type.cyclone), sample_(ops_.vendor_sample_size) {
-    dds_qos_t* qos = make_qos(profile);
+    dds_qos_t* qos = make_writer_qos(profile);
     writer_ = dds_create_writer(core_->participant(), core_->topic(type, topic), qos, nullptr);
     dds_delete_qos(qos);
     if (writer_ < 0) {
@@ -147,7 +159,7 @@ class CycloneReader final : public ReaderBackend {
       : core_(std::move(core)),
         type_(type),
         handler_(std::move(handler)),
-        neutral_sample_(type.new_sample()) {
+        neutral_sample_(type.new_sample(), type.delete_sample) {
     dds_qos_t* qos = make_qos(profile);
     dds_listener_t* listener = dds_create_listener(this);
     dds_lset_data_available(listener, &CycloneReader::on_data_available);
@@ -156,14 +168,12 @@ class CycloneReader final : public ReaderBackend {
     dds_delete_listener(listener);
     dds_delete_qos(qos);
     if (reader_ < 0) {
-      type_.delete_sample(neutral_sample_);
       throw DdsError("Cyclone DDS: cannot create a reader on '" + topic +
                      "': " + describe(reader_));
     }
   }
   ~CycloneReader() override {
     dds_delete(reader_);  // waits for a listener call in progress
-    type_.delete_sample(neutral_sample_);
   }
   std::size_t matched_writers() const override {
     dds_subscription_matched_status_t status{};
@@ -186,8 +196,8 @@ class CycloneReader final : public ReaderBackend {
     // Loaned samples: no copy into a vendor buffer, only the conversion to neutral.
     while (dds_take(reader, samples, &info, 1, 1) > 0) {
       if (info.valid_data) {
-        type_.cyclone->from_vendor(samples[0], neutral_sample_);
-        handler_(neutral_sample_);
+        type_.cyclone->from_vendor(samples[0], neutral_sample_.get());
+        handler_(neutral_sample_.get());
       }
       dds_return_loan(reader, samples, 1);
       samples[0] = nullptr;
@@ -197,7 +207,8 @@ class CycloneReader final : public ReaderBackend {
   std::shared_ptr<CycloneCore> core_;
   const TypeSupport& type_;
   SampleHandler handler_;
-  void* neutral_sample_;
+  // Owned from the start, so a constructor that throws (topic or reader creation) frees it.
+  std::unique_ptr<void, void (*)(void*)> neutral_sample_;
   std::atomic<std::uint64_t> deadline_misses_{0};
   dds_entity_t reader_ = 0;
 };

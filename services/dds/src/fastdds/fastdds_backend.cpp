@@ -21,6 +21,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <map>
+#include <memory>
 #include <mutex>
 
 #include "cover/dds/dds_error.hpp"
@@ -32,6 +33,9 @@ namespace {
 namespace fdds = eprosima::fastdds::dds;
 using eprosima::fastrtps::Duration_t;
 using eprosima::fastrtps::types::ReturnCode_t;
+
+// A sample allocated by a type's new_* function, freed by its delete_* function.
+using OwnedSample = std::unique_ptr<void, void (*)(void*)>;
 
 Duration_t to_duration(double seconds) {
   const auto whole = static_cast<int32_t>(seconds);
@@ -158,7 +162,9 @@ class FastWriter final : public WriterBackend {
  public:
   FastWriter(std::shared_ptr<FastCore> core, const TypeSupport& type, const std::string& topic,
              const QosProfile& profile)
-      : core_(std::move(core)), ops_(*type.fastdds), sample_(ops_.new_vendor_sample()) {
+      : core_(std::move(core)),
+        ops_(*type.fastdds),
+        sample_(ops_.new_vendor_sample(), ops_.delete_vendor_sample) {
     fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
     apply_common(profile, qos);
     // A 100 ms heartbeat (default 3 s) stops the loss of early reliable samples.
@@ -166,14 +172,11 @@ class FastWriter final : public WriterBackend {
     writer_ = core_->publisher()->create_datawriter(core_->topic(type, topic), qos);
     if (!writer_) throw DdsError("Fast DDS: cannot create a writer on '" + topic + "'");
   }
-  ~FastWriter() override {
-    core_->publisher()->delete_datawriter(writer_);
-    ops_.delete_vendor_sample(sample_);
-  }
+  ~FastWriter() override { core_->publisher()->delete_datawriter(writer_); }
   bool write(const void* neutral) override {
     std::lock_guard<std::mutex> lock(mutex_);
-    ops_.to_vendor(neutral, sample_);
-    return writer_->write(sample_);
+    ops_.to_vendor(neutral, sample_.get());
+    return writer_->write(sample_.get());
   }
   bool wait_for_acknowledgments(std::chrono::milliseconds timeout) override {
     return writer_->wait_for_acknowledgments(to_duration(timeout.count() * 1e-3)) ==
@@ -189,7 +192,7 @@ class FastWriter final : public WriterBackend {
   std::shared_ptr<FastCore> core_;
   const FastDdsTypeOps& ops_;
   std::mutex mutex_;
-  void* sample_;  // vendor sample reused by every write: no allocation per sample
+  OwnedSample sample_;  // vendor sample reused by every write: no allocation per sample
   fdds::DataWriter* writer_ = nullptr;
 };
 
@@ -200,8 +203,8 @@ class FastReader final : public ReaderBackend, private fdds::DataReaderListener 
       : core_(std::move(core)),
         type_(type),
         handler_(std::move(handler)),
-        vendor_sample_(type.fastdds->new_vendor_sample()),
-        neutral_sample_(type.new_sample()) {
+        vendor_sample_(type.fastdds->new_vendor_sample(), type.fastdds->delete_vendor_sample),
+        neutral_sample_(type.new_sample(), type.delete_sample) {
     fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
     apply_common(profile, qos);
     reader_ = core_->subscriber()->create_datareader(core_->topic(type, topic), qos, this,
@@ -211,8 +214,6 @@ class FastReader final : public ReaderBackend, private fdds::DataReaderListener 
   ~FastReader() override {
     reader_->set_listener(nullptr);
     core_->subscriber()->delete_datareader(reader_);
-    type_.fastdds->delete_vendor_sample(vendor_sample_);
-    type_.delete_sample(neutral_sample_);
   }
   std::size_t matched_writers() const override {
     fdds::SubscriptionMatchedStatus status;
@@ -224,10 +225,10 @@ class FastReader final : public ReaderBackend, private fdds::DataReaderListener 
  private:
   void on_data_available(fdds::DataReader* reader) override {
     fdds::SampleInfo info;
-    while (reader->take_next_sample(vendor_sample_, &info) == ReturnCode_t::RETCODE_OK) {
+    while (reader->take_next_sample(vendor_sample_.get(), &info) == ReturnCode_t::RETCODE_OK) {
       if (!info.valid_data) continue;
-      type_.fastdds->from_vendor(vendor_sample_, neutral_sample_);
-      handler_(neutral_sample_);
+      type_.fastdds->from_vendor(vendor_sample_.get(), neutral_sample_.get());
+      handler_(neutral_sample_.get());
     }
   }
   void on_requested_deadline_missed(fdds::DataReader*,
@@ -238,8 +239,9 @@ class FastReader final : public ReaderBackend, private fdds::DataReaderListener 
   std::shared_ptr<FastCore> core_;
   const TypeSupport& type_;
   SampleHandler handler_;
-  void* vendor_sample_;
-  void* neutral_sample_;
+  // Owned from the start, so a constructor that throws frees them.
+  OwnedSample vendor_sample_;
+  OwnedSample neutral_sample_;
   std::atomic<std::uint64_t> deadline_misses_{0};
   fdds::DataReader* reader_ = nullptr;
 };

@@ -3,19 +3,102 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "cover/dds/qos.hpp"
+#include "cover/dds/topic.hpp"
+#include "cover/dds/topic_descriptor.hpp"
+#include "cover/msg/types.hpp"
 
 namespace cover::dds {
+namespace topics {
 
-// One entry of the topic catalogue (docs/topics.md lists the same, and a test checks it).
-// `pattern` uses <k> for a UGV id and <u> for a UAV id.
+// The topic catalogue: one row per topic, and nothing about a topic is defined elsewhere.
+// A new topic adds its type to idl/cover_msgs.idl, a row here and an accessor below, and
+// its line in docs/topics.md (`cover topics --markdown` prints it; a test compares).
+// Each message type has exactly one topic: accessors find their row by type.
+inline constexpr std::tuple kCatalog{
+    TopicDescriptor<msg::UgvImu, UgvId>{"cover/ugv/<k>/imu", &sensor_qos, "200 Hz",
+                                        "ugv_agent k (or sim) -> uav_agent",
+                                        "UGV k's filtered IMU in G_k"},
+    TopicDescriptor<msg::RelativeState, UavId, UgvId>{
+        "cover/uav/<u>/rel/<k>", &sensor_qos, "100 Hz",
+        "relative localisation (or sim) -> uav_agent", "UAV u's state relative to UGV k, in G_k"},
+    TopicDescriptor<msg::UavCommand, UavId>{"cover/uav/<u>/cmd", &command_qos, "100 Hz",
+                                            "uav_agent -> flight controller (or sim)",
+                                            "thrust and body-rate command to UAV u"},
+    TopicDescriptor<msg::UavStatus, UavId>{
+        "cover/uav/<u>/status", &state_qos, "10 Hz", "uav_agent -> ground station",
+        "stage, reference frame, solver and failsafe state of UAV u"},
+    TopicDescriptor<msg::ControlTrace, UavId>{
+        "cover/uav/<u>/trace", &command_qos, "100 Hz", "uav_agent -> flight log, sim (metrics)",
+        "per control step: stage, failsafe, solver, reference point of UAV u"},
+    TopicDescriptor<msg::UgvStatus, UgvId>{"cover/ugv/<k>/status", &state_qos, "1 Hz",
+                                           "ugv_agent k -> ground station",
+                                           "UGV k's agent heartbeat: IMU source, rate, health"},
+    TopicDescriptor<msg::SimClock>{"cover/sim/clock", &command_qos, "100 Hz",
+                                   "sim -> agents (lockstep tick)",
+                                   "the simulator's time, one sample per control period"},
+    TopicDescriptor<msg::ReferenceTrajectory, UavId>{
+        "cover/uav/<u>/reference", &state_qos, "per stage", "uav_agent -> ground station",
+        "sampled reference of the current stage, for display"},
+    TopicDescriptor<msg::TransitionTask>{"cover/task/request", &state_qos, "on demand",
+                                         "task_manager -> uav_agent",
+                                         "task sequences dispatched to a UAV"},
+    TopicDescriptor<msg::TaskStatus>{"cover/task/status", &state_qos, "on change",
+                                     "uav_agent -> task_manager, ground station",
+                                     "progress and outcome of each task"},
+};
+
+// The row of message type T, bound to `ids`; does not compile when T has no row or the
+// row takes other ids.
+template <typename T, typename... Ids>
+Topic<T> bind(Ids... ids) {
+  return std::get<TopicDescriptor<T, Ids...>>(kCatalog).bind(ids...);
+}
+
+inline Topic<msg::UgvImu> ugv_imu(std::uint32_t ugv) {
+  return bind<msg::UgvImu>(UgvId{ugv});
+}
+inline Topic<msg::UgvStatus> ugv_status(std::uint32_t ugv) {
+  return bind<msg::UgvStatus>(UgvId{ugv});
+}
+inline Topic<msg::RelativeState> relative_state(std::uint32_t uav, std::uint32_t ugv) {
+  return bind<msg::RelativeState>(UavId{uav}, UgvId{ugv});
+}
+inline Topic<msg::UavCommand> uav_command(std::uint32_t uav) {
+  return bind<msg::UavCommand>(UavId{uav});
+}
+inline Topic<msg::ControlTrace> uav_trace(std::uint32_t uav) {
+  return bind<msg::ControlTrace>(UavId{uav});
+}
+inline Topic<msg::UavStatus> uav_status(std::uint32_t uav) {
+  return bind<msg::UavStatus>(UavId{uav});
+}
+inline Topic<msg::ReferenceTrajectory> uav_reference(std::uint32_t uav) {
+  return bind<msg::ReferenceTrajectory>(UavId{uav});
+}
+inline Topic<msg::TransitionTask> task_request() {
+  return bind<msg::TransitionTask>();
+}
+inline Topic<msg::TaskStatus> task_status() {
+  return bind<msg::TaskStatus>();
+}
+inline Topic<msg::SimClock> sim_clock() {
+  return bind<msg::SimClock>();
+}
+
+}  // namespace topics
+
+// The catalogue as data, for tools that work by name (`cover topics`, echo, pub) and for
+// the docs check; built from topics::kCatalog, in its order.
 struct TopicInfo {
-  std::string pattern;
-  std::string type_name;  // scoped IDL name, e.g. "cover::idl::UgvImu"
+  std::string pattern;    // <k>: UGV id, <u>: UAV id
+  std::string type_name;  // scoped IDL name (T::kTypeName), e.g. "cover::idl::UgvImu"
   std::string qos_profile;
   std::string rate;
+  std::string flow;  // "publisher -> subscribers"
   std::string description;
 };
 
@@ -25,12 +108,16 @@ const std::vector<TopicInfo>& topic_catalog();
 // decimal ids).
 const TopicInfo* find_topic(std::string_view topic_name);
 
-std::string ugv_imu_topic(std::uint32_t ugv_id);
-std::string relative_state_topic(std::uint32_t uav_id, std::uint32_t ugv_id);
-std::string uav_command_topic(std::uint32_t uav_id);
-std::string uav_status_topic(std::uint32_t uav_id);
-std::string uav_reference_topic(std::uint32_t uav_id);
-inline constexpr const char* kTaskRequestTopic = "cover/task/request";
-inline constexpr const char* kTaskStatusTopic = "cover/task/status";
+// The entry of `name`; throws DdsError when `name` is not catalogued or its type is not
+// `type_name` (the message names both types).
+const TopicInfo& require_catalogued(std::string_view name, std::string_view type_name);
+
+// A catalogued topic looked up by its concrete name at run time (the `cover` CLI's echo
+// and pub); throws DdsError when the name is not catalogued or its type is not T.
+template <typename T>
+Topic<T> catalogued_topic(std::string_view name) {
+  const TopicInfo& info = require_catalogued(name, T::kTypeName);
+  return Topic<T>(std::string(name), qos_profile(info.qos_profile), true);
+}
 
 }  // namespace cover::dds

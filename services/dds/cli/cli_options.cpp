@@ -1,0 +1,27 @@
+#include "cover/dds/cli_options.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "cover/config/yaml_reader.hpp"
+
+namespace cover::dds {
+
+DdsCliOptions::DdsCliOptions() : config_path(config::default_config_dir() + "/dds.yaml") {}
+
+void DdsCliOptions::add_to(CLI::App& app) {
+  app.add_option("--dds", vendor, "DDS vendor: fastdds | cyclone (default: config, $COVER_DDS)");
+  domain_flag_ = app.add_option("--domain", domain_id,
+                                "DDS domain id 0..232 (default: config, $COVER_DDS_DOMAIN)");
+  app.add_option("--dds-config", config_path, "DDS settings file")->capture_default_str();
+}
+
+ParticipantOptions DdsCliOptions::resolve(const std::string& participant_name) const {
+  ParticipantOptions options = apply_environment(ParticipantOptions::load_file(config_path));
+  if (!vendor.empty()) options.vendor = parse_vendor(vendor);
+  if (domain_flag_ && domain_flag_->count() > 0) options.domain_id = domain_id;
+  options.participant_name = participant_name;
+  options.validate();
+  return options;
+}
+
+}  // namespace cover::dds

@@ -1,0 +1,52 @@
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "cover/dds/qos.hpp"
+
+namespace cover::dds {
+
+template <typename T>
+class Topic;
+template <typename T, typename... Ids>
+struct TopicDescriptor;
+template <typename T>
+Topic<T> catalogued_topic(std::string_view name);
+
+// A concrete topic bound to its message type: a name and the QoS its writers and readers
+// use. Only the catalogue (topics.hpp) and `uncatalogued` create one, so a writer or
+// reader can only be made for the type and QoS a catalogued name was defined with.
+template <typename T>
+class Topic {
+ public:
+  const std::string& name() const { return name_; }
+  const QosProfile& qos() const { return qos_; }
+  bool catalogued() const { return catalogued_; }
+
+  // For tests and benchmarks only: a topic outside the catalogue (e.g. "cover_test/...").
+  // Creating a writer/reader on it checks the name is NOT a catalogued pattern (throws
+  // DdsError otherwise), so it cannot bypass the catalogue's type and QoS.
+  static Topic uncatalogued(std::string name, QosProfile qos) {
+    return Topic(std::move(name), std::move(qos), false);
+  }
+
+ private:
+  Topic(std::string name, QosProfile qos, bool catalogued)
+      : name_(std::move(name)), qos_(std::move(qos)), catalogued_(catalogued) {}
+
+  template <typename, typename...>
+  friend struct TopicDescriptor;
+  template <typename U>
+  friend Topic<U> catalogued_topic(std::string_view name);
+
+  std::string name_;
+  QosProfile qos_;
+  bool catalogued_;
+};
+
+// Throws DdsError when `name` matches a catalogue pattern (defined with the catalogue).
+void require_uncatalogued(std::string_view name);
+
+}  // namespace cover::dds
