@@ -87,6 +87,7 @@ TEST(TopicCatalog, EveryAccessorBindsItsRowAndEveryRowHasOne) {
   expect_catalogued(topics::uav_reference(2), "cover/uav/2/reference", patterns);
   expect_catalogued(topics::task_request(), "cover/task/request", patterns);
   expect_catalogued(topics::task_status(), "cover/task/status", patterns);
+  expect_catalogued(topics::task_abort(), "cover/task/abort", patterns);
   expect_catalogued(topics::sim_clock(), "cover/sim/clock", patterns);
   std::set<std::string> catalogued;
   for (const auto& entry : dds::topic_catalog()) catalogued.insert(entry.pattern);

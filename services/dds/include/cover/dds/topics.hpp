@@ -46,6 +46,9 @@ inline constexpr std::tuple kCatalog{
     TopicDescriptor<msg::TransitionTask>{"cover/task/request", &state_qos, "on demand",
                                          "task_manager -> uav_agent",
                                          "task sequences dispatched to a UAV"},
+    TopicDescriptor<msg::TaskAbort>{"cover/task/abort", &command_qos, "on demand",
+                                    "task_manager, ground station -> uav_agent",
+                                    "stop a UAV's running task: hold, then its safe action"},
     TopicDescriptor<msg::TaskStatus>{"cover/task/status", &state_qos, "on change",
                                      "uav_agent -> task_manager, ground station",
                                      "progress and outcome of each task"},
@@ -84,6 +87,9 @@ inline Topic<msg::TransitionTask> task_request() {
 }
 inline Topic<msg::TaskStatus> task_status() {
   return bind<msg::TaskStatus>();
+}
+inline Topic<msg::TaskAbort> task_abort() {
+  return bind<msg::TaskAbort>();
 }
 inline Topic<msg::SimClock> sim_clock() {
   return bind<msg::SimClock>();
