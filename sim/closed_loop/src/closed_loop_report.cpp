@@ -5,10 +5,7 @@
 namespace cover::sim {
 
 std::optional<sampc::Mode> parse_method(const std::string& name) {
-  for (const sampc::Mode mode : {sampc::Mode::Cover, sampc::Mode::NoRefVxy, sampc::Mode::ConiMpc}) {
-    if (name == sampc::to_string(mode)) return mode;
-  }
-  return std::nullopt;
+  return sampc::parse_mode(name);
 }
 
 nlohmann::json number_or_null(double value) {

@@ -7,10 +7,8 @@
 namespace cover::sampc {
 namespace {
 
-Mode parse_mode(const std::string& text, const std::string& context) {
-  if (text == "cover") return Mode::Cover;
-  if (text == "no-ref-vxy") return Mode::NoRefVxy;
-  if (text == "coni-mpc") return Mode::ConiMpc;
+Mode parse_mode_or_throw(const std::string& text, const std::string& context) {
+  if (const auto mode = parse_mode(text)) return *mode;
   throw config::ConfigError(context + ".mode: '" + text +
                             "' is not one of cover, no-ref-vxy, coni-mpc");
 }
@@ -45,6 +43,13 @@ void validate_weights(const WeightSet& set, const std::string& context) {
 
 }  // namespace
 
+std::optional<Mode> parse_mode(std::string_view name) {
+  for (const Mode mode : kModes) {
+    if (name == to_string(mode)) return mode;
+  }
+  return std::nullopt;
+}
+
 const char* to_string(Mode mode) {
   switch (mode) {
     case Mode::Cover:
@@ -71,7 +76,7 @@ SampcParams SampcParams::load(config::YamlReader& reader) {
   SampcParams p;
   std::string mode = to_string(p.mode);
   reader.optional("mode", mode);
-  p.mode = parse_mode(mode, reader.context());
+  p.mode = parse_mode_or_throw(mode, reader.context());
   reader.optional("horizon_steps", p.horizon_steps);
   reader.optional("step_s", p.step_s);
   reader.optional("control_period_s", p.control_period_s);

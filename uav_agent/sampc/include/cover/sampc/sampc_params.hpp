@@ -1,5 +1,8 @@
 #pragma once
 
+#include <optional>
+#include <string_view>
+
 #include <Eigen/Core>
 #include <string>
 
@@ -17,6 +20,9 @@ inline constexpr int kMaxHorizon = 40;
 enum class Mode { Cover, NoRefVxy, ConiMpc };
 
 const char* to_string(Mode mode);
+// "cover" | "no-ref-vxy" | "coni-mpc" (to_string's names); nullopt otherwise.
+std::optional<Mode> parse_mode(std::string_view name);
+inline constexpr Mode kModes[] = {Mode::Cover, Mode::NoRefVxy, Mode::ConiMpc};
 
 // Whether the transition stage's planned start velocity drops the frame-rotation part
 // (eq. 23, v0 = v + Omega x p): COVER and its ablation do, the CoNi-MPC baseline does not.

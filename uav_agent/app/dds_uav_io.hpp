@@ -1,0 +1,55 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/uav/uav_io.hpp"
+
+namespace cover::uav_agent {
+
+// The loop's inputs from DDS: the latest relative state and UGV IMU per UGV the task
+// names (subscribed when a task is accepted).
+class DdsUavInputs : public uav::UavInputs {
+ public:
+  DdsUavInputs(dds::Participant& participant, std::uint32_t uav_id, int ugv_count);
+
+  // Subscribes to the relative states and IMU of `ugvs` (each once; kept afterwards).
+  void subscribe(const std::vector<int>& ugvs);
+
+  bool relative_state(int ugv, mission::RelativeMeasurement& out) override;
+  bool ugv_imu(int ugv, mission::UgvImuMeasurement& out) override;
+
+  // Stamps of the newest samples received for `ugv`, ns (-1: none), for lockstep waits.
+  std::int64_t relative_stamp_ns(int ugv) const;
+  std::int64_t imu_stamp_ns(int ugv) const;
+  // The reference UGV's relative-state reader: realtime mode steps on its fresh samples.
+  dds::Reader<msg::RelativeState>* relative_reader(int ugv);
+
+ private:
+  struct UgvReaders {
+    dds::Reader<msg::RelativeState> state;
+    dds::Reader<msg::UgvImu> imu;
+  };
+  dds::Participant& participant_;
+  std::uint32_t uav_id_;
+  std::vector<std::unique_ptr<UgvReaders>> readers_;  // by UGV id; null: not subscribed
+};
+
+// The loop's command to DDS: this step's trace, then its command (the simulator in
+// lockstep takes the command as the end of the UAV's tick).
+class DdsCommandOutput : public uav::CommandOutput {
+ public:
+  DdsCommandOutput(dds::Participant& participant, std::uint32_t uav_id);
+  void write(const uav::StepOutput& step) override;
+
+ private:
+  dds::Writer<msg::ControlTrace> trace_;
+  dds::Writer<msg::UavCommand> command_;
+  std::uint32_t seq_ = 0;
+};
+
+}  // namespace cover::uav_agent

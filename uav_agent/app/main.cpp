@@ -1,0 +1,103 @@
+// cover-uav-agent --id U: the UAV's process. Plans (MINCO) and controls (SAMPC, 100 Hz) the
+// UAV in the UGVs' frames from their relative states and IMUs, publishes the command.
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "cover/config/config_error.hpp"
+#include "cover/config/yaml_reader.hpp"
+#include "cover/dds/cli_options.hpp"
+#include "cover/dds/dds_error.hpp"
+#include "cover/logging/log.hpp"
+#include "cover/process/shutdown_signal.hpp"
+#include "cover/sampc/sampc_params.hpp"
+#include "uav_agent_node.hpp"
+
+namespace {
+
+constexpr const char* kExitCodes =
+    "Exit codes: 0 stopped by SIGINT/SIGTERM; 2 usage, configuration or task-file error;\n"
+    "3 DDS could not start.";
+
+struct CommandLine {
+  int uav_id = 0;
+  std::string task_file;
+  std::string clock = "lockstep";
+  std::string config_dir = cover::config::default_config_dir();
+  std::string method;
+  int ugv_count = 8;
+  cover::dds::DdsCliOptions dds;
+};
+
+void add_options(CLI::App& app, CommandLine& cli) {
+  app.add_option("--id", cli.uav_id, "UAV id U (topics cover/uav/U/...)")
+      ->required()
+      ->check(CLI::Range(0, 255));
+  app.add_option("--task", cli.task_file,
+                 "fly this task file (config/tasks/*.yaml format); otherwise wait for one on "
+                 "cover/task/request");
+  app.add_option("--clock", cli.clock,
+                 "lockstep: one step per simulator tick; realtime: the simulator's time, stepping "
+                 "on each fresh relative state; system: the host's clock (field)")
+      ->check(CLI::IsMember({"lockstep", "realtime", "system"}))
+      ->capture_default_str();
+  app.add_option("--config-dir", cli.config_dir, "folder of mission.yaml, planner.yaml, sampc.yaml")
+      ->capture_default_str();
+  app.add_option("--method", cli.method,
+                 "override sampc.yaml's mode: cover | no-ref-vxy | coni-mpc");
+  app.add_option("--ugv-count", cli.ugv_count, "UGV ids accepted in tasks are 0..N-1")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  cli.dds.add_to(app);
+}
+
+cover::uav_agent::AgentOptions agent_options(const CommandLine& cli) {
+  cover::uav_agent::AgentOptions options;
+  options.uav_id = static_cast<std::uint32_t>(cli.uav_id);
+  options.ugv_count = cli.ugv_count;
+  options.clock = *cover::uav_agent::parse_clock_mode(cli.clock);
+  if (!cli.task_file.empty())
+    options.task = cover::mission::load_task_file(cli.task_file, cli.ugv_count);
+  return options;
+}
+
+cover::uav::ControllerConfig controller_config(const CommandLine& cli) {
+  cover::uav::ControllerConfig config = cover::uav::ControllerConfig::load(cli.config_dir);
+  if (!cli.method.empty()) {
+    const auto mode = cover::sampc::parse_mode(cli.method);
+    if (!mode) throw cover::config::ConfigError("--method: unknown method '" + cli.method + "'");
+    config.sampc.mode = *mode;
+  }
+  return config;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cover::process::ShutdownSignal::install();
+  CLI::App app{"cover-uav-agent: one UAV's planner and SAMPC controller over DDS"};
+  app.footer(kExitCodes);
+  CommandLine cli;
+  add_options(app, cli);
+  CLI11_PARSE(app, argc, argv);
+  cover::logging::init("uav_agent" + std::to_string(cli.uav_id));
+  try {
+    const cover::uav_agent::AgentOptions options = agent_options(cli);
+    cover::uav::ControllerConfig config = controller_config(cli);
+    const cover::dds::ParticipantOptions dds =
+        cli.dds.resolve("cover-uav-agent-" + std::to_string(cli.uav_id));
+    cover::dds::Participant participant(dds);
+    spdlog::info("UAV {} on {} domain {}, clock {}, method {}", cli.uav_id,
+                 cover::dds::vendor_name(dds.vendor), dds.domain_id, cli.clock,
+                 cover::sampc::to_string(config.sampc.mode));
+    cover::uav_agent::UavAgentNode node(participant, options, std::move(config));
+    return node.run();
+  } catch (const cover::config::ConfigError& e) {
+    std::cerr << "cover-uav-agent: " << e.what() << "\n";
+    return 2;
+  } catch (const cover::dds::DdsError& e) {
+    std::cerr << "cover-uav-agent: " << e.what() << "\n";
+    return 3;
+  }
+}

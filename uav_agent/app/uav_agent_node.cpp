@@ -1,0 +1,212 @@
+#include "uav_agent_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <thread>
+
+#include "cover/process/shutdown_signal.hpp"
+#include "cover/wire/control.hpp"
+#include "cover/wire/eigen.hpp"
+#include "cover/wire/enums.hpp"
+#include "cover/wire/task.hpp"
+
+namespace cover::uav_agent {
+
+namespace {
+using namespace std::chrono_literals;
+
+std::chrono::milliseconds to_ms(double seconds) {
+  return std::chrono::milliseconds(static_cast<long>(seconds * 1000.0));
+}
+}  // namespace
+
+UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
+                           uav::ControllerConfig config)
+    : participant_(participant),
+      options_(std::move(options)),
+      loop_(options_.uav_id, options_.ugv_count, std::move(config)),
+      inputs_(participant, options_.uav_id, options_.ugv_count),
+      command_(participant, options_.uav_id),
+      status_writer_(participant.make_writer(dds::topics::uav_status(options_.uav_id))),
+      task_status_writer_(participant.make_writer(dds::topics::task_status())),
+      intake_(participant, options_.uav_id),
+      clock_(participant, options_.clock) {
+  if (options_.task) accept(*options_.task, 0.0);
+}
+
+int UavAgentNode::run() {
+  if (options_.clock == ClockMode::Lockstep) {
+    run_lockstep();
+  } else {
+    run_realtime();
+  }
+  spdlog::info("shutting down: {}", loop_.describe());
+  return 0;
+}
+
+void UavAgentNode::run_lockstep() {
+  auto last_tick = std::chrono::steady_clock::now();
+  while (!process::ShutdownSignal::requested()) {
+    const auto tick = clock_.next_tick(100ms);
+    if (!tick) {
+      if (std::chrono::steady_clock::now() - last_tick > to_ms(options_.silence_warning_s)) {
+        spdlog::warn("no simulator tick on cover/sim/clock for {:.1f} s",
+                     options_.silence_warning_s);
+        last_tick = std::chrono::steady_clock::now();
+      }
+      continue;
+    }
+    last_tick = std::chrono::steady_clock::now();
+    wait_for_inputs(*tick);
+    step(wire::to_seconds(tick->stamp_ns));
+  }
+}
+
+// A lockstep tick is stepped on the inputs of that tick: wait (bounded) until the
+// relative states and UGV IMU published for it have arrived.
+void UavAgentNode::wait_for_inputs(const msg::SimClock& tick) {
+  const mission::Task* task = loop_.task();
+  if (!task) return;
+  const auto deadline = std::chrono::steady_clock::now() + to_ms(options_.input_wait_s);
+  auto arrived = [&] {
+    for (const auto& p : task->processes) {
+      for (const int k : {p.from_ugv, p.to_ugv}) {
+        if (tick.relative_stamp_ns >= 0 && inputs_.relative_stamp_ns(k) < tick.relative_stamp_ns) {
+          return false;
+        }
+        if (tick.imu_stamp_ns >= 0 && inputs_.imu_stamp_ns(k) < tick.imu_stamp_ns) return false;
+      }
+    }
+    return true;
+  };
+  while (!arrived()) {
+    if (std::chrono::steady_clock::now() >= deadline) {
+      spdlog::warn("tick {}: inputs missing after {:.1f} s, stepping on what arrived", tick.tick,
+                   options_.input_wait_s);
+      return;
+    }
+    std::this_thread::sleep_for(50us);
+  }
+}
+
+void UavAgentNode::run_realtime() {
+  const double period_s = loop_.config().mission.control_period_s;
+  std::uint64_t seen = 0;
+  while (!process::ShutdownSignal::requested()) {
+    // Step on each fresh relative state of the reference frame, or every control period
+    // when none comes (the controller then hovers on stale inputs: the failsafe).
+    dds::Reader<msg::RelativeState>* reader = nullptr;
+    if (const auto* controller = loop_.controller()) {
+      reader = inputs_.relative_reader(controller->stage_machine().reference_ugv());
+    }
+    if (reader) {
+      if (reader->wait_for_sample(to_ms(period_s), seen)) seen = reader->received_count();
+    } else {
+      process::ShutdownSignal::wait_for(to_ms(period_s));
+    }
+    const auto now = clock_.now_s();
+    if (now) step(*now);
+  }
+}
+
+void UavAgentNode::step(double now_s) {
+  take_requests(now_s);
+  loop_.step(now_s, inputs_, command_);
+  log_changes();
+  publish_task_status_on_change(now_s);
+  if (now_s >= next_status_s_) {
+    publish_status(now_s);
+    next_status_s_ = now_s + options_.status_period_s;
+  }
+}
+
+void UavAgentNode::take_requests(double now_s) {
+  while (const auto request = intake_.take_task()) {
+    accept(wire::from_msg(*request), now_s);
+  }
+  while (const auto abort = intake_.take_abort()) {
+    const mission::Task* task = loop_.task();
+    if (!task || (!abort->task_id.empty() && abort->task_id != task->task_id)) {
+      spdlog::warn("abort of task '{}' ignored: not the running task", abort->task_id);
+      continue;
+    }
+    if (loop_.abort(now_s)) {
+      spdlog::warn("task '{}' aborted ({}): holding, then {}", task->task_id, abort->reason,
+                   mission::to_string(loop_.config().mission.abort_action));
+    }
+  }
+}
+
+void UavAgentNode::accept(const mission::Task& task, double now_s) {
+  const uav::TaskDecision decision = loop_.give_task(task);
+  if (!decision.accepted) {
+    spdlog::error("task '{}' rejected: {}", task.task_id, decision.reason);
+    task_status_writer_.write(wire::rejected_task_status(wire::to_msg(task, now_s), options_.uav_id,
+                                                         now_s, decision.reason));
+    return;
+  }
+  spdlog::info("accepted {}", decision.reason);
+  inputs_.subscribe([&] {
+    std::vector<int> ugvs;
+    for (const auto& p : task.processes) ugvs.insert(ugvs.end(), {p.from_ugv, p.to_ugv});
+    return ugvs;
+  }());
+  reported_key_.clear();
+}
+
+void UavAgentNode::publish_status(double now_s) {
+  wire::UavStatusInputs in;
+  in.uav_id = options_.uav_id;
+  in.stamp_s = now_s;
+  in.state = loop_.task_state();
+  in.output = &loop_.output();
+  if (const mission::Task* task = loop_.task()) {
+    in.task_id = task->task_id;
+    in.process_count = static_cast<std::uint32_t>(task->processes.size());
+    mission::RelativeMeasurement state;
+    if (inputs_.relative_state(loop_.output().status.stage.reference_ugv, state)) {
+      in.position_m = state.position_m;
+      in.velocity_m_s = state.velocity_m_s;
+    }
+  }
+  status_writer_.write(wire::to_status(in));
+}
+
+void UavAgentNode::publish_task_status_on_change(double now_s) {
+  const mission::Task* task = loop_.task();
+  if (!task) return;
+  const mission::StageDecision& d = loop_.output().status.stage;
+  const std::string key = task->task_id + "/" + mission::to_string(loop_.task_state()) + "/" +
+                          std::to_string(d.process_index) + "/" + model::to_string(d.stage);
+  if (key == reported_key_) return;
+  reported_key_ = key;
+  msg::TaskStatus status = wire::to_task_status(task->task_id, options_.uav_id, now_s, d,
+                                                task->processes.size(), loop_.describe());
+  status.state = wire::to_msg(loop_.task_state());
+  task_status_writer_.write(status);
+}
+
+void UavAgentNode::log_changes() {
+  const mission::ControllerStatus& s = loop_.output().status;
+  if (loop_.task()) {
+    const std::string stage = std::string(mission::to_string(s.stage.state)) + " process " +
+                              std::to_string(s.stage.process_index) + " " +
+                              model::to_string(s.stage.stage) + " stage, frame G" +
+                              std::to_string(s.stage.reference_ugv);
+    if (stage != logged_stage_) {
+      spdlog::info("{}", loop_.describe());
+      logged_stage_ = stage;
+    }
+  }
+  if (s.failsafe != logged_failsafe_) {
+    if (s.failsafe == mission::Failsafe::None) {
+      spdlog::info("failsafe cleared (was {})", mission::to_string(logged_failsafe_));
+    } else {
+      spdlog::warn("failsafe: {}", mission::to_string(s.failsafe));
+    }
+    logged_failsafe_ = s.failsafe;
+  }
+}
+
+}  // namespace cover::uav_agent

@@ -1,0 +1,61 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "agent_clock.hpp"
+#include "cover/dds/participant.hpp"
+#include "cover/uav/uav_loop.hpp"
+#include "dds_uav_io.hpp"
+#include "task_intake.hpp"
+
+namespace cover::uav_agent {
+
+struct AgentOptions {
+  std::uint32_t uav_id = 0;
+  int ugv_count = 8;
+  ClockMode clock = ClockMode::Lockstep;
+  std::optional<mission::Task> task;  // from --task FILE; otherwise from cover/task/request
+  double status_period_s = 0.1;       // cover/uav/<u>/status at 10 Hz
+  // Lockstep: how long a tick waits for its relative states and IMU before stepping anyway.
+  double input_wait_s = 2.0;
+  // No tick (lockstep) or no fresh relative state (realtime) for this long: keep going
+  // (failsafe commands), but say so.
+  double silence_warning_s = 2.0;
+};
+
+// The UAV agent: DDS inputs -> UavLoop -> DDS command, trace, status, task status.
+class UavAgentNode {
+ public:
+  UavAgentNode(dds::Participant& participant, AgentOptions options, uav::ControllerConfig config);
+  // Runs until shutdown is requested; returns the process exit code.
+  int run();
+
+ private:
+  void run_lockstep();
+  void run_realtime();
+  void wait_for_inputs(const msg::SimClock& tick);
+  void step(double now_s);
+  void take_requests(double now_s);
+  void accept(const mission::Task& task, double now_s);
+  void publish_status(double now_s);
+  void publish_task_status_on_change(double now_s);
+  void log_changes();
+
+  dds::Participant& participant_;
+  AgentOptions options_;
+  uav::UavLoop loop_;
+  DdsUavInputs inputs_;
+  DdsCommandOutput command_;
+  dds::Writer<msg::UavStatus> status_writer_;
+  dds::Writer<msg::TaskStatus> task_status_writer_;
+  TaskIntake intake_;
+  AgentClock clock_;
+  double next_status_s_ = 0.0;
+  std::string reported_key_;  // task id, state, process, stage of the last TaskStatus
+  std::string logged_stage_;  // stage line last logged
+  mission::Failsafe logged_failsafe_ = mission::Failsafe::WaitingForInputs;
+};
+
+}  // namespace cover::uav_agent
