@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "cover/sim/seeding.hpp"
+
 namespace cover::sim {
 
 Scenario Scenario::load_file(const std::string& path) {
@@ -24,14 +26,55 @@ Scenario Scenario::load_file(const std::string& path) {
     config::YamlReader task = root.child("task");
     scenario.task = mission::Task::load(task);
   }
+  YAML::Node list;
+  root.optional("extra_uavs", list);
+  if (list) {
+    config::check(list.IsSequence(), path + ".extra_uavs", "must be a list");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      config::YamlReader entry(list[i], path + ".extra_uavs[" + std::to_string(i) + "]");
+      ExtraUav extra;
+      std::string task_file;
+      entry.require("task_file", task_file);
+      entry.optional("start_on_ugv", extra.start_on_ugv);
+      entry.optional("payload_attached", extra.payload_attached);
+      entry.reject_unknown_keys();
+      const auto resolved = std::filesystem::path(path).parent_path() / task_file;
+      extra.task =
+          mission::load_task_file(resolved.string(), static_cast<int>(scenario.world.ugvs.size()));
+      scenario.extra_uavs.push_back(extra);
+    }
+  }
   root.reject_unknown_keys();
   scenario.validate();
   return scenario;
 }
 
+const mission::Task& Scenario::task_of(int uav) const {
+  return uav == 0 ? task : extra_uavs.at(static_cast<std::size_t>(uav - 1)).task;
+}
+
+WorldParams Scenario::world_of(int uav) const {
+  if (uav == 0) return world;
+  const ExtraUav& extra = extra_uavs.at(static_cast<std::size_t>(uav - 1));
+  WorldParams w = world;
+  w.uav_initial.start_on_ugv = extra.start_on_ugv;
+  w.payload.attached_at_start = extra.payload_attached;
+  // Independent sensor noise per UAV; UAV 0 keeps the world's seed (the harness's run).
+  w.seed = derive_seed(world.seed, 1000 + static_cast<std::uint64_t>(uav));
+  return w;
+}
+
 void Scenario::validate() const {
   world.validate("scenario '" + name + "'.sim");
   task.validate(static_cast<int>(world.ugvs.size()));
+  config::check(uav_count() <= 4, "scenario '" + name + "'.extra_uavs", "at most 3 (4 UAVs)");
+  for (int u = 1; u < uav_count(); ++u) {
+    task_of(u).validate(static_cast<int>(world.ugvs.size()));
+    config::check(
+        task_of(u).uav_id == u, "scenario '" + name + "'.extra_uavs",
+        "entry " + std::to_string(u - 1) + " must fly a task with uav_id " + std::to_string(u));
+    world_of(u).validate("scenario '" + name + "'.extra_uavs");
+  }
   config::check(std::isfinite(max_duration_s) && max_duration_s > 0.0 && max_duration_s <= 3600.0,
                 "scenario '" + name + "'.max_duration_s", "must be in (0, 3600]");
   config::check(std::isfinite(settle_time_s) && settle_time_s >= 0.0 && settle_time_s <= 60.0,

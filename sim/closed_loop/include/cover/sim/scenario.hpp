@@ -1,11 +1,20 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "cover/mission/task.hpp"
 #include "cover/sim/world_params.hpp"
 
 namespace cover::sim {
+
+// A further UAV in the same world (cover-sim flies up to 4): its own plant, sensors and
+// payload, started on `start_on_ugv`'s deck, flying its own task.
+struct ExtraUav {
+  mission::Task task;
+  int start_on_ugv = 0;
+  bool payload_attached = false;
+};
 
 // One closed-loop experiment: a simulated world (the sim's world YAML format, under `sim:`)
 // and the task the UAV flies in it. Files live in config/scenarios/.
@@ -19,6 +28,13 @@ struct Scenario {
   // After the task completes, keep simulating this long (a disarmed UAV drops and settles
   // on the deck) before measuring the landing error.
   double settle_time_s = 1.0;
+  // UAVs 1.. (UAV 0 is `world` + `task`); the in-process harness flies UAV 0 only.
+  std::vector<ExtraUav> extra_uavs;
+
+  int uav_count() const { return 1 + static_cast<int>(extra_uavs.size()); }
+  const mission::Task& task_of(int uav) const;
+  // UAV `uav`'s world: the same UGVs, its start and payload, its own sensor noise streams.
+  WorldParams world_of(int uav) const;
 
   // Keys: name, description, max_duration_s, settle_time_s, sim (world format), and either
   // task (inline, task format) or task_file (path relative to the scenario file).

@@ -1,0 +1,70 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "cover/mission/mission_controller.hpp"
+#include "cover/sim/run_recorder.hpp"
+#include "cover/sim/scenario.hpp"
+#include "cover/sim/world.hpp"
+#include "cover/sim/world_segment.hpp"
+#include "offboard_failsafe.hpp"
+#include "sim_process_params.hpp"
+
+namespace cover::sim {
+
+// The simulated fleet: one World per UAV over the same UGVs (UAVs do not interact
+// physically, so each keeps its own plant, sensors and payload; UAV 0's world is exactly
+// the in-process harness's), each with its flight controller and its run recorder. UGV
+// IMUs come from UAV 0's world: one IMU per UGV, shared by every UAV agent.
+class Fleet {
+ public:
+  Fleet(const Scenario& scenario, const SimProcessParams& params,
+        const mission::MissionParams& mission);
+
+  int uav_count() const { return static_cast<int>(uavs_.size()); }
+  const World& world(int uav) const { return *uavs_[uav].world; }
+  double time_s() const { return uavs_[0].world->state().time_s; }
+  std::uint64_t tick() const { return tick_; }
+  const Scenario& scenario() const { return scenario_; }
+
+  // One control period: what UAV `uav`'s agent reported (trace) and commanded this tick;
+  // `command_age_s` < 0 when it has never commanded.
+  void apply(int uav, const mission::ControllerStatus& status,
+             const mission::ControlCommand& command, double command_age_s);
+  // Advances every world one control period (each holding its applied command).
+  void advance();
+  bool finished() const;
+  OffboardState offboard_state(int uav) const { return uavs_[uav].failsafe.state(); }
+  bool offboard_changed(int uav) const { return uavs_[uav].failsafe.changed(); }
+
+  // The world as the shared-memory segment carries it (IMU rings included).
+  const SharedWorld& shared() const { return shared_; }
+  // Newest raw IMU stamp in the segment, s (< 0: none yet).
+  double latest_imu_stamp_s() const { return latest_imu_stamp_s_; }
+
+  // The task state UAV `uav`'s agent last reported (its trace).
+  mission::MissionState reported_state(int uav) const { return uavs_[uav].last_status.stage.state; }
+  ClosedLoopResult result(int uav, const std::string& status, mission::MissionState state);
+
+ private:
+  struct Uav {
+    std::unique_ptr<World> world;
+    std::unique_ptr<RunRecorder> recorder;
+    OffboardFailsafe failsafe;
+    QuadrotorCommand plant_command;
+    mission::ControllerStatus last_status;
+  };
+  void capture_imu();
+  void fill_shared();
+
+  const Scenario& scenario_;
+  int physics_per_control_;
+  ClosedLoopOptions options_;
+  std::vector<Uav> uavs_;
+  SharedWorld shared_;
+  std::uint64_t tick_ = 0;
+  double latest_imu_stamp_s_ = -1.0;
+};
+
+}  // namespace cover::sim

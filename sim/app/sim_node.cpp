@@ -1,0 +1,230 @@
+#include "sim_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <thread>
+
+#include "cover/clock/clock.hpp"
+#include "cover/process/shutdown_signal.hpp"
+#include "cover/wire/control.hpp"
+#include "cover/wire/eigen.hpp"
+#include "cover/wire/enums.hpp"
+#include "cover/wire/sensors.hpp"
+
+namespace cover::sim {
+namespace {
+
+using namespace std::chrono_literals;
+
+std::chrono::milliseconds to_ms(double seconds) {
+  return std::chrono::milliseconds(static_cast<long>(seconds * 1000.0));
+}
+
+}  // namespace
+
+SimNode::SimNode(dds::Participant& participant, Fleet& fleet, SimRunOptions options,
+                 const SimProcessParams& params)
+    : participant_(participant),
+      fleet_(fleet),
+      options_(std::move(options)),
+      params_(params),
+      segment_(options_.segment_name, kWorldSegmentLayoutVersion),
+      clock_writer_(participant.make_writer(dds::topics::sim_clock())),
+      mailboxes_(static_cast<std::size_t>(fleet.uav_count())) {
+  const int ugvs = fleet.world(0).ugv_count();
+  for (int u = 0; u < fleet.uav_count(); ++u) {
+    const auto uav = static_cast<std::uint32_t>(u);
+    relative_writers_.emplace_back();
+    for (int k = 0; k < ugvs; ++k) {
+      relative_writers_[u].push_back(
+          participant.make_writer(dds::topics::relative_state(uav, static_cast<std::uint32_t>(k))));
+    }
+    command_readers_.push_back(participant.make_reader(
+        dds::topics::uav_command(uav), [this, u](const msg::UavCommand& c) { on_command(u, c); }));
+    trace_readers_.push_back(
+        participant.make_reader(dds::topics::uav_trace(uav), [this, u](const msg::ControlTrace& t) {
+          {
+            std::lock_guard<std::mutex> lock(mutex_);
+            mailboxes_[u].trace = t;
+          }
+          arrived_.notify_all();
+        }));
+  }
+  task_status_reader_ =
+      participant.make_reader(dds::topics::task_status(), [this](const msg::TaskStatus& s) {
+        if (s.uav_id >= mailboxes_.size()) return;
+        std::lock_guard<std::mutex> lock(mutex_);
+        mailboxes_[s.uav_id].task_message = s.message;
+        if (const auto state = wire::from_msg(s.state)) mailboxes_[s.uav_id].task_state = *state;
+      });
+  segment_.write(fleet_.shared(), 0);
+}
+
+void SimNode::on_command(int u, const msg::UavCommand& command) {
+  const std::int64_t now_ns = clock::monotonic_ns();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    Mailbox& box = mailboxes_[u];
+    box.command = command;
+    box.command_received_ns = now_ns;
+    if (options_.clock == SimClockMode::Realtime) {
+      const auto& slot =
+          published_[static_cast<std::size_t>(command.measurement_stamp_ns / 1'000'000) %
+                     published_.size()];
+      if (slot.first == command.measurement_stamp_ns && command.measurement_stamp_ns > 0) {
+        latency_ms_.push_back(static_cast<double>(now_ns - slot.second) * 1e-6);
+      }
+    }
+  }
+  arrived_.notify_all();
+}
+
+SimExit SimNode::run() {
+  if (!wait_for_agents()) return SimExit::StartupTimeout;
+  const auto start = std::chrono::steady_clock::now();
+  const SimExit exit = options_.clock == SimClockMode::Lockstep ? run_lockstep() : run_realtime();
+  wall_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return exit;
+}
+
+// The first tick waits until every UAV agent listens to the clock and has a command
+// writer: a tick published before that would be lost (volatile) and the run would differ
+// from the in-process one.
+bool SimNode::wait_for_agents() {
+  const auto deadline = std::chrono::steady_clock::now() + to_ms(params_.startup_timeout_s);
+  for (int u = 0; u < fleet_.uav_count(); ++u) {
+    while (command_readers_[u].matched_writers() == 0 || trace_readers_[u].matched_writers() == 0) {
+      if (process::ShutdownSignal::requested()) return false;
+      if (std::chrono::steady_clock::now() >= deadline) {
+        spdlog::error("no UAV agent for UAV {} (cover-uav-agent --id {}) after {:.0f} s", u, u,
+                      params_.startup_timeout_s);
+        return false;
+      }
+      std::this_thread::sleep_for(1ms);
+    }
+  }
+  const std::size_t uavs = static_cast<std::size_t>(fleet_.uav_count());
+  if (!clock_writer_.wait_for_readers(uavs, to_ms(params_.startup_timeout_s))) {
+    spdlog::error("only {} of {} UAV agents subscribed to cover/sim/clock",
+                  clock_writer_.matched_readers(), uavs);
+    return false;
+  }
+  spdlog::info("{} UAV agent(s) connected; starting", uavs);
+  return true;
+}
+
+void SimNode::publish_tick() {
+  const double t = fleet_.time_s();
+  std::int64_t relative_stamp_ns = -1;
+  for (int u = 0; u < fleet_.uav_count(); ++u) {
+    const World& world = fleet_.world(u);
+    if (!world.relative_sensor().has_measurement()) continue;
+    for (int k = 0; k < world.ugv_count(); ++k) {
+      const msg::RelativeState m =
+          wire::to_msg(world.relative_sensor().latest(k), static_cast<std::uint32_t>(u),
+                       static_cast<std::uint32_t>(k));
+      relative_stamp_ns = m.stamp_ns;
+      relative_writers_[u][k].write(m);
+    }
+  }
+  if (relative_stamp_ns >= 0) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    published_[static_cast<std::size_t>(relative_stamp_ns / 1'000'000) % published_.size()] = {
+        relative_stamp_ns, clock::monotonic_ns()};
+  }
+  segment_.write(fleet_.shared(), wire::to_stamp_ns(t));
+  msg::SimClock tick;
+  tick.stamp_ns = wire::to_stamp_ns(t);
+  tick.tick = fleet_.tick();
+  tick.period_s = 1.0 / params_.control_rate_hz;
+  tick.mode = options_.clock == SimClockMode::Lockstep ? msg::ClockMode::CLOCK_MODE_LOCKSTEP
+                                                       : msg::ClockMode::CLOCK_MODE_REALTIME;
+  tick.imu_stamp_ns =
+      fleet_.latest_imu_stamp_s() >= 0.0 ? wire::to_stamp_ns(fleet_.latest_imu_stamp_s()) : -1;
+  tick.relative_stamp_ns = relative_stamp_ns;
+  clock_writer_.write(tick);
+}
+
+bool SimNode::wait_for_commands(std::int64_t tick_ns) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  auto answered = [&](const Mailbox& box) {
+    return box.command && box.command->stamp_ns == tick_ns && box.trace &&
+           box.trace->stamp_ns == tick_ns;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + to_ms(params_.stall_timeout_s);
+  for (int u = 0; u < fleet_.uav_count(); ++u) {
+    if (!arrived_.wait_until(lock, deadline, [&] { return answered(mailboxes_[u]); })) {
+      spdlog::error(
+          "lockstep stalled at t = {:.2f} s: no command from UAV {} (cover-uav-agent --id {}, "
+          "topic cover/uav/{}/cmd) for {:.1f} s",
+          wire::to_seconds(tick_ns), u, u, u, params_.stall_timeout_s);
+      return false;
+    }
+  }
+  return true;
+}
+
+void SimNode::apply_commands(bool lockstep) {
+  const std::int64_t now_ns = clock::monotonic_ns();
+  for (int u = 0; u < fleet_.uav_count(); ++u) {
+    mission::ControllerStatus status;
+    mission::ControlCommand command;
+    double age_s = -1.0;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const Mailbox& box = mailboxes_[u];
+      if (box.trace) status = wire::from_msg(*box.trace);
+      if (box.command) {
+        command = wire::from_msg(*box.command);
+        age_s = lockstep ? 0.0 : static_cast<double>(now_ns - box.command_received_ns) * 1e-9;
+      }
+    }
+    fleet_.apply(u, status, command, age_s);
+    if (fleet_.offboard_changed(u)) {
+      const OffboardState state = fleet_.offboard_state(u);
+      if (state == OffboardState::Offboard) {
+        spdlog::info("UAV {}: offboard (agent commanding)", u);
+      } else {
+        spdlog::warn("UAV {}: {} at t = {:.2f} s", u, to_string(state), fleet_.time_s());
+      }
+    }
+  }
+}
+
+SimExit SimNode::run_lockstep() {
+  while (!fleet_.finished()) {
+    if (process::ShutdownSignal::requested()) return SimExit::Interrupted;
+    publish_tick();
+    if (!wait_for_commands(wire::to_stamp_ns(fleet_.time_s()))) return SimExit::Stalled;
+    apply_commands(true);
+    fleet_.advance();
+  }
+  return SimExit::Finished;
+}
+
+SimExit SimNode::run_realtime() {
+  const auto period = std::chrono::nanoseconds(static_cast<long>(1e9 / params_.control_rate_hz));
+  auto next = std::chrono::steady_clock::now();
+  while (!fleet_.finished()) {
+    if (process::ShutdownSignal::requested()) return SimExit::Interrupted;
+    publish_tick();
+    next += period;
+    std::this_thread::sleep_until(next);  // the simulated world's pace, not a synchronisation
+    apply_commands(false);
+    fleet_.advance();
+  }
+  return SimExit::Finished;
+}
+
+std::string SimNode::task_message(int uav) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return mailboxes_[uav].task_message;
+}
+
+mission::MissionState SimNode::task_state(int uav) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return mailboxes_[uav].task_state;
+}
+
+}  // namespace cover::sim
