@@ -1,11 +1,13 @@
 #include "cover/process/child_process.hpp"
 
+#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <stdexcept>
 #include <thread>
 
@@ -14,13 +16,16 @@ extern char** environ;
 namespace cover::process {
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv,
-                           const std::vector<std::string>& extra_env, bool capture_stdout) {
+                           const std::vector<std::string>& extra_env, bool capture_stdout)
+    : ChildProcess(argv, SpawnOptions{extra_env, capture_stdout}) {}
+
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, const SpawnOptions& options) {
   std::vector<char*> args;
   for (const auto& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
   args.push_back(nullptr);
   std::vector<std::string> env_storage;
   for (char** e = environ; *e; ++e) env_storage.emplace_back(*e);
-  env_storage.insert(env_storage.end(), extra_env.begin(), extra_env.end());
+  env_storage.insert(env_storage.end(), options.extra_env.begin(), options.extra_env.end());
   std::vector<char*> env;
   for (auto& entry : env_storage) env.push_back(entry.data());
   env.push_back(nullptr);
@@ -28,10 +33,21 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv,
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   int pipe_fds[2] = {-1, -1};
-  if (capture_stdout) {
-    if (pipe(pipe_fds) != 0) throw std::runtime_error("pipe() failed");
+  if (options.capture_stdout) {
+    // Close-on-exec, so later children do not hold the write end open (dup2 clears the flag).
+    if (pipe2(pipe_fds, O_CLOEXEC) != 0) throw std::runtime_error("pipe() failed");
     posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
     posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
+  }
+  if (options.null_stdin) {
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  }
+  if (!options.log_file.empty()) {
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, options.log_file.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (!options.capture_stdout) {
+      posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
+    }
   }
   // The child must not inherit blocked SIGINT/SIGTERM from a ShutdownSignal parent.
   posix_spawnattr_t attr;
@@ -39,17 +55,22 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv,
   sigset_t empty;
   sigemptyset(&empty);
   posix_spawnattr_setsigmask(&attr, &empty);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
+  short flags = POSIX_SPAWN_SETSIGMASK;
+  if (options.new_process_group) {
+    posix_spawnattr_setpgroup(&attr, 0);
+    flags |= POSIX_SPAWN_SETPGROUP;
+  }
+  posix_spawnattr_setflags(&attr, flags);
   const int rc = posix_spawn(&pid_, args[0], &actions, &attr, args.data(), env.data());
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attr);
-  if (capture_stdout) {
+  if (options.capture_stdout) {
     close(pipe_fds[1]);
     stdout_fd_ = pipe_fds[0];
   }
   if (rc != 0) {
     pid_ = -1;
-    throw std::runtime_error("cannot start " + argv.at(0) + ": error " + std::to_string(rc));
+    throw std::runtime_error("cannot start " + argv.at(0) + ": " + std::strerror(rc));
   }
 }
 
