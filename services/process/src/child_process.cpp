@@ -17,7 +17,12 @@ namespace cover::process {
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv,
                            const std::vector<std::string>& extra_env, bool capture_stdout)
-    : ChildProcess(argv, SpawnOptions{extra_env, capture_stdout}) {}
+    : ChildProcess(argv, [&] {
+        SpawnOptions options;
+        options.extra_env = extra_env;
+        options.capture_stdout = capture_stdout;
+        return options;
+      }()) {}
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv, const SpawnOptions& options) {
   std::vector<char*> args;
@@ -106,6 +111,7 @@ std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {
     int status = 0;
     const pid_t done = waitpid(pid_, &status, WNOHANG);
     if (done == pid_) {
+      killed_by_signal_ = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
       exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       return exit_code_;
     }

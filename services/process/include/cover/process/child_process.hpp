@@ -50,12 +50,16 @@ class ChildProcess {
 
   // The exit code once wait() or terminate() has seen the child exit.
   std::optional<int> exit_code() const { return exit_code_; }
+  // The signal that killed the child, once it has exited; 0 when it exited by itself (the
+  // exit code 128 + N alone cannot tell `exit(130)` from death by SIGINT).
+  int killed_by_signal() const { return killed_by_signal_; }
 
  private:
   pid_t pid_ = -1;
   int stdout_fd_ = -1;
   std::string buffer_;
   std::optional<int> exit_code_;
+  int killed_by_signal_ = 0;
 };
 
 }  // namespace cover::process
