@@ -4,11 +4,13 @@
 //   wait    (default) run until SIGINT or SIGTERM, print which one, exit 0
 //   exit    exit with --code=N after --after-ms=T
 //   ignore  ignore SIGINT and SIGTERM: only SIGKILL ends it
-// Other options: --ready=PATH (create PATH once signals are handled, so a test knows the
-// process is up), --await=PATH (mode exit: first wait until PATH exists; repeatable),
+// It also lists any descriptor above 2 it inherited ("open fd: N"). Other options: --ready=PATH
+// (create PATH once signals are handled, so a test knows the process is up), --await=PATH (mode
+// exit: first wait until PATH exists; repeatable),
 // --shm=NAME (create /dev/shm/NAME and leave it), --result=PATH (write {"fake": true}).
 // Unknown arguments are only printed. Every mode gives up after 30 s, so a broken test
 // cannot leave it running for ever.
+#include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/mman.h>
@@ -61,6 +63,14 @@ void print_environment(int argc, char** argv) {
   const char* domain = std::getenv("COVER_DDS_DOMAIN");
   std::printf("COVER_DDS=%s\nCOVER_DDS_DOMAIN=%s\n", vendor ? vendor : "", domain ? domain : "");
   for (int i = 1; i < argc; ++i) std::printf("arg: %s\n", argv[i]);
+  // Descriptors beyond stdin, stdout and stderr that the launcher let through.
+  if (DIR* fds = opendir("/proc/self/fd")) {
+    while (const dirent* entry = readdir(fds)) {
+      const int fd = std::atoi(entry->d_name);
+      if (fd > 2 && fd != dirfd(fds)) std::printf("open fd: %d\n", fd);
+    }
+    closedir(fds);
+  }
   std::fflush(stdout);
 }
 

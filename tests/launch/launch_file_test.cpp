@@ -162,5 +162,15 @@ launch:
                "grace_period_s"));
 }
 
+// The documented example must stay a valid launch file.
+TEST(LaunchFile, ShippedExampleLoads) {
+  const LaunchFile file =
+      LaunchFile::load_file(std::string(COVER_SOURCE_DIR) + "/config/launch/example.yaml");
+  EXPECT_EQ(file.name, "scenario2");
+  ASSERT_EQ(file.processes.size(), 4u);
+  EXPECT_TRUE(file.processes[0].ends_run);
+  EXPECT_EQ(file.processes[1].dds, "cyclone");
+}
+
 }  // namespace
 }  // namespace cover::launch

@@ -154,6 +154,8 @@ launch:
   EXPECT_TRUE(contains(log_of("ugv0"), "got SIGINT"));
   EXPECT_TRUE(contains(log_of("ugv1"), "got SIGINT"));
   EXPECT_TRUE(contains(log_of("sim"), "exiting with 0"));
+  // Children hold no descriptor of the launcher (launch.log) or of this test (its pipe).
+  EXPECT_FALSE(contains(log_of("ugv0"), "open fd")) << log_of("ugv0");
 
   const std::string launch_log = read_text(run_dir_ / "launch.log");
   const auto stop_ugv1 = launch_log.find("stopping ugv1");
@@ -357,6 +359,8 @@ launch:
   result = run(valid, {"--domain", "300"});
   EXPECT_EQ(result.exit_code, 2);
   result = run(valid, {"--clock", "warp"});
+  EXPECT_EQ(result.exit_code, 2);
+  result = run(valid, {"--seed", "1.5"});
   EXPECT_EQ(result.exit_code, 2);
   result = run(valid, {"--seed", "1"});  // the file has no {seed}
   EXPECT_EQ(result.exit_code, 2);

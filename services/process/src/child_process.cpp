@@ -54,6 +54,9 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const SpawnOpti
       posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
     }
   }
+  if (options.close_other_fds) {
+    posix_spawn_file_actions_addclosefrom_np(&actions, STDERR_FILENO + 1);
+  }
   // The child must not inherit blocked SIGINT/SIGTERM from a ShutdownSignal parent.
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);

@@ -42,6 +42,14 @@ Exit codes:
   4    a process died unexpectedly or could not be started
   130  interrupted (SIGINT/SIGTERM to cover-launch))";
 
+const CLI::Validator kNonNegativeInteger(
+    [](std::string& text) {
+      const bool digits =
+          !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+      return digits ? std::string() : "expected a non-negative integer, got '" + text + "'";
+    },
+    "N");
+
 struct Flags {
   std::string file;
   std::vector<std::string> dds;
@@ -60,7 +68,7 @@ void add_flags(CLI::App& app, Flags& flags) {
                  "repeatable, the later flag wins where globs overlap");
   app.add_option("--clock", flags.clock, "Sets variable {clock}")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
-  app.add_option("--seed", flags.seed, "Sets variable {seed}")->check(CLI::NonNegativeNumber);
+  app.add_option("--seed", flags.seed, "Sets variable {seed}")->check(kNonNegativeInteger);
   app.add_option("--var", flags.vars, "KEY=VALUE: sets variable {KEY}; repeatable");
   app.add_option("--domain", flags.domain_id,
                  "DDS domain 0..232, given as $COVER_DDS_DOMAIN and {domain} "

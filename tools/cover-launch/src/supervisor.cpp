@@ -135,6 +135,7 @@ class Supervisor {
     options.log_file = (std::filesystem::path(plan_.run_dir) / (spec.name + ".log")).string();
     options.null_stdin = true;
     options.new_process_group = true;
+    options.close_other_fds = true;
     try {
       auto child = std::make_unique<process::ChildProcess>(argv, options);
       outcome_.processes[index].pid = child->pid();

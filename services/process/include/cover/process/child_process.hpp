@@ -20,6 +20,9 @@ struct SpawnOptions {
   // The child leads a new process group, so a Ctrl-C at the terminal reaches only the
   // parent, which then stops its children in its own order.
   bool new_process_group = false;
+  // Only stdin, stdout and stderr reach the child: open files of the parent (a log it
+  // writes, a test harness's pipes) must not be held open by every process it starts.
+  bool close_other_fds = false;
 };
 
 // A child process started with posix_spawn, for integration tests and benchmarks that
