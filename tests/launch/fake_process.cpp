@@ -4,6 +4,7 @@
 //   wait    (default) run until SIGINT or SIGTERM, print which one, exit 0
 //   exit    exit with --code=N after --after-ms=T
 //   ignore  ignore SIGINT and SIGTERM: only SIGKILL ends it
+//   signal  die at once by SIGUSR1 (a crash without a core dump)
 // It also lists any descriptor above 2 it inherited ("open fd: N"). Other options: --ready=PATH
 // (create PATH once signals are handled, so a test knows the process is up), --await=PATH (mode
 // exit: first wait until PATH exists; repeatable),
@@ -121,6 +122,7 @@ int main(int argc, char** argv) {
   }
   if (!options.result.empty()) touch(options.result, "{\"fake\": true, \"score\": 7}\n");
   if (!options.ready.empty()) touch(options.ready, "ready\n");
+  if (options.mode == "signal") raise(SIGUSR1);
   if (options.mode == "exit") {
     wait_for_files(options.await);
     std::this_thread::sleep_for(std::chrono::milliseconds(options.after_ms));

@@ -233,6 +233,22 @@ launch:
   expect_all_gone(report);
 }
 
+TEST_F(LaunchProcess, DeathBySignalIsNamed) {
+  const auto result = run(R"(
+launch:
+  name: crash
+  grace_period_s: 0.3
+  processes:
+    - {name: sim, executable: fake_process, ends_run: true}
+    - {name: uav0, executable: fake_process, args: [--mode=signal]}
+)");
+  EXPECT_EQ(result.exit_code, 4) << result.err;
+  EXPECT_TRUE(contains(result.err, "uav0 (pid ")) << result.err;
+  EXPECT_TRUE(
+      contains(result.err, "died unexpectedly: killed by signal " + std::to_string(SIGUSR1)))
+      << result.err;
+}
+
 TEST_F(LaunchProcess, EndsRunFailureExits3) {
   const auto result = run(R"(
 launch:

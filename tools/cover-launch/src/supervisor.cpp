@@ -71,6 +71,7 @@ void stop(Child& child, milliseconds grace) {
   spdlog::warn("stopping {} (pid {}): SIGKILL, it ignored SIGINT and SIGTERM for {} ms",
                child.spec->name, pid, 2 * grace.count());
   killpg(pid, SIGKILL);
+  kill(pid, SIGKILL);  // in case the child left its group (setsid)
   child.process->wait(kKillWait);
   has_exited(child);
 }
@@ -107,8 +108,10 @@ class Supervisor {
       auto resolved =
           resolve_executable(spec.executable, plan_.launch_dir, self_dir, path ? path : "");
       if (!resolved) {
-        spdlog::error("{}: executable '{}' not found (looked in {}, then $PATH)", spec.name,
-                      spec.executable, self_dir);
+        const bool is_path = spec.executable.find('/') != std::string::npos;
+        spdlog::error(
+            "{}: executable '{}' not found (looked {})", spec.name, spec.executable,
+            is_path ? "relative to " + plan_.launch_dir : "in " + self_dir + ", then $PATH");
         finish(kExitProcessDied,
                spec.name + " could not be started: " + spec.executable + " not found");
         return false;
