@@ -8,6 +8,23 @@
 
 namespace cover::process {
 
+// How a child is started beyond its argv. The defaults give the parent's stdin, stdout,
+// stderr and process group.
+struct SpawnOptions {
+  std::vector<std::string> extra_env;  // "KEY=value", added to the parent's environment
+  bool capture_stdout = false;         // a pipe read with ChildProcess::read_line
+  // Truncated and opened in the child for stderr, and for stdout unless it is captured: a
+  // supervisor keeps one log per process without relaying bytes itself.
+  std::string log_file;
+  bool null_stdin = false;  // stdin from /dev/null (a child in its own group must not read the tty)
+  // The child leads a new process group, so a Ctrl-C at the terminal reaches only the
+  // parent, which then stops its children in its own order.
+  bool new_process_group = false;
+  // Only stdin, stdout and stderr reach the child: open files of the parent (a log it
+  // writes, a test harness's pipes) must not be held open by every process it starts.
+  bool close_other_fds = false;
+};
+
 // A child process started with posix_spawn, for integration tests and benchmarks that
 // run real processes. Its stdout can be read line by line; the destructor terminates it.
 class ChildProcess {
@@ -16,6 +33,7 @@ class ChildProcess {
   // parent's environment. Throws std::runtime_error when the spawn fails.
   ChildProcess(const std::vector<std::string>& argv, const std::vector<std::string>& extra_env = {},
                bool capture_stdout = false);
+  ChildProcess(const std::vector<std::string>& argv, const SpawnOptions& options);
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
@@ -30,14 +48,21 @@ class ChildProcess {
   int terminate(std::chrono::milliseconds timeout = std::chrono::milliseconds(5000),
                 int signal_number = 15);
 
-  // Waits for the child to exit by itself; nullopt on timeout.
+  // Waits for the child to exit by itself; nullopt on timeout. A zero timeout only polls.
   std::optional<int> wait(std::chrono::milliseconds timeout);
+
+  // The exit code once wait() or terminate() has seen the child exit.
+  std::optional<int> exit_code() const { return exit_code_; }
+  // The signal that killed the child, once it has exited; 0 when it exited by itself (the
+  // exit code 128 + N alone cannot tell `exit(130)` from death by SIGINT).
+  int killed_by_signal() const { return killed_by_signal_; }
 
  private:
   pid_t pid_ = -1;
   int stdout_fd_ = -1;
   std::string buffer_;
   std::optional<int> exit_code_;
+  int killed_by_signal_ = 0;
 };
 
 }  // namespace cover::process

@@ -1,0 +1,176 @@
+// Launch-file parsing and validation: every error names what is wrong.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cover/config/config_error.hpp"
+#include "cover/launch/launch_file.hpp"
+
+namespace cover::launch {
+namespace {
+
+LaunchFile parse(const std::string& yaml) {
+  return LaunchFile::parse(YAML::Load(yaml), "test.yaml", "/launch/dir");
+}
+
+// The message of the ConfigError that parsing `yaml` throws; fails the test otherwise.
+std::string error_of(const std::string& yaml) {
+  try {
+    parse(yaml);
+  } catch (const config::ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << yaml;
+  return "";
+}
+
+const char* kValid = R"(
+launch:
+  name: scenario2
+  grace_period_s: 0.5
+  variables: {clock: lockstep, seed: ""}
+  processes:
+    - name: sim
+      executable: cover-sim
+      args: [--scenario, scenario2, "--clock={clock}", "--seed={seed}", "--result={run_dir}/r.json"]
+      dds: fastdds
+      env: {COVER_LOG_LEVEL: info}
+      ends_run: true
+    - name: ugv0
+      executable: ./bin/cover-ugv-agent
+      args: [--id, "0", "--run-id={run_id}"]
+      dds: cyclone
+)";
+
+TEST(LaunchFile, ParsesEveryKey) {
+  const LaunchFile file = parse(kValid);
+  EXPECT_EQ(file.name, "scenario2");
+  EXPECT_DOUBLE_EQ(file.grace_period_s, 0.5);
+  EXPECT_EQ(file.variables.at("clock"), "lockstep");
+  EXPECT_EQ(file.variables.at("seed"), "");
+  EXPECT_EQ(file.directory, "/launch/dir");
+  ASSERT_EQ(file.processes.size(), 2u);
+  EXPECT_EQ(file.processes[0].name, "sim");
+  EXPECT_EQ(file.processes[0].args.size(), 5u);
+  EXPECT_EQ(file.processes[0].env.at("COVER_LOG_LEVEL"), "info");
+  EXPECT_TRUE(file.processes[0].ends_run);
+  EXPECT_EQ(file.processes[1].executable, "./bin/cover-ugv-agent");
+  EXPECT_EQ(file.processes[1].dds, "cyclone");
+  EXPECT_FALSE(file.processes[1].ends_run);
+}
+
+TEST(LaunchFile, DefaultsStandForOptionalKeys) {
+  const LaunchFile file = parse(R"(
+launch:
+  name: tiny
+  processes:
+    - {name: only, executable: x, ends_run: true}
+)");
+  EXPECT_DOUBLE_EQ(file.grace_period_s, 3.0);
+  EXPECT_TRUE(file.variables.empty());
+  EXPECT_EQ(file.processes[0].dds, "fastdds");
+  EXPECT_TRUE(file.processes[0].args.empty());
+}
+
+TEST(LaunchFile, UnknownKeysAreNamed) {
+  EXPECT_NE(error_of(R"(
+launch:
+  name: a
+  grace_period: 1
+  processes: [{name: p, executable: x, ends_run: true}]
+)")
+                .find("unknown key 'grace_period'"),
+            std::string::npos);
+  const std::string in_process = error_of(R"(
+launch:
+  name: a
+  processes: [{name: p, executable: x, ends_run: true, argz: []}]
+)");
+  EXPECT_NE(in_process.find("unknown key 'argz'"), std::string::npos) << in_process;
+  EXPECT_NE(in_process.find("(p)"), std::string::npos) << in_process;
+  EXPECT_NE(error_of("launch: {name: a, processes: []}\nextra: 1\n").find("unknown key 'extra'"),
+            std::string::npos);
+}
+
+TEST(LaunchFile, MissingKeysAreNamed) {
+  EXPECT_NE(error_of("launch: {processes: [{name: p, executable: x, ends_run: true}]}")
+                .find("missing required key 'name'"),
+            std::string::npos);
+  EXPECT_NE(error_of("launch: {name: a, processes: [{name: p, ends_run: true}]}")
+                .find("missing required key 'executable'"),
+            std::string::npos);
+  EXPECT_NE(error_of("other: 1").find("missing section 'launch'"), std::string::npos);
+}
+
+TEST(LaunchFile, UnknownPlaceholderNamesProcessAndArgument) {
+  const std::string message = error_of(R"(
+launch:
+  name: a
+  variables: {clock: lockstep}
+  processes:
+    - {name: sim, executable: x, ends_run: true, args: ["--clock={clock}", "--speed={speed}"]}
+)");
+  EXPECT_NE(message.find("process 'sim'"), std::string::npos) << message;
+  EXPECT_NE(message.find("'--speed={speed}'"), std::string::npos) << message;
+  EXPECT_NE(message.find("{speed}"), std::string::npos) << message;
+}
+
+TEST(LaunchFile, StructuralErrors) {
+  const auto contains = [](const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+  };
+  EXPECT_TRUE(contains(error_of(R"(
+launch:
+  name: a
+  processes:
+    - {name: ugv, executable: x, ends_run: true}
+    - {name: ugv, executable: y}
+)"),
+                       "duplicate process name 'ugv'"));
+  EXPECT_TRUE(contains(error_of("launch: {name: a, processes: []}"), "no process"));
+  EXPECT_TRUE(contains(error_of("launch: {name: a, processes: [{name: p, executable: x}]}"),
+                       "exactly one process must have ends_run: true (found 0)"));
+  EXPECT_TRUE(contains(error_of(R"(
+launch:
+  name: a
+  processes:
+    - {name: p, executable: x, ends_run: true}
+    - {name: q, executable: x, ends_run: true}
+)"),
+                       "(found 2)"));
+  EXPECT_TRUE(contains(
+      error_of("launch: {name: a, processes: [{name: p, executable: x, ends_run: true, dds: "
+               "opendds}]}"),
+      "dds: 'opendds'"));
+  EXPECT_TRUE(contains(
+      error_of("launch: {name: a, processes: [{name: p, executable: x, ends_run: true, env: "
+               "{COVER_DDS: cyclone}}]}"),
+      "COVER_DDS is set by the launcher"));
+  EXPECT_TRUE(contains(
+      error_of("launch: {name: a, variables: {run_id: x}, processes: [{name: p, executable: x, "
+               "ends_run: true}]}"),
+      "'run_id' is a built-in placeholder"));
+  EXPECT_TRUE(contains(
+      error_of("launch: {name: a, processes: [{name: a/b, executable: x, ends_run: true}]}"),
+      "process name 'a/b'"));
+  EXPECT_TRUE(contains(
+      error_of("launch: {name: a, processes: [{name: launch, executable: x, ends_run: true}]}"),
+      "launch.log"));
+  EXPECT_TRUE(
+      contains(error_of("launch: {name: a, grace_period_s: 0, processes: [{name: p, executable: x, "
+                        "ends_run: true}]}"),
+               "grace_period_s"));
+}
+
+// The documented example must stay a valid launch file.
+TEST(LaunchFile, ShippedExampleLoads) {
+  const LaunchFile file =
+      LaunchFile::load_file(std::string(COVER_SOURCE_DIR) + "/config/launch/example.yaml");
+  EXPECT_EQ(file.name, "scenario2");
+  ASSERT_EQ(file.processes.size(), 4u);
+  EXPECT_TRUE(file.processes[0].ends_run);
+  EXPECT_EQ(file.processes[1].dds, "cyclone");
+}
+
+}  // namespace
+}  // namespace cover::launch

@@ -1,0 +1,197 @@
+// From a launch file and flags to what is spawned: placeholders, --dds globs, run ids,
+// executable lookup, and the leftover-segment sweep.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "cover/launch/dds_override.hpp"
+#include "cover/launch/executable_lookup.hpp"
+#include "cover/launch/launch_plan.hpp"
+#include "cover/launch/placeholders.hpp"
+#include "cover/launch/run_naming.hpp"
+#include "cover/launch/shm_cleanup.hpp"
+
+namespace cover::launch {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<ProcessSpec> processes(std::initializer_list<const char*> names) {
+  std::vector<ProcessSpec> specs;
+  for (const char* name : names) {
+    ProcessSpec spec;
+    spec.name = name;
+    spec.dds = "fastdds";
+    specs.push_back(spec);
+  }
+  return specs;
+}
+
+TEST(LaunchDds, LaterGlobWinsWhereGlobsOverlap) {
+  auto specs = processes({"sim", "ugv0", "ugv1", "uav0"});
+  apply_dds_overrides(specs, {parse_dds_override("*=cyclone"), parse_dds_override("ugv*=fastdds")});
+  EXPECT_EQ(specs[0].dds, "cyclone");
+  EXPECT_EQ(specs[1].dds, "fastdds");
+  EXPECT_EQ(specs[2].dds, "fastdds");
+  EXPECT_EQ(specs[3].dds, "cyclone");
+
+  auto reversed = processes({"sim", "ugv0"});
+  apply_dds_overrides(reversed,
+                      {parse_dds_override("ugv*=fastdds"), parse_dds_override("*=cyclone")});
+  EXPECT_EQ(reversed[1].dds, "cyclone");
+}
+
+TEST(LaunchDds, ExactNameAndErrors) {
+  auto specs = processes({"sim", "ugv0"});
+  apply_dds_overrides(specs, {parse_dds_override("ugv0=cyclone")});
+  EXPECT_EQ(specs[0].dds, "fastdds");
+  EXPECT_EQ(specs[1].dds, "cyclone");
+  EXPECT_THROW(parse_dds_override("ugv0"), std::invalid_argument);
+  EXPECT_THROW(parse_dds_override("ugv0=opendds"), std::invalid_argument);
+  EXPECT_THROW(parse_dds_override("=cyclone"), std::invalid_argument);
+  try {
+    apply_dds_overrides(specs, {parse_dds_override("uav*=cyclone")});
+    FAIL() << "a pattern matching nothing must be an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("uav*"), std::string::npos) << e.what();
+  }
+}
+
+TEST(LaunchPlaceholders, ExpandsAndDropsEmpty) {
+  const PlaceholderValues values{{"clock", "lockstep"}, {"seed", ""}, {"run_dir", "/r"}};
+  EXPECT_EQ(expand_arguments({"--scenario", "s2", "--clock={clock}", "--seed={seed}",
+                              "{run_dir}/{clock}.json", "plain"},
+                             values),
+            (std::vector<std::string>{"--scenario", "s2", "--clock=lockstep", "/r/lockstep.json",
+                                      "plain"}));
+  // One empty placeholder drops the whole argument, even beside a non-empty one.
+  EXPECT_EQ(expand_argument("{clock}-{seed}", values), std::nullopt);
+  EXPECT_EQ(expand_argument("{{literal}} {clock}", values), "{literal} lockstep");
+  EXPECT_EQ(expand_argument("", values), "");
+}
+
+TEST(LaunchPlaceholders, NamesAndMalformed) {
+  EXPECT_EQ(placeholder_names("--a={x}/{y_2}{{z}}"), (std::vector<std::string>{"x", "y_2"}));
+  EXPECT_THROW(placeholder_names("--a={x"), std::invalid_argument);
+  EXPECT_THROW(placeholder_names("--a=x}"), std::invalid_argument);
+  EXPECT_THROW(placeholder_names("--a={}"), std::invalid_argument);
+  EXPECT_THROW(expand_argument("{nope}", {}), std::invalid_argument);
+}
+
+TEST(LaunchRunId, Sanitised) {
+  EXPECT_EQ(sanitize_run_id("scenario-2.a b/c"), "scenario_2_a_b_c");
+  EXPECT_EQ(make_run_id("scenario2", 4242), "scenario2_4242");
+  EXPECT_EQ(make_run_id("demo.v-1", 7), "demo_v_1_7");
+  const auto id = make_run_id("x!@#", 1);
+  EXPECT_TRUE(std::all_of(id.begin(), id.end(), [](char c) { return std::isalnum(c) || c == '_'; }))
+      << id;
+}
+
+TEST(LaunchRunId, DefaultRunDirIsDatedAndNeverReused) {
+  const fs::path base =
+      fs::temp_directory_path() / ("cover-launch-rundir-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  std::tm when{};
+  when.tm_year = 2026 - 1900;
+  when.tm_mon = 11;
+  when.tm_mday = 3;
+  when.tm_hour = 14;
+  when.tm_min = 5;
+  when.tm_sec = 9;
+  when.tm_isdst = -1;
+  const auto now = std::chrono::system_clock::from_time_t(std::mktime(&when));
+  const std::string first = default_run_dir(base.string(), "s2", now);
+  EXPECT_EQ(first, (base / "runs" / "s2_20261203-140509").string());
+  fs::create_directories(first);
+  EXPECT_EQ(default_run_dir(base.string(), "s2", now), first + "_2");
+  fs::remove_all(base);
+}
+
+TEST(LaunchPlan, ExpandsBuiltinsAndSetsEnvironment) {
+  LaunchFile file;
+  file.name = "demo-1";
+  file.variables = {{"clock", "lockstep"}, {"seed", ""}};
+  ProcessSpec sim;
+  sim.name = "sim";
+  sim.executable = "cover-sim";
+  sim.args = {"--run-id={run_id}",
+              "--domain={domain}",
+              "--seed={seed}",
+              "--clock={clock}",
+              "--result={run_dir}/result.json",
+              "--config={config_dir}"};
+  sim.env = {{"COVER_LOG_LEVEL", "debug"}};
+  sim.ends_run = true;
+  file.processes = {sim};
+  LaunchOptions options;
+  options.domain_id = 12;
+  options.run_dir = "/tmp/runs/x";
+  options.launcher_pid = 99;
+  options.variables = {{"clock", "realtime"}};
+  options.dds_overrides = {parse_dds_override("sim=cyclone")};
+  const LaunchPlan plan = make_plan(file, options);
+  EXPECT_EQ(plan.run_id, "demo_1_99");
+  ASSERT_EQ(plan.processes.size(), 1u);
+  const auto& args = plan.processes[0].args;
+  ASSERT_EQ(args.size(), 5u);
+  EXPECT_EQ(args[0], "--run-id=demo_1_99");
+  EXPECT_EQ(args[1], "--domain=12");
+  EXPECT_EQ(args[2], "--clock=realtime");
+  EXPECT_EQ(args[3], "--result=/tmp/runs/x/result.json");
+  EXPECT_EQ(args[4].rfind("--config=/", 0), 0u) << args[4];
+  EXPECT_EQ(plan.processes[0].env,
+            (std::vector<std::string>{"COVER_LOG_LEVEL=debug", "COVER_DDS=cyclone",
+                                      "COVER_DDS_DOMAIN=12"}));
+  options.variables = {{"sede", "1"}};
+  EXPECT_THROW(make_plan(file, options), std::invalid_argument);  // undeclared variable
+  options.variables = {};
+  options.domain_id = 233;
+  EXPECT_THROW(make_plan(file, options), std::invalid_argument);
+}
+
+TEST(LaunchExecutable, BareNamesBesideSelfThenPath) {
+  const fs::path dir = fs::temp_directory_path() / ("cover-launch-exe-" + std::to_string(getpid()));
+  fs::create_directories(dir / "self");
+  fs::create_directories(dir / "path");
+  const auto make_exe = [](const fs::path& path) {
+    std::ofstream(path) << "#!/bin/sh\n";
+    chmod(path.c_str(), 0755);
+  };
+  make_exe(dir / "self" / "tool");
+  make_exe(dir / "path" / "tool");
+  make_exe(dir / "path" / "other");
+  std::ofstream(dir / "path" / "not-exec") << "x";
+  const std::string self = (dir / "self").string();
+  const std::string path = "/nonexistent:" + (dir / "path").string();
+  EXPECT_EQ(resolve_executable("tool", "/x", self, path), (dir / "self" / "tool").string());
+  EXPECT_EQ(resolve_executable("other", "/x", self, path), (dir / "path" / "other").string());
+  EXPECT_EQ(resolve_executable("not-exec", "/x", self, path), std::nullopt);
+  EXPECT_EQ(resolve_executable("missing", "/x", self, path), std::nullopt);
+  EXPECT_EQ(resolve_executable("./path/other", dir.string(), self, ""),
+            (dir / "path" / "other").string());
+  EXPECT_EQ(resolve_executable((dir / "self" / "tool").string(), "/x", "", ""),
+            (dir / "self" / "tool").string());
+  fs::remove_all(dir);
+}
+
+TEST(LaunchShm, RemovesOnlyEntriesOfTheRun) {
+  const fs::path dir = fs::temp_directory_path() / ("cover-launch-shm-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  for (const char* name : {"cover_demo_12", "cover_demo_12_seg", "cover_demo_123", "other"}) {
+    std::ofstream(dir / name) << "x";
+  }
+  EXPECT_EQ(remove_leftover_segments("demo_12", dir.string()),
+            (std::vector<std::string>{"cover_demo_12", "cover_demo_12_seg"}));
+  EXPECT_TRUE(fs::exists(dir / "cover_demo_123"));
+  EXPECT_TRUE(fs::exists(dir / "other"));
+  EXPECT_TRUE(remove_leftover_segments("", dir.string()).empty());
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace cover::launch

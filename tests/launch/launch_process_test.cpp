@@ -1,0 +1,395 @@
+// cover-launch with real processes: fake_process stands in for the simulator and agents.
+// Synchronisation is on conditions with deadlines (ready files, process exits), never on
+// sleeps; fake_process's own --after-ms is not used.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "cover/process/child_process.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using std::chrono::milliseconds;
+using std::chrono::steady_clock;
+
+struct LaunchResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+  nlohmann::json json() const { return nlohmann::json::parse(out); }
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream stream(path);
+  std::stringstream text;
+  text << stream.rdbuf();
+  return text.str();
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// Polls `condition` every few milliseconds until it holds or `timeout` passes.
+template <typename Condition>
+bool eventually(Condition condition, milliseconds timeout = milliseconds(5000)) {
+  const auto deadline = steady_clock::now() + timeout;
+  while (!condition()) {
+    if (steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(milliseconds(2));
+  }
+  return true;
+}
+
+bool pid_gone(int pid) {
+  return kill(pid, 0) == -1 && errno == ESRCH;
+}
+
+class LaunchProcess : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("cover-launch-" + std::to_string(getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    run_dir_ = dir_ / "run";
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);  // kept for a look when a test fails
+  }
+
+  std::string write_launch(const std::string& yaml) {
+    const auto path = dir_ / "launch.yaml";
+    std::ofstream(path) << yaml;
+    return path.string();
+  }
+
+  std::unique_ptr<cover::process::ChildProcess> start(std::vector<std::string> args) {
+    args.insert(args.begin(), COVER_LAUNCH);
+    cover::process::SpawnOptions options;
+    options.capture_stdout = true;
+    options.log_file = (dir_ / "launcher.stderr").string();
+    return std::make_unique<cover::process::ChildProcess>(args, options);
+  }
+
+  LaunchResult finish(cover::process::ChildProcess& launcher,
+                      milliseconds timeout = milliseconds(8000)) {
+    const auto deadline = steady_clock::now() + timeout;
+    LaunchResult result;
+    while (auto line = launcher.read_line(
+               std::chrono::duration_cast<milliseconds>(deadline - steady_clock::now()))) {
+      result.out += *line + "\n";
+    }
+    const auto left = std::chrono::duration_cast<milliseconds>(deadline - steady_clock::now());
+    const auto code = launcher.wait(std::max(left, milliseconds(0)));
+    EXPECT_TRUE(code.has_value()) << "cover-launch did not finish in time";
+    result.exit_code = code.value_or(-1);
+    result.err = read_text(dir_ / "launcher.stderr");
+    return result;
+  }
+
+  LaunchResult run(const std::string& yaml, std::vector<std::string> flags = {}) {
+    std::vector<std::string> args{write_launch(yaml), "--run-dir", run_dir_.string()};
+    args.insert(args.end(), flags.begin(), flags.end());
+    auto launcher = start(args);
+    return finish(*launcher);
+  }
+
+  std::string log_of(const std::string& name) const {
+    return read_text(run_dir_ / (name + ".log"));
+  }
+
+  static void expect_all_gone(const nlohmann::json& report) {
+    for (const auto& process : report.at("processes")) {
+      if (process.at("pid").is_null()) continue;
+      EXPECT_TRUE(pid_gone(process.at("pid").get<int>())) << process.dump();
+    }
+  }
+
+  fs::path dir_;
+  fs::path run_dir_;
+};
+
+TEST_F(LaunchProcess, EndsRunExitZeroStopsOthersInReverseOrder) {
+  const auto result = run(R"(
+launch:
+  name: happy
+  grace_period_s: 0.3
+  processes:
+    - name: sim
+      executable: fake_process
+      args: [--mode=exit, "--await={run_dir}/ugv0.ready", "--await={run_dir}/ugv1.ready",
+             "--result={run_dir}/result.json"]
+      ends_run: true
+    - {name: ugv0, executable: fake_process, args: ["--ready={run_dir}/ugv0.ready"]}
+    - {name: ugv1, executable: fake_process, args: ["--ready={run_dir}/ugv1.ready"]}
+)",
+                          {"--json"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto report = result.json();
+  EXPECT_EQ(report.at("exit_code"), 0);
+  EXPECT_EQ(report.at("fake"), true);  // result.json of the ends_run process
+  EXPECT_EQ(report.at("score"), 7);
+  EXPECT_FALSE(report.contains("result_missing"));
+  EXPECT_EQ(report.at("run_dir"), run_dir_.string());
+  ASSERT_EQ(report.at("processes").size(), 3u);
+  for (const auto& process : report.at("processes")) {
+    EXPECT_EQ(process.at("exit_code"), 0) << process.dump();
+    EXPECT_TRUE(process.at("pid").is_number()) << process.dump();
+  }
+  EXPECT_EQ(report["processes"][0]["stopped_by"], "");
+  EXPECT_EQ(report["processes"][1]["stopped_by"], "SIGINT");
+  EXPECT_EQ(report["processes"][2]["stopped_by"], "SIGINT");
+  expect_all_gone(report);
+  EXPECT_TRUE(contains(log_of("ugv0"), "got SIGINT"));
+  EXPECT_TRUE(contains(log_of("ugv1"), "got SIGINT"));
+  EXPECT_TRUE(contains(log_of("sim"), "exiting with 0"));
+  // Children hold no descriptor of the launcher (launch.log) or of this test (its pipe).
+  EXPECT_FALSE(contains(log_of("ugv0"), "open fd")) << log_of("ugv0");
+
+  const std::string launch_log = read_text(run_dir_ / "launch.log");
+  const auto stop_ugv1 = launch_log.find("stopping ugv1");
+  const auto stop_ugv0 = launch_log.find("stopping ugv0");
+  ASSERT_NE(stop_ugv1, std::string::npos) << launch_log;
+  ASSERT_NE(stop_ugv0, std::string::npos) << launch_log;
+  EXPECT_LT(stop_ugv1, stop_ugv0) << "stop order must be the reverse of the start order";
+  EXPECT_TRUE(contains(launch_log, "started sim pid")) << launch_log;
+  EXPECT_TRUE(contains(launch_log, "run over")) << launch_log;
+}
+
+TEST_F(LaunchProcess, DdsGlobsDomainAndArgumentsReachChildren) {
+  const auto result = run(R"(
+launch:
+  name: env-check
+  grace_period_s: 0.3
+  variables: {clock: lockstep, seed: "", tag: ""}
+  processes:
+    - name: sim
+      executable: fake_process
+      args: [--mode=exit, "--await={run_dir}/ugv0.ready", "--await={run_dir}/uav0.ready",
+             "--seed={seed}", "--clock={clock}", "--run-id={run_id}", "--domain={domain}"]
+      env: {EXTRA: one}
+      ends_run: true
+    - {name: ugv0, executable: fake_process, args: ["--ready={run_dir}/ugv0.ready"], dds: cyclone}
+    - {name: uav0, executable: fake_process, args: ["--ready={run_dir}/uav0.ready", "--tag={tag}"]}
+)",
+                          {"--json", "--dds", "*=cyclone", "--dds", "ugv*=fastdds", "--domain",
+                           "17", "--seed", "42", "--clock", "realtime"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto report = result.json();
+  EXPECT_EQ(report["processes"][0]["dds"], "cyclone");
+  EXPECT_EQ(report["processes"][1]["dds"], "fastdds");
+  EXPECT_EQ(report["processes"][2]["dds"], "cyclone");
+  EXPECT_TRUE(report.at("result_missing").get<bool>());
+
+  const std::string sim = log_of("sim");
+  const std::string ugv0 = log_of("ugv0");
+  const std::string uav0 = log_of("uav0");
+  EXPECT_TRUE(contains(sim, "COVER_DDS=cyclone\n")) << sim;
+  EXPECT_TRUE(contains(ugv0, "COVER_DDS=fastdds\n")) << ugv0;
+  EXPECT_TRUE(contains(uav0, "COVER_DDS=cyclone\n")) << uav0;
+  for (const auto* log : {&sim, &ugv0, &uav0}) {
+    EXPECT_TRUE(contains(*log, "COVER_DDS_DOMAIN=17\n")) << *log;
+  }
+  EXPECT_TRUE(contains(sim, "arg: --seed=42\n")) << sim;
+  EXPECT_TRUE(contains(sim, "arg: --clock=realtime\n")) << sim;
+  EXPECT_TRUE(contains(sim, "arg: --domain=17\n")) << sim;
+  const std::string run_id = report.at("run_id");
+  EXPECT_EQ(run_id.rfind("env_check_", 0), 0u) << run_id;
+  EXPECT_TRUE(contains(sim, "arg: --run-id=" + run_id + "\n")) << sim;
+  EXPECT_FALSE(contains(uav0, "--tag")) << "an argument with an empty placeholder is dropped";
+  expect_all_gone(report);
+}
+
+TEST_F(LaunchProcess, EarlyDeathStopsTheRestAndExits4) {
+  const auto result = run(R"(
+launch:
+  name: death
+  grace_period_s: 0.3
+  processes:
+    - {name: sim, executable: fake_process, ends_run: true}
+    - {name: ugv0, executable: fake_process, args: [--mode=exit, --code=5]}
+    - {name: ugv1, executable: fake_process}
+)",
+                          {"--json"});
+  EXPECT_EQ(result.exit_code, 4) << result.err;
+  EXPECT_TRUE(contains(result.err, "ugv0 (pid ")) << result.err;
+  EXPECT_TRUE(contains(result.err, "died unexpectedly: exit code 5")) << result.err;
+  const auto report = result.json();
+  EXPECT_EQ(report.at("exit_code"), 4);
+  EXPECT_EQ(report["processes"][1]["exit_code"], 5);
+  EXPECT_EQ(report["processes"][0]["stopped_by"], "SIGINT");
+  EXPECT_EQ(report["processes"][2]["stopped_by"], "SIGINT");
+  expect_all_gone(report);
+}
+
+TEST_F(LaunchProcess, DeathBySignalIsNamed) {
+  const auto result = run(R"(
+launch:
+  name: crash
+  grace_period_s: 0.3
+  processes:
+    - {name: sim, executable: fake_process, ends_run: true}
+    - {name: uav0, executable: fake_process, args: [--mode=signal]}
+)");
+  EXPECT_EQ(result.exit_code, 4) << result.err;
+  EXPECT_TRUE(contains(result.err, "uav0 (pid ")) << result.err;
+  EXPECT_TRUE(
+      contains(result.err, "died unexpectedly: killed by signal " + std::to_string(SIGUSR1)))
+      << result.err;
+}
+
+TEST_F(LaunchProcess, EndsRunFailureExits3) {
+  const auto result = run(R"(
+launch:
+  name: failing
+  grace_period_s: 0.3
+  processes:
+    - name: sim
+      executable: fake_process
+      args: [--mode=exit, --code=7, "--await={run_dir}/ugv0.ready"]
+      ends_run: true
+    - {name: ugv0, executable: fake_process, args: ["--ready={run_dir}/ugv0.ready"]}
+)");
+  EXPECT_EQ(result.exit_code, 3) << result.err;
+  EXPECT_TRUE(contains(result.err, "sim failed: exit code 7")) << result.err;
+  EXPECT_TRUE(contains(result.out, "exit code 3")) << result.out;  // the readable summary
+  EXPECT_TRUE(contains(log_of("ugv0"), "got SIGINT"));
+}
+
+TEST_F(LaunchProcess, SigintStopsChildrenAndExits130) {
+  const std::string file = write_launch(R"(
+launch:
+  name: interrupted
+  grace_period_s: 0.3
+  processes:
+    - {name: sim, executable: fake_process, args: ["--ready={run_dir}/sim.ready"], ends_run: true}
+    - {name: ugv0, executable: fake_process, args: ["--ready={run_dir}/ugv0.ready"]}
+)");
+  auto launcher = start({file, "--run-dir", run_dir_.string(), "--json"});
+  ASSERT_TRUE(eventually([&] {
+    return fs::exists(run_dir_ / "sim.ready") && fs::exists(run_dir_ / "ugv0.ready");
+  })) << "the children never became ready";
+  kill(launcher->pid(), SIGINT);
+  const auto result = finish(*launcher);
+  EXPECT_EQ(result.exit_code, 130) << result.err;
+  const auto report = result.json();
+  EXPECT_EQ(report.at("exit_code"), 130);
+  for (const auto& process : report.at("processes")) {
+    EXPECT_EQ(process.at("stopped_by"), "SIGINT") << process.dump();
+    EXPECT_EQ(process.at("exit_code"), 0) << process.dump();
+  }
+  expect_all_gone(report);
+  EXPECT_TRUE(contains(log_of("sim"), "got SIGINT"));
+  EXPECT_TRUE(contains(read_text(run_dir_ / "launch.log"), "interrupted"));
+}
+
+TEST_F(LaunchProcess, EscalatesToSigkillWithinTwoGracePeriods) {
+  const auto started = steady_clock::now();
+  const auto result = run(R"(
+launch:
+  name: stubborn
+  grace_period_s: 0.3
+  processes:
+    - name: sim
+      executable: fake_process
+      args: [--mode=exit, "--await={run_dir}/stubborn.ready"]
+      ends_run: true
+    - {name: stubborn, executable: fake_process, args: [--mode=ignore, "--ready={run_dir}/stubborn.ready"]}
+)",
+                          {"--json"});
+  const double elapsed_s = std::chrono::duration<double>(steady_clock::now() - started).count();
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto report = result.json();
+  EXPECT_EQ(report["processes"][1]["stopped_by"], "SIGKILL");
+  EXPECT_EQ(report["processes"][1]["exit_code"], 128 + SIGKILL);
+  expect_all_gone(report);
+  const std::string launch_log = read_text(run_dir_ / "launch.log");
+  EXPECT_TRUE(contains(launch_log, "stopping stubborn")) << launch_log;
+  EXPECT_TRUE(contains(launch_log, "SIGTERM")) << launch_log;
+  EXPECT_TRUE(contains(launch_log, "SIGKILL")) << launch_log;
+  // Two grace periods of 0.3 s were waited out, and not much more.
+  EXPECT_GE(elapsed_s, 0.6);
+  EXPECT_LT(elapsed_s, 3.0);
+}
+
+TEST_F(LaunchProcess, LeftoverShmEntryOfTheRunIsRemoved) {
+  const auto result = run(R"(
+launch:
+  name: leaky
+  grace_period_s: 0.3
+  processes:
+    - {name: sim, executable: fake_process, args: [--mode=exit, "--shm=cover_{run_id}_seg"], ends_run: true}
+)",
+                          {"--json"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto report = result.json();
+  const std::string segment = "cover_" + report.at("run_id").get<std::string>() + "_seg";
+  EXPECT_EQ(report.at("leftover_segments"), nlohmann::json::array({segment}));
+  EXPECT_FALSE(fs::exists(fs::path("/dev/shm") / segment));
+  EXPECT_TRUE(contains(read_text(run_dir_ / "launch.log"),
+                       "leftover segment removed: /dev/shm/" + segment));
+}
+
+TEST_F(LaunchProcess, MissingExecutableStartsNothingAndExits4) {
+  const auto result = run(R"(
+launch:
+  name: typo
+  processes:
+    - {name: sim, executable: fake_process, ends_run: true}
+    - {name: ugv0, executable: no-such-cover-executable}
+)",
+                          {"--json"});
+  EXPECT_EQ(result.exit_code, 4) << result.err;
+  EXPECT_TRUE(contains(result.err, "no-such-cover-executable")) << result.err;
+  const auto report = result.json();
+  EXPECT_TRUE(report["processes"][0]["pid"].is_null()) << "nothing starts when one is missing";
+}
+
+TEST_F(LaunchProcess, UsageErrorsExit2) {
+  const char* valid = R"(
+launch:
+  name: ok
+  processes: [{name: sim, executable: fake_process, ends_run: true}]
+)";
+  auto result = run(R"(
+launch:
+  name: bad
+  processes: [{name: sim, executable: fake_process, ends_run: true, arg: []}]
+)");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_TRUE(contains(result.err, "unknown key 'arg'")) << result.err;
+  result = run(valid, {"--dds", "uav*=cyclone"});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_TRUE(contains(result.err, "uav*")) << result.err;
+  result = run(valid, {"--domain", "300"});
+  EXPECT_EQ(result.exit_code, 2);
+  result = run(valid, {"--clock", "warp"});
+  EXPECT_EQ(result.exit_code, 2);
+  result = run(valid, {"--seed", "1.5"});
+  EXPECT_EQ(result.exit_code, 2);
+  result = run(valid, {"--seed", "1"});  // the file has no {seed}
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_TRUE(contains(result.err, "'seed'")) << result.err;
+}
+
+TEST_F(LaunchProcess, HelpExplainsFormatAndExitCodes) {
+  auto launcher = start({"--help"});
+  const auto result = finish(*launcher);
+  EXPECT_EQ(result.exit_code, 0);
+  EXPECT_TRUE(contains(result.out, "ends_run")) << result.out;
+  EXPECT_TRUE(contains(result.out, "Exit codes")) << result.out;
+  EXPECT_TRUE(contains(result.out, "130")) << result.out;
+}
+
+}  // namespace

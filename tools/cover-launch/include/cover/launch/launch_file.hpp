@@ -1,0 +1,41 @@
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cover::launch {
+
+// One process of a launch file, as written (placeholders not yet expanded).
+struct ProcessSpec {
+  std::string name;        // [A-Za-z0-9_-]+, unique; names the log file <run_dir>/<name>.log
+  std::string executable;  // bare name (looked up) or a path (relative to the launch file)
+  std::vector<std::string> args;
+  std::string dds = "fastdds";  // fastdds | cyclone, given to the child as COVER_DDS
+  std::map<std::string, std::string> env;
+  bool ends_run = false;  // exactly one process ends the run when it exits
+};
+
+// A whole local system: `launch:` in a launch file. See config/launch/example.yaml.
+struct LaunchFile {
+  std::string name;  // [A-Za-z0-9_.-]+; names the run folder and the run id
+  double grace_period_s = 3.0;
+  std::map<std::string, std::string> variables;  // placeholder defaults
+  std::vector<ProcessSpec> processes;            // start order; stopped in reverse
+  std::string directory;  // the launch file's folder, for relative executable paths
+
+  // Throws ConfigError naming the offending process, key or argument.
+  void validate() const;
+
+  // Reads the mapping under `launch:`; `context` names the source in errors.
+  static LaunchFile parse(const YAML::Node& root, const std::string& context,
+                          const std::string& directory);
+  static LaunchFile load_file(const std::string& path);  // throws ConfigError
+};
+
+// Placeholders every launch file may use besides its own variables.
+const std::vector<std::string>& builtin_placeholders();
+
+}  // namespace cover::launch

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <sys/types.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cover/launch/dds_override.hpp"
+#include "cover/launch/launch_file.hpp"
+
+namespace cover::launch {
+
+// What the command line adds to a launch file.
+struct LaunchOptions {
+  std::vector<DdsOverride> dds_overrides;        // applied in order
+  std::map<std::string, std::string> variables;  // override the file's variables
+  int domain_id = 0;                             // 0..232
+  std::string run_dir;                           // absolute or relative to the cwd
+  pid_t launcher_pid = 0;
+};
+
+// One process ready to spawn: placeholders expanded, executable not yet resolved.
+struct PlannedProcess {
+  std::string name;
+  std::string executable;  // as in the file
+  std::vector<std::string> args;
+  std::string dds;
+  std::vector<std::string> env;  // "KEY=value": the file's env, COVER_DDS, COVER_DDS_DOMAIN
+  bool ends_run = false;
+};
+
+struct LaunchPlan {
+  std::string name;
+  std::string run_id;
+  std::string run_dir;
+  std::string launch_dir;
+  int domain_id = 0;
+  double grace_period_s = 3.0;
+  std::vector<PlannedProcess> processes;
+};
+
+// Applies `options` to `file` and expands every argument. Throws std::invalid_argument
+// on a bad override, domain or variable (a usage error).
+LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options);
+
+}  // namespace cover::launch

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cover/launch/launch_plan.hpp"
+
+namespace cover::launch {
+
+// What became of one process of a run.
+struct ProcessOutcome {
+  std::string name;
+  std::string dds;
+  std::optional<int> pid;        // none when it was never started
+  std::optional<int> exit_code;  // 128 + signal when killed by a signal
+  std::string stopped_by;        // "", "SIGINT", "SIGTERM" or "SIGKILL": the last one sent
+};
+
+struct RunOutcome {
+  int exit_code = 0;   // the launcher's, see exit_codes.hpp
+  std::string reason;  // one sentence for the summary
+  std::vector<ProcessOutcome> processes;
+  std::vector<std::string> leftover_segments;  // removed from /dev/shm
+};
+
+// Starts the plan's processes in order, each with its log in the run folder, watches them
+// until the run is over (the ends_run process exits, another one dies, or SIGINT/SIGTERM
+// reaches the launcher through ShutdownSignal), then stops the survivors one after
+// another in reverse start order: SIGINT, grace period, SIGTERM, grace period, SIGKILL.
+// Finally removes /dev/shm entries named with the run id. Logs every decision.
+RunOutcome supervise(const LaunchPlan& plan);
+
+}  // namespace cover::launch

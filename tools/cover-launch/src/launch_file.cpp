@@ -1,0 +1,140 @@
+#include "cover/launch/launch_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+
+#include "cover/config/yaml_reader.hpp"
+#include "cover/launch/dds_override.hpp"
+#include "cover/launch/placeholders.hpp"
+
+namespace cover::launch {
+namespace {
+
+bool only_chars(const std::string& text, const std::string& extra) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), [&](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || extra.find(c) != std::string::npos;
+  });
+}
+
+bool is_identifier(const std::string& text) {
+  return only_chars(text, "_") && !std::isdigit(static_cast<unsigned char>(text[0]));
+}
+
+ProcessSpec parse_process(const YAML::Node& node, const std::string& context) {
+  // Errors name the process as well as its index: "launch.processes[2] (ugv1)".
+  std::string label = context;
+  if (node.IsMap() && node["name"] && node["name"].IsScalar()) {
+    label += " (" + node["name"].Scalar() + ")";
+  }
+  config::YamlReader process(node, label);
+  ProcessSpec spec;
+  process.require("name", spec.name);
+  process.require("executable", spec.executable);
+  process.optional("args", spec.args);
+  process.optional("dds", spec.dds);
+  process.optional("env", spec.env);
+  process.optional("ends_run", spec.ends_run);
+  process.reject_unknown_keys();
+  return spec;
+}
+
+void validate_arguments(const ProcessSpec& spec, const std::set<std::string>& known) {
+  for (const auto& arg : spec.args) {
+    std::vector<std::string> names;
+    try {
+      names = placeholder_names(arg);
+    } catch (const std::invalid_argument& e) {
+      throw config::ConfigError("process '" + spec.name + "', argument '" + arg + "': " + e.what());
+    }
+    for (const auto& name : names) {
+      config::check(known.count(name) > 0, "process '" + spec.name + "', argument '" + arg + "'",
+                    "unknown placeholder {" + name + "} (declare it under launch.variables)");
+    }
+  }
+}
+
+void validate_process(const ProcessSpec& spec, const std::set<std::string>& known) {
+  const std::string context = "process '" + spec.name + "'";
+  config::check(only_chars(spec.name, "_-"), "process name '" + spec.name + "'",
+                "use letters, digits, '_' and '-' only (it names the log file)");
+  config::check(spec.name != "launch", context, "the name 'launch' is taken by launch.log");
+  config::check(!spec.executable.empty(), context, "executable is empty");
+  config::check(is_vendor(spec.dds), context, "dds: '" + spec.dds + "' (valid: fastdds, cyclone)");
+  for (const auto& [key, value] : spec.env) {
+    config::check(is_identifier(key), context, "env: bad variable name '" + key + "'");
+    config::check(key != "COVER_DDS" && key != "COVER_DDS_DOMAIN", context,
+                  "env: " + key + " is set by the launcher (use dds: / --domain)");
+  }
+  validate_arguments(spec, known);
+}
+
+}  // namespace
+
+const std::vector<std::string>& builtin_placeholders() {
+  static const std::vector<std::string> names{"run_dir", "run_id", "domain", "config_dir"};
+  return names;
+}
+
+void LaunchFile::validate() const {
+  config::check(only_chars(name, "_.-"), "launch.name '" + name + "'",
+                "use letters, digits, '_', '.' and '-' only (it names the run folder)");
+  config::check(std::isfinite(grace_period_s) && grace_period_s > 0.0, "launch.grace_period_s",
+                "must be a positive number of seconds");
+  config::check(!processes.empty(), "launch.processes", "no process to launch");
+  std::set<std::string> known(builtin_placeholders().begin(), builtin_placeholders().end());
+  for (const auto& [key, value] : variables) {
+    config::check(is_identifier(key), "launch.variables", "bad variable name '" + key + "'");
+    config::check(known.insert(key).second, "launch.variables",
+                  "'" + key + "' is a built-in placeholder and cannot be redefined");
+  }
+  std::set<std::string> names;
+  int ends_run_count = 0;
+  for (const auto& spec : processes) {
+    validate_process(spec, known);
+    config::check(names.insert(spec.name).second, "launch.processes",
+                  "duplicate process name '" + spec.name + "'");
+    ends_run_count += spec.ends_run ? 1 : 0;
+  }
+  config::check(ends_run_count == 1, "launch.processes",
+                "exactly one process must have ends_run: true (found " +
+                    std::to_string(ends_run_count) + ")");
+}
+
+LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& context,
+                             const std::string& directory) {
+  config::YamlReader root(root_node, context);
+  config::check(root.has("launch"), context, "missing section 'launch'");
+  config::YamlReader launch = root.child("launch");
+  root.reject_unknown_keys();
+
+  LaunchFile file;
+  file.directory = directory;
+  launch.require("name", file.name);
+  launch.optional("grace_period_s", file.grace_period_s);
+  launch.optional("variables", file.variables);
+  YAML::Node processes;
+  launch.require("processes", processes);
+  launch.reject_unknown_keys();
+  config::check(processes.IsSequence(), launch.context() + ".processes",
+                "expected a list of processes");
+  for (std::size_t i = 0; i < processes.size(); ++i) {
+    file.processes.push_back(
+        parse_process(processes[i], launch.context() + ".processes[" + std::to_string(i) + "]"));
+  }
+  try {
+    file.validate();
+  } catch (const config::ConfigError& e) {
+    throw config::ConfigError(context + ": " + e.what());
+  }
+  return file;
+}
+
+LaunchFile LaunchFile::load_file(const std::string& path) {
+  const auto directory = std::filesystem::absolute(path).parent_path().string();
+  return parse(config::load_yaml_file(path), path, directory);
+}
+
+}  // namespace cover::launch

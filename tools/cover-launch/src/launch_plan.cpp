@@ -1,0 +1,66 @@
+#include "cover/launch/launch_plan.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "cover/config/yaml_reader.hpp"
+#include "cover/launch/placeholders.hpp"
+#include "cover/launch/run_naming.hpp"
+
+namespace cover::launch {
+namespace {
+
+constexpr int kMaxDomainId = 232;  // the RTPS port formula overflows above 232
+
+void apply_variables(LaunchFile& file, const std::map<std::string, std::string>& overrides) {
+  for (const auto& [key, value] : overrides) {
+    auto variable = file.variables.find(key);
+    if (variable == file.variables.end()) {
+      // A value for a variable no argument uses would be silently ignored.
+      throw std::invalid_argument("the launch file declares no variable '" + key + "'");
+    }
+    variable->second = value;
+  }
+}
+
+PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& values,
+                            int domain_id) {
+  PlannedProcess planned{spec.name, spec.executable, expand_arguments(spec.args, values), spec.dds,
+                         {},        spec.ends_run};
+  for (const auto& [key, value] : spec.env) planned.env.push_back(key + "=" + value);
+  planned.env.push_back("COVER_DDS=" + spec.dds);
+  planned.env.push_back("COVER_DDS_DOMAIN=" + std::to_string(domain_id));
+  return planned;
+}
+
+}  // namespace
+
+LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options) {
+  if (options.domain_id < 0 || options.domain_id > kMaxDomainId) {
+    throw std::invalid_argument("DDS domain " + std::to_string(options.domain_id) +
+                                " is out of range (valid: 0.." + std::to_string(kMaxDomainId) +
+                                ")");
+  }
+  apply_variables(file, options.variables);
+  apply_dds_overrides(file.processes, options.dds_overrides);
+
+  LaunchPlan plan;
+  plan.name = file.name;
+  plan.run_id = make_run_id(file.name, options.launcher_pid);
+  plan.run_dir = std::filesystem::absolute(options.run_dir).lexically_normal().string();
+  plan.launch_dir = file.directory;
+  plan.domain_id = options.domain_id;
+  plan.grace_period_s = file.grace_period_s;
+
+  PlaceholderValues values(file.variables.begin(), file.variables.end());
+  values["run_dir"] = plan.run_dir;
+  values["run_id"] = plan.run_id;
+  values["domain"] = std::to_string(options.domain_id);
+  values["config_dir"] = config::default_config_dir();
+  for (const auto& spec : file.processes) {
+    plan.processes.push_back(plan_process(spec, values, options.domain_id));
+  }
+  return plan;
+}
+
+}  // namespace cover::launch

@@ -1,0 +1,158 @@
+// cover-launch: starts a whole local COVER system from a launch file, watches it and stops
+// it in order. The logic is in the cover_launch library; this file is the command line.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+
+#include "cover/config/config_error.hpp"
+#include "cover/launch/exit_codes.hpp"
+#include "cover/launch/launch_plan.hpp"
+#include "cover/launch/run_naming.hpp"
+#include "cover/launch/run_report.hpp"
+#include "cover/launch/supervisor.hpp"
+#include "cover/logging/log.hpp"
+#include "cover/process/shutdown_signal.hpp"
+
+namespace {
+
+using namespace cover::launch;
+
+constexpr const char* kFooter = R"(
+Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
+  launch:
+    name: NAME               run folder runs/NAME_<date-time>, run id NAME_<pid>
+    grace_period_s: 3.0      per signal when stopping: SIGINT, SIGTERM, then SIGKILL
+    variables: {clock: lockstep, seed: ""}
+    processes:               started in order, stopped in reverse order
+      - name: sim            log: <run_dir>/sim.log
+        executable: cover-sim            bare: beside cover-launch, then $PATH
+        args: ["--seed={seed}", "--run-id={run_id}"]
+        dds: fastdds         fastdds | cyclone, given as $COVER_DDS
+        env: {KEY: value}
+        ends_run: true       exactly one process: its exit ends the run
+  Placeholders: {run_dir} {run_id} {domain} {config_dir} and every variable; an argument
+  whose placeholder is empty is dropped. {{ and }} are literal braces.
+
+Exit codes:
+  0    run completed (the ends_run process exited with 0)
+  2    usage or launch-file error
+  3    the ends_run process failed (non-zero exit)
+  4    a process died unexpectedly or could not be started
+  130  interrupted (SIGINT/SIGTERM to cover-launch))";
+
+const CLI::Validator kNonNegativeInteger(
+    [](std::string& text) {
+      const bool digits =
+          !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+      return digits ? std::string() : "expected a non-negative integer, got '" + text + "'";
+    },
+    "N");
+
+struct Flags {
+  std::string file;
+  std::vector<std::string> dds;
+  std::vector<std::string> vars;
+  std::string clock;
+  std::string seed;
+  std::string run_dir;
+  int domain_id = -1;
+  bool json = false;
+};
+
+void add_flags(CLI::App& app, Flags& flags) {
+  app.add_option("FILE", flags.file, "Launch file (YAML)")->required()->check(CLI::ExistingFile);
+  app.add_option("--dds", flags.dds,
+                 "NAME=VENDOR: process NAME (or a glob such as 'ugv*') on fastdds|cyclone; "
+                 "repeatable, the later flag wins where globs overlap");
+  app.add_option("--clock", flags.clock, "Sets variable {clock}")
+      ->check(CLI::IsMember({"lockstep", "realtime"}));
+  app.add_option("--seed", flags.seed, "Sets variable {seed}")->check(kNonNegativeInteger);
+  app.add_option("--var", flags.vars, "KEY=VALUE: sets variable {KEY}; repeatable");
+  app.add_option("--domain", flags.domain_id,
+                 "DDS domain 0..232, given as $COVER_DDS_DOMAIN and {domain} "
+                 "(default: $COVER_DDS_DOMAIN or 0)");
+  app.add_option("--run-dir", flags.run_dir, "Run folder (default: runs/NAME_YYYYmmdd-HHMMSS)");
+  app.add_flag("--json", flags.json,
+               "Print result.json plus processes, run_dir and exit_code as one JSON object");
+}
+
+int domain_from_environment() {
+  const char* text = std::getenv("COVER_DDS_DOMAIN");
+  if (!text || !*text) return 0;
+  char* end = nullptr;
+  const long value = std::strtol(text, &end, 10);
+  if (*end != '\0')
+    throw std::invalid_argument(std::string("COVER_DDS_DOMAIN is not a number: ") + text);
+  return static_cast<int>(value);
+}
+
+LaunchOptions make_options(const Flags& flags, const LaunchFile& file) {
+  LaunchOptions options;
+  for (const auto& text : flags.dds) options.dds_overrides.push_back(parse_dds_override(text));
+  for (const auto& text : flags.vars) {
+    const auto equals = text.find('=');
+    if (equals == std::string::npos || equals == 0) {
+      throw std::invalid_argument("--var " + text + ": expected KEY=VALUE");
+    }
+    options.variables[text.substr(0, equals)] = text.substr(equals + 1);
+  }
+  if (!flags.clock.empty()) options.variables["clock"] = flags.clock;
+  if (!flags.seed.empty()) options.variables["seed"] = flags.seed;
+  options.domain_id = flags.domain_id >= 0 ? flags.domain_id : domain_from_environment();
+  options.run_dir = !flags.run_dir.empty()
+                        ? flags.run_dir
+                        : default_run_dir(std::filesystem::current_path().string(), file.name,
+                                          std::chrono::system_clock::now());
+  options.launcher_pid = getpid();
+  return options;
+}
+
+// Creates the run folder with launch.log, and removes a result.json of an earlier run
+// there, which would otherwise be reported as this run's.
+void prepare_run_dir(const LaunchPlan& plan) {
+  std::filesystem::create_directories(plan.run_dir);
+  cover::logging::add_file((std::filesystem::path(plan.run_dir) / "launch.log").string());
+  const auto stale = std::filesystem::path(plan.run_dir) / "result.json";
+  if (std::filesystem::remove(stale)) spdlog::warn("removed {} of an earlier run", stale.string());
+}
+
+int run(const LaunchPlan& plan, bool json) {
+  spdlog::info("launch {}: run id {}, run dir {}, domain {}", plan.name, plan.run_id, plan.run_dir,
+               plan.domain_id);
+  const RunOutcome outcome = supervise(plan);
+  if (json) {
+    std::cout << make_report(plan, outcome).dump() << std::endl;
+  } else {
+    std::cout << make_summary(plan, outcome) << std::flush;
+  }
+  return outcome.exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cover::process::ShutdownSignal::install();  // before any thread exists
+  CLI::App app{"cover-launch: start a local COVER system from a launch file"};
+  app.footer(kFooter);
+  Flags flags;
+  add_flags(app, flags);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitUsage;
+  }
+  cover::logging::init("cover-launch");
+  LaunchPlan plan;
+  try {
+    const LaunchFile file = LaunchFile::load_file(flags.file);
+    plan = make_plan(file, make_options(flags, file));
+    prepare_run_dir(plan);
+  } catch (const std::exception& e) {
+    std::cerr << "cover-launch: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  return run(plan, flags.json);
+}
