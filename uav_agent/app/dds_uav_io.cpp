@@ -1,5 +1,7 @@
 #include "dds_uav_io.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include "cover/wire/control.hpp"
 #include "cover/wire/sensors.hpp"
 
@@ -47,6 +49,24 @@ std::int64_t DdsUavInputs::imu_stamp_ns(int ugv) const {
   if (ugv < 0 || ugv >= static_cast<int>(readers_.size()) || !readers_[ugv]) return -1;
   const auto received = readers_[ugv]->imu.latest();
   return received ? received->sample.stamp_ns : -1;
+}
+
+bool DdsUavInputs::wait_for_writers(std::chrono::milliseconds timeout) const {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  for (std::size_t k = 0; k < readers_.size(); ++k) {
+    if (!readers_[k]) continue;
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (!readers_[k]->state.wait_for_writers(1, left)) {
+      spdlog::error("no publisher of cover/uav/{}/rel/{} (simulator or localisation)", uav_id_, k);
+      return false;
+    }
+    if (!readers_[k]->imu.wait_for_writers(1, left)) {
+      spdlog::error("no publisher of cover/ugv/{}/imu (cover-ugv-agent --id {})", k, k);
+      return false;
+    }
+  }
+  return true;
 }
 
 dds::Reader<msg::RelativeState>* DdsUavInputs::relative_reader(int ugv) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -26,6 +27,9 @@ class DdsUavInputs : public uav::UavInputs {
   // Stamps of the newest samples received for `ugv`, ns (-1: none), for lockstep waits.
   std::int64_t relative_stamp_ns(int ugv) const;
   std::int64_t imu_stamp_ns(int ugv) const;
+  // Waits until every subscribed UGV has a relative-state and an IMU writer; false on
+  // timeout (then logs which is missing).
+  bool wait_for_writers(std::chrono::milliseconds timeout) const;
   // The reference UGV's relative-state reader: realtime mode steps on its fresh samples.
   dds::Reader<msg::RelativeState>* relative_reader(int ugv);
 

@@ -47,6 +47,7 @@ int UavAgentNode::run() {
 
 void UavAgentNode::run_lockstep() {
   auto last_tick = std::chrono::steady_clock::now();
+  bool connected = false;
   while (!process::ShutdownSignal::requested()) {
     const auto tick = clock_.next_tick(100ms);
     if (!tick) {
@@ -58,6 +59,12 @@ void UavAgentNode::run_lockstep() {
       continue;
     }
     last_tick = std::chrono::steady_clock::now();
+    // Answer the first tick only once the task's inputs are connected: samples published
+    // before that are lost, and the run would start later than the in-process one.
+    if (!connected && loop_.task()) {
+      connected = inputs_.wait_for_writers(to_ms(options_.connect_timeout_s));
+      if (connected) spdlog::info("inputs connected");
+    }
     wait_for_inputs(*tick);
     step(wire::to_seconds(tick->stamp_ns));
   }

@@ -23,6 +23,8 @@ struct AgentOptions {
   // No tick (lockstep) or no fresh relative state (realtime) for this long: keep going
   // (failsafe commands), but say so.
   double silence_warning_s = 2.0;
+  // Lockstep: before answering the first tick, wait this long for the inputs' publishers.
+  double connect_timeout_s = 20.0;
 };
 
 // The UAV agent: DDS inputs -> UavLoop -> DDS command, trace, status, task status.

@@ -1,0 +1,160 @@
+// Missions flown by real processes: cover-launch starts cover-sim, one cover-ugv-agent per
+// UGV and the UAV agents, on Fast DDS and Cyclone DDS mixed; the result must equal the
+// in-process harness's on the same seed (lockstep runs the same loop on the same inputs).
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cover/process/child_process.hpp"
+#include "cover/sim/closed_loop.hpp"
+#include "cover/uav/controller_config.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+constexpr std::chrono::seconds kRunTimeout{300};
+
+std::set<std::string> shm_entries() {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator("/dev/shm")) {
+    names.insert(entry.path().filename().string());
+  }
+  return names;
+}
+
+struct LaunchRun {
+  int exit_code = -1;
+  nlohmann::json result;
+  std::string stdout_text;
+};
+
+// Each test on its own DDS domain and run folder.
+LaunchRun launch(const std::string& file, std::vector<std::string> flags, int domain) {
+  const fs::path run_dir = fs::temp_directory_path() / ("cover_it_" + std::to_string(domain));
+  fs::remove_all(run_dir);
+  std::vector<std::string> argv = {COVER_LAUNCH,
+                                   std::string(COVER_CONFIG_DIR) + "/launch/" + file,
+                                   "--json",
+                                   "--domain",
+                                   std::to_string(domain),
+                                   "--run-dir",
+                                   run_dir.string()};
+  argv.insert(argv.end(), flags.begin(), flags.end());
+  cover::process::SpawnOptions options;
+  options.capture_stdout = true;
+  cover::process::ChildProcess child(argv, options);
+  LaunchRun run;
+  while (const auto line = child.read_line(kRunTimeout)) run.stdout_text += *line + "\n";
+  run.exit_code = child.wait(kRunTimeout).value_or(-1);
+  run.result = nlohmann::json::parse(run.stdout_text, nullptr, false);
+  if (run.exit_code == 0) fs::remove_all(run_dir);
+  return run;
+}
+
+cover::sim::ClosedLoopResult in_process(const std::string& scenario_name) {
+  const auto scenario = cover::sim::Scenario::load_file(cover::sim::scenario_path(scenario_name));
+  cover::sim::ClosedLoopOptions options;
+  options.record_paths = false;
+  const cover::sim::ClosedLoop loop(
+      scenario, cover::uav::ControllerConfig::load_default(cover::sampc::Mode::Cover), options);
+  return loop.run();
+}
+
+// Every process the launcher reports has exited and none of our segments is left.
+void expect_clean(const LaunchRun& run, const std::set<std::string>& shm_before) {
+  ASSERT_TRUE(run.result.contains("processes")) << run.stdout_text;
+  for (const auto& p : run.result["processes"]) {
+    const int pid = p["pid"].get<int>();
+    EXPECT_NE(kill(pid, 0), 0) << p["name"] << " (pid " << pid << ") still runs";
+  }
+  for (const std::string& name : shm_entries()) {
+    if (shm_before.count(name)) continue;
+    EXPECT_TRUE(name.rfind("cover_sim_", 0) != 0) << "segment left: " << name;
+    EXPECT_TRUE(name.find("fastrtps") == std::string::npos) << "Fast DDS file left: " << name;
+  }
+}
+
+double number(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+}
+
+struct Mix {
+  const char* name;
+  std::vector<std::string> flags;
+};
+
+const Mix kUgvOnCyclone{"ugv agents on cyclone, rest on fastdds", {"--dds", "ugv*=cyclone"}};
+const Mix kUgvOnFast{"ugv agents on fastdds, rest on cyclone",
+                     {"--dds", "*=cyclone", "--dds", "ugv*=fastdds"}};
+
+void expect_equals_in_process(const std::string& scenario, const Mix& mix, int domain) {
+  SCOPED_TRACE(mix.name);
+  const auto before = shm_entries();
+  const LaunchRun run = launch(scenario + ".yaml", mix.flags, domain);
+  ASSERT_EQ(run.exit_code, 0) << run.stdout_text;
+  EXPECT_TRUE(run.result["success"].get<bool>()) << run.result.dump(2);
+  const cover::sim::ClosedLoopResult reference = in_process(scenario);
+  ASSERT_TRUE(reference.success);
+  const double landing = number(run.result, "landing_error_m");
+  EXPECT_NEAR(landing, reference.landing_error_m, 1e-3) << run.result.dump(2);
+  if (std::isfinite(reference.delivery_error_m)) {
+    EXPECT_NEAR(number(run.result, "delivery_error_m"), reference.delivery_error_m, 1e-3);
+  }
+  EXPECT_NEAR(number(run.result, "duration_s"), reference.duration_s, 0.011);
+  for (const auto& p : run.result["processes"]) {
+    const std::string name = p["name"];
+    const bool on_cyclone = p["dds"] == "cyclone";
+    EXPECT_EQ(on_cyclone, (name.rfind("ugv", 0) == 0) == (mix.flags.size() == 2)) << name;
+  }
+  expect_clean(run, before);
+}
+
+TEST(MissionProcesses, ScenarioTwoLockstepEqualsInProcessUgvOnCyclone) {
+  expect_equals_in_process("scenario2", kUgvOnCyclone, 161);
+}
+
+TEST(MissionProcesses, ScenarioTwoLockstepEqualsInProcessUgvOnFastDds) {
+  expect_equals_in_process("scenario2", kUgvOnFast, 162);
+}
+
+TEST(MissionProcesses, ScenarioFourLockstepEqualsInProcessUgvOnCyclone) {
+  expect_equals_in_process("scenario4", kUgvOnCyclone, 163);
+}
+
+TEST(MissionProcesses, ScenarioFourLockstepEqualsInProcessUgvOnFastDds) {
+  expect_equals_in_process("scenario4", kUgvOnFast, 164);
+}
+
+TEST(MissionProcesses, TwoUavsFlyTwoTasksInOneRun) {
+  const auto before = shm_entries();
+  const LaunchRun run = launch("two_uavs.yaml", {"--dds", "uav1=cyclone"}, 165);
+  ASSERT_EQ(run.exit_code, 0) << run.stdout_text;
+  ASSERT_TRUE(run.result.contains("uavs")) << run.result.dump(2);
+  ASSERT_EQ(run.result["uavs"].size(), 2u);
+  for (const auto& uav : run.result["uavs"]) {
+    EXPECT_TRUE(uav["success"].get<bool>()) << uav.dump(2);
+    EXPECT_LE(number(uav, "landing_error_m"), 0.05);
+  }
+  EXPECT_TRUE(run.result["success"].get<bool>());
+  expect_clean(run, before);
+}
+
+TEST(MissionProcesses, ScenarioTwoRealtimeSucceeds) {
+  const auto before = shm_entries();
+  const LaunchRun run = launch("scenario2.yaml", {"--clock", "realtime"}, 166);
+  ASSERT_EQ(run.exit_code, 0) << run.stdout_text;
+  EXPECT_TRUE(run.result["success"].get<bool>()) << run.result.dump(2);
+  EXPECT_LE(number(run.result, "landing_error_m"), 0.05);
+  EXPECT_EQ(run.result["clock"], "realtime");
+  ASSERT_TRUE(run.result.contains("latency_ms"));
+  EXPECT_GT(run.result["latency_ms"]["samples"].get<int>(), 500);
+  expect_clean(run, before);
+}
+
+}  // namespace
