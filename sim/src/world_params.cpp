@@ -91,8 +91,11 @@ WorldParams WorldParams::load(cover::config::YamlReader& reader) {
   p.relative_sensor = RelativeSensorParams::load(relative);
   auto imu = reader.child("imu");
   p.imu = ImuSensorParams::load(imu);
-  auto filter = reader.child("imu_filter");
-  p.imu_filter = ugv::ImuFilterParams::load(filter);
+  // The agent's configuration owns the filter, so the in-process harness filters exactly
+  // as cover-ugv-agent does.
+  check(!reader.has("imu_filter"), reader.context() + ".imu_filter",
+        "moved to config/ugv_agent.yaml (section ugv_agent.imu_filter)");
+  p.imu_filter = ugv::ImuFilterParams::load_default();
   reader.reject_unknown_keys();
   p.validate(reader.context());
   return p;

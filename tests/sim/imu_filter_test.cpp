@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <fstream>
 #include <limits>
 
 #include "cover/ugv/imu_filter.hpp"
@@ -105,6 +108,18 @@ TEST(ImuFilter, ParamsRejectNonPositiveCutOff) {
   ImuFilterParams params;
   params.angular_acceleration_cutoff_hz = 0.0;
   EXPECT_THROW(params.validate(), cover::config::ConfigError);
+}
+
+TEST(ImuFilterParams, LoadFileReadsTheAgentSection) {
+  const std::string path = "/tmp/imu_filter_params_" + std::to_string(getpid()) + ".yaml";
+  std::ofstream(path) << "ugv_agent:\n  status_rate_hz: 2\n  imu_filter:\n"
+                         "    specific_force_cutoff_hz: 20\n";
+  EXPECT_EQ(ImuFilterParams::load_file(path).specific_force_cutoff_hz, 20.0);
+  std::ofstream(path) << "ugv_agent:\n  imu_filter:\n    cutoff_hz: 20\n";
+  EXPECT_THROW(ImuFilterParams::load_file(path), cover::config::ConfigError);
+  std::ofstream(path) << "imu_filter:\n  specific_force_cutoff_hz: 20\n";
+  EXPECT_THROW(ImuFilterParams::load_file(path), cover::config::ConfigError);
+  EXPECT_NO_THROW(ImuFilterParams::load_default());
 }
 
 }  // namespace

@@ -41,6 +41,22 @@ TEST(WorldParams, EveryShippedWorldLoads) {
   }
 }
 
+// One source of truth: the harness filters with the agent's configuration.
+TEST(WorldParams, ImuFilterComesFromTheAgentConfiguration) {
+  const auto agent_filter = cover::ugv::ImuFilterParams::load_default();
+  const WorldParams params = WorldParams::load_default();
+  EXPECT_EQ(params.imu_filter.specific_force_cutoff_hz, agent_filter.specific_force_cutoff_hz);
+  EXPECT_EQ(params.imu_filter.angular_velocity_cutoff_hz, agent_filter.angular_velocity_cutoff_hz);
+  EXPECT_EQ(params.imu_filter.angular_acceleration_cutoff_hz,
+            agent_filter.angular_acceleration_cutoff_hz);
+  EXPECT_EQ(params.imu_filter.max_sample_gap_s, agent_filter.max_sample_gap_s);
+  EXPECT_EQ(params.imu_filter.max_specific_force_m_s2, agent_filter.max_specific_force_m_s2);
+  EXPECT_EQ(params.imu_filter.max_angular_velocity_rad_s, agent_filter.max_angular_velocity_rad_s);
+  const std::string moved =
+      error_of("imu_filter: {max_sample_gap_s: 0.2}\nugvs: [{pattern: {kind: stationary}}]");
+  EXPECT_NE(moved.find("ugv_agent.yaml"), std::string::npos) << moved;
+}
+
 TEST(WorldParams, MinimalYamlUsesDefaults) {
   const WorldParams params = load_text("ugvs: [{pattern: {kind: stationary}}]");
   EXPECT_EQ(params.ugvs.size(), 1u);

@@ -32,6 +32,16 @@ ImuFilterParams ImuFilterParams::load(cover::config::YamlReader& reader) {
   return p;
 }
 
+ImuFilterParams ImuFilterParams::load_file(const std::string& path) {
+  auto agent = cover::config::open_section(path, "ugv_agent", /*required=*/true);
+  auto filter = agent.child("imu_filter");
+  return load(filter);
+}
+
+ImuFilterParams ImuFilterParams::load_default() {
+  return load_file(cover::config::default_config_dir() + "/ugv_agent.yaml");
+}
+
 void ImuFilterParams::validate(const std::string& context) const {
   using cover::config::check;
   auto positive = [&](double value, const char* key) {

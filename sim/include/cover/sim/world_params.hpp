@@ -54,6 +54,8 @@ struct WorldParams {
   PayloadParams payload;
   RelativeSensorParams relative_sensor;
   ImuSensorParams imu;
+  // Not read from the world file: load() takes it from config/ugv_agent.yaml, the agent's
+  // configuration, so that in-process and multi-process runs filter alike.
   ugv::ImuFilterParams imu_filter;
 
   static WorldParams load(cover::config::YamlReader& reader);

@@ -9,7 +9,8 @@ namespace cover::ugv {
 
 // Cut-offs and sanity limits of the UGV IMU pre-processing. The paper applies "a
 // first-order low-pass filter" to the UGV IMU without giving the cut-off; these are
-// our choices (documented in config/sim/world_default.yaml, section imu_filter).
+// our choices (documented in config/ugv_agent.yaml, section ugv_agent.imu_filter: the one
+// source of truth for the agent and for the simulator's in-process filter).
 struct ImuFilterParams {
   // Low-pass cut-off for the specific force (accelerometer), Hz. 15 Hz keeps the lag
   // (~10 ms) well below the 100 Hz MPC period while removing motor/ground vibration.
@@ -28,6 +29,11 @@ struct ImuFilterParams {
   double max_angular_velocity_rad_s = 35.0;
 
   static ImuFilterParams load(cover::config::YamlReader& reader);
+  // Reads section `ugv_agent` -> `imu_filter` of an agent configuration file (the other
+  // keys of `ugv_agent` belong to the agent, which checks them).
+  static ImuFilterParams load_file(const std::string& path);
+  // config/ugv_agent.yaml of the shipped configuration.
+  static ImuFilterParams load_default();
   // Throws cover::config::ConfigError naming the bad key; `context` prefixes the message.
   void validate(const std::string& context = "imu_filter") const;
 };

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <string>
+
+#include "cover/config/yaml_reader.hpp"
+#include "cover/ugv/imu_filter.hpp"
+
+namespace cover::ugv {
+
+// The agent's parameters: section `ugv_agent` of config/ugv_agent.yaml (documents each key).
+struct UgvAgentParams {
+  ImuFilterParams imu_filter;
+  double nominal_imu_rate_hz = 200.0;  // the simulator's IMU rate (config/sim world imu.rate_hz)
+  double status_rate_hz = 1.0;         // heartbeat of cover/ugv/<k>/status
+  double segment_wait_s = 10.0;        // sim source: how long the simulator may take to start
+
+  static UgvAgentParams load(cover::config::YamlReader& reader);
+  // Section `ugv_agent` of `path`; throws ConfigError naming the file and key.
+  static UgvAgentParams load_file(const std::string& path);
+  void validate(const std::string& context = "ugv_agent") const;
+};
+
+}  // namespace cover::ugv

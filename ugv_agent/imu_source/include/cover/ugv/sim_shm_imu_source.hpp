@@ -1,0 +1,51 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include "cover/shm/seqlock_reader.hpp"
+#include "cover/sim/world_segment.hpp"
+#include "cover/ugv/imu_source.hpp"
+
+namespace cover::ugv {
+
+// UGV k's raw IMU as the simulator publishes it: the ring imu[k] of the SharedWorld
+// segment. Counts the samples it consumed and returns the newer ones; when the simulator
+// got more than a ring ahead, the overwritten samples are counted as lost and reading
+// resumes at the oldest sample still in the ring. Samples already in the ring when the
+// source attaches are delivered (at most a ring's worth); older ones are not counted lost:
+// the agent was not running then.
+class SimShmImuSource : public ImuSource {
+ public:
+  // Between two looks at the segment's sequence while waiting: short, because the
+  // simulator in lockstep mode waits for the agents every control period (10 ms).
+  static constexpr std::chrono::microseconds kPollInterval{150};
+  // How often a waiting read checks that the writer still exists (a syscall or two).
+  static constexpr std::chrono::milliseconds kLivenessInterval{50};
+
+  // Waits up to `wait` for the segment to appear. Throws std::runtime_error when it does
+  // not, when its layout differs, or std::invalid_argument when `ugv_index` is not in
+  // 0..kMaxUgvs-1.
+  SimShmImuSource(const std::string& segment_name, int ugv_index, std::chrono::milliseconds wait);
+
+  std::size_t read(std::vector<ImuSample>& out, std::chrono::milliseconds timeout) override;
+  std::string describe() const override { return "sim-shm:" + reader_.name(); }
+  ImuSourceStatus status() const override { return status_; }
+
+ private:
+  // Copies the world if its sequence moved and appends UGV k's new samples; false when
+  // there was nothing new (or the copy was torn: the next poll retries).
+  bool take_new_samples(std::vector<ImuSample>& out);
+  void check_writer();
+
+  cover::shm::SeqlockReader<cover::sim::SharedWorld> reader_;
+  int ugv_index_;
+  cover::sim::SharedWorld world_{};  // the last copy, kept to avoid a 30 KiB stack frame
+  std::uint64_t seen_sequence_ = 0;
+  std::uint64_t consumed_ = 0;  // ring samples delivered (or counted lost) so far
+  bool attached_ = false;       // the first read has placed consumed_
+  ImuSourceStatus status_;
+};
+
+}  // namespace cover::ugv

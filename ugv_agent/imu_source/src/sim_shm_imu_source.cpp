@@ -1,0 +1,108 @@
+#include "cover/ugv/sim_shm_imu_source.hpp"
+
+#include <unistd.h>
+
+#include <stdexcept>
+#include <thread>
+
+#include "cover/shm/segment_name.hpp"
+
+namespace cover::ugv {
+
+namespace {
+
+using cover::sim::kImuRingCapacity;
+using cover::sim::kMaxUgvs;
+using cover::sim::SharedWorld;
+
+int checked_index(int ugv_index) {
+  if (ugv_index < 0 || ugv_index >= kMaxUgvs) {
+    throw std::invalid_argument("UGV index " + std::to_string(ugv_index) + " is not in 0.." +
+                                std::to_string(kMaxUgvs - 1));
+  }
+  return ugv_index;
+}
+
+}  // namespace
+
+const char* to_string(ImuSourceState state) {
+  switch (state) {
+    case ImuSourceState::Ok:
+      return "ok";
+    case ImuSourceState::Ended:
+      return "ended";
+    case ImuSourceState::Gone:
+      return "gone";
+  }
+  return "unknown";
+}
+
+SimShmImuSource::SimShmImuSource(const std::string& segment_name, int ugv_index,
+                                 std::chrono::milliseconds wait)
+    : reader_(cover::shm::SeqlockReader<SharedWorld>::open(
+          segment_name, cover::sim::kWorldSegmentLayoutVersion, wait)),
+      ugv_index_(checked_index(ugv_index)) {}
+
+std::size_t SimShmImuSource::read(std::vector<ImuSample>& out, std::chrono::milliseconds timeout) {
+  out.clear();
+  const auto start = std::chrono::steady_clock::now();
+  const auto give_up = start + timeout;
+  auto next_liveness_check = start;
+  while (status_.state == ImuSourceState::Ok) {
+    if (take_new_samples(out)) return out.size();
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= next_liveness_check) {
+      check_writer();
+      // The writer's last samples may have landed just before it went.
+      if (status_.state != ImuSourceState::Ok) take_new_samples(out);
+      next_liveness_check = now + kLivenessInterval;
+      continue;
+    }
+    if (now >= give_up) break;
+    std::this_thread::sleep_for(kPollInterval);
+  }
+  return out.size();
+}
+
+bool SimShmImuSource::take_new_samples(std::vector<ImuSample>& out) {
+  // Looking at the sequence costs one load; the copy is only made when it moved.
+  const std::uint64_t sequence = reader_.sequence();
+  if (sequence == seen_sequence_ || sequence % 2 == 1) return false;
+  if (!reader_.read(world_)) return false;
+  seen_sequence_ = reader_.last_read_sequence();
+
+  if (world_.ugv_count > 0 && ugv_index_ >= world_.ugv_count) {
+    status_.state = ImuSourceState::Gone;
+    status_.detail = "the simulator runs " + std::to_string(world_.ugv_count) +
+                     " UGV(s): there is no UGV " + std::to_string(ugv_index_);
+    return false;
+  }
+  const cover::sim::ImuRing& ring = world_.imu[static_cast<std::size_t>(ugv_index_)];
+  const std::uint64_t capacity = kImuRingCapacity;
+  const std::uint64_t oldest = ring.written > capacity ? ring.written - capacity : 0;
+  if (!attached_) {
+    consumed_ = oldest;
+    attached_ = true;
+  }
+  if (consumed_ < oldest) {
+    status_.lost_samples += oldest - consumed_;
+    consumed_ = oldest;
+  }
+  for (; consumed_ < ring.written; ++consumed_) {
+    out.push_back(cover::sim::from_raw(ring.slots[consumed_ % capacity]));
+  }
+  return !out.empty();
+}
+
+void SimShmImuSource::check_writer() {
+  // writer_alive() is pid-based; a writer that destroyed its segment in a live process
+  // (or a restarted simulator that replaced it) shows as the name no longer existing.
+  const bool name_exists = ::access(cover::shm::segment_path(reader_.name()).c_str(), F_OK) == 0;
+  if (reader_.writer_alive() && name_exists) return;
+  status_.state = ImuSourceState::Gone;
+  status_.detail = reader_.writer_alive()
+                       ? "segment " + reader_.name() + " was removed"
+                       : "the simulator (pid " + std::to_string(reader_.writer_pid()) + ") exited";
+}
+
+}  // namespace cover::ugv
