@@ -141,13 +141,15 @@ int main(int argc, char** argv) {
     cover::sim::SimRunOptions options;
     options.clock = cli.clock == "lockstep" ? cover::sim::SimClockMode::Lockstep
                                             : cover::sim::SimClockMode::Realtime;
-    options.segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
+    const std::string segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
+    // Declared first, removed last: see SimNode.
+    cover::shm::SeqlockWriter<cover::sim::SharedWorld> segment(
+        segment_name, cover::sim::kWorldSegmentLayoutVersion);
     cover::dds::Participant participant(dds);
-    cover::sim::SimNode node(participant, fleet, options, params);
+    cover::sim::SimNode node(participant, segment, fleet, options, params);
     spdlog::info("{}: {} UAV(s), {} UGV(s), seed {}, clock {}, {} on domain {}, segment {}",
                  scenario.name, fleet.uav_count(), scenario.world.ugvs.size(), scenario.world.seed,
-                 cli.clock, cover::dds::vendor_name(dds.vendor), dds.domain_id,
-                 options.segment_name);
+                 cli.clock, cover::dds::vendor_name(dds.vendor), dds.domain_id, segment_name);
     switch (node.run()) {
       case cover::sim::SimExit::Finished:
         return finish(fleet, node, cli);

@@ -17,19 +17,21 @@ namespace {
 
 using namespace std::chrono_literals;
 
+constexpr std::chrono::milliseconds kRepublishPeriod{100};
+
 std::chrono::milliseconds to_ms(double seconds) {
   return std::chrono::milliseconds(static_cast<long>(seconds * 1000.0));
 }
 
 }  // namespace
 
-SimNode::SimNode(dds::Participant& participant, Fleet& fleet, SimRunOptions options,
-                 const SimProcessParams& params)
+SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>& segment,
+                 Fleet& fleet, SimRunOptions options, const SimProcessParams& params)
     : participant_(participant),
       fleet_(fleet),
       options_(std::move(options)),
       params_(params),
-      segment_(options_.segment_name, kWorldSegmentLayoutVersion),
+      segment_(segment),
       clock_writer_(participant.make_writer(dds::topics::sim_clock())),
       mailboxes_(static_cast<std::size_t>(fleet.uav_count())) {
   const int ugvs = fleet.world(0).ugv_count();
@@ -154,7 +156,16 @@ bool SimNode::wait_for_commands(std::int64_t tick_ns) {
   };
   const auto deadline = std::chrono::steady_clock::now() + to_ms(params_.stall_timeout_s);
   for (int u = 0; u < fleet_.uav_count(); ++u) {
-    if (!arrived_.wait_until(lock, deadline, [&] { return answered(mailboxes_[u]); })) {
+    // A tick (or its relative states) can be lost: to a reader that matched just after it
+    // was written, or to best-effort delivery. Publish it again until answered; the
+    // agents step each tick once.
+    while (!arrived_.wait_for(lock, kRepublishPeriod, [&] { return answered(mailboxes_[u]); }) &&
+           std::chrono::steady_clock::now() < deadline) {
+      lock.unlock();
+      publish_tick();
+      lock.lock();
+    }
+    if (!answered(mailboxes_[u])) {
       spdlog::error(
           "lockstep stalled at t = {:.2f} s: no command from UAV {} (cover-uav-agent --id {}, "
           "topic cover/uav/{}/cmd) for {:.1f} s",

@@ -20,7 +20,6 @@ enum class SimClockMode { Lockstep, Realtime };
 
 struct SimRunOptions {
   SimClockMode clock = SimClockMode::Lockstep;
-  std::string segment_name;  // the shared-memory world
 };
 
 // Why a run ended.
@@ -31,8 +30,10 @@ enum class SimExit { Finished, Interrupted, Stalled, StartupTimeout };
 // agent's command and trace.
 class SimNode {
  public:
-  SimNode(dds::Participant& participant, Fleet& fleet, SimRunOptions options,
-          const SimProcessParams& params);
+  // `segment` is the world's shared memory; it outlives the node and the participant, so
+  // that its removal (which ends the UGV agents' sources) is the simulator's last act.
+  SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>& segment, Fleet& fleet,
+          SimRunOptions options, const SimProcessParams& params);
   SimExit run();
 
   // Sensor-to-command latency samples (realtime), ms.
@@ -63,7 +64,7 @@ class SimNode {
   Fleet& fleet_;
   SimRunOptions options_;
   SimProcessParams params_;
-  shm::SeqlockWriter<SharedWorld> segment_;
+  shm::SeqlockWriter<SharedWorld>& segment_;
   dds::Writer<msg::SimClock> clock_writer_;
   std::vector<std::vector<dds::Writer<msg::RelativeState>>> relative_writers_;  // [uav][ugv]
 

@@ -1,5 +1,7 @@
 #include "cover/sim/world.hpp"
 
+#include "cover/clock/clock.hpp"
+
 #include <cmath>
 
 #include "cover/sim/seeding.hpp"
@@ -40,7 +42,8 @@ const char* to_string(StepStatus status) {
 
 World::World(const WorldParams& params)
     : params_(validated(params)),
-      dt_s_(1.0 / params.physics_rate_hz),
+      dt_ns_(std::llround(1e9 / params.physics_rate_hz)),
+      dt_s_(clock::ns_to_s(dt_ns_)),
       quadrotor_(params.uav),
       relative_sensor_(params.relative_sensor, params.physics_rate_hz,
                        static_cast<int>(params.ugvs.size()),
@@ -86,7 +89,8 @@ StepStatus World::step(const QuadrotorCommand& command) {
   }
   ++state_.step_index;
   // time from the step count, not by summing dt: no drift over long missions
-  state_.time_s = static_cast<double>(state_.step_index) * dt_s_;
+  // Time from whole nanoseconds: it crosses the wire as stamp_ns and back unchanged.
+  state_.time_s = clock::ns_to_s(static_cast<std::int64_t>(state_.step_index) * dt_ns_);
   update_ugvs();
   update_uav(state_.last_command);
   update_payload();

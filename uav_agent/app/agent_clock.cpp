@@ -21,7 +21,9 @@ AgentClock::AgentClock(dds::Participant& participant, ClockMode mode) : mode_(mo
 void AgentClock::on_tick(const msg::SimClock& tick) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (mode_ == ClockMode::Lockstep) ticks_.push_back(tick);
+    // The simulator repeats a tick until it is answered: take each one once.
+    const bool repeated = last_tick_ && tick.tick <= last_tick_->tick;
+    if (mode_ == ClockMode::Lockstep && !repeated) ticks_.push_back(tick);
     last_tick_ = tick;
     last_tick_monotonic_ns_ = clock::monotonic_ns();
   }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "cover/clock/clock.hpp"
+
 namespace cover::wire {
 
 msg::Vector3 to_msg(const Eigen::Vector3d& v) {
@@ -21,11 +23,11 @@ Eigen::Quaterniond to_eigen(const msg::Quaternion& q) {
 }
 
 std::int64_t to_stamp_ns(double seconds) {
-  return std::isfinite(seconds) ? std::llround(seconds * 1e9) : 0;
+  return std::isfinite(seconds) ? clock::s_to_ns(seconds) : 0;
 }
 
 double to_seconds(std::int64_t stamp_ns) {
-  return static_cast<double>(stamp_ns) * 1e-9;
+  return clock::ns_to_s(stamp_ns);
 }
 
 }  // namespace cover::wire

@@ -28,7 +28,7 @@ Scenario Scenario::load_file(const std::string& path) {
   }
   YAML::Node list;
   root.optional("extra_uavs", list);
-  if (list) {
+  if (root.has("extra_uavs")) {
     config::check(list.IsSequence(), path + ".extra_uavs", "must be a list");
     for (std::size_t i = 0; i < list.size(); ++i) {
       config::YamlReader entry(list[i], path + ".extra_uavs[" + std::to_string(i) + "]");

@@ -94,15 +94,29 @@ bool SimShmImuSource::take_new_samples(std::vector<ImuSample>& out) {
   return !out.empty();
 }
 
+namespace {
+constexpr std::chrono::seconds kWriterExitWait{3};
+}  // namespace
+
 void SimShmImuSource::check_writer() {
-  // writer_alive() is pid-based; a writer that destroyed its segment in a live process
-  // (or a restarted simulator that replaced it) shows as the name no longer existing.
+  // A simulator that ends unlinks its segment: the device closed, the source ends. One
+  // that crashed leaves it behind with a dead writer pid: the device is gone.
   const bool name_exists = ::access(cover::shm::segment_path(reader_.name()).c_str(), F_OK) == 0;
-  if (reader_.writer_alive() && name_exists) return;
+  if (!name_exists) {
+    // End only once the simulator's process is gone (its supervisor reaped it), so that a
+    // launcher sees the simulator end the run before it sees this agent leave; bounded,
+    // for a writer that closes its world and lives on.
+    const auto now = std::chrono::steady_clock::now();
+    if (!closed_since_) closed_since_ = now;
+    if (reader_.writer_alive() && now - *closed_since_ < kWriterExitWait) return;
+    status_.state = ImuSourceState::Ended;
+    status_.detail = "the simulator closed segment " + reader_.name();
+    return;
+  }
+  if (reader_.writer_alive()) return;
   status_.state = ImuSourceState::Gone;
-  status_.detail = reader_.writer_alive()
-                       ? "segment " + reader_.name() + " was removed"
-                       : "the simulator (pid " + std::to_string(reader_.writer_pid()) + ") exited";
+  status_.detail = "the simulator (pid " + std::to_string(reader_.writer_pid()) +
+                   ") died and left segment " + reader_.name() + " behind";
 }
 
 }  // namespace cover::ugv

@@ -79,6 +79,7 @@ class World {
   void rest_uav_on_surface();
 
   WorldParams params_;
+  std::int64_t dt_ns_;  // the physics step in whole nanoseconds
   double dt_s_;
   Quadrotor quadrotor_;
   std::vector<UgvMotionPattern> patterns_;

@@ -1,6 +1,9 @@
 #pragma once
 
 #include <chrono>
+#include <optional>
+
+#include <chrono>
 #include <cstdint>
 #include <string>
 
@@ -42,6 +45,8 @@ class SimShmImuSource : public ImuSource {
   cover::shm::SeqlockReader<cover::sim::SharedWorld> reader_;
   int ugv_index_;
   cover::sim::SharedWorld world_{};  // the last copy, kept to avoid a 30 KiB stack frame
+  // When the segment was first seen closed while its writer still ran (monotonic).
+  std::optional<std::chrono::steady_clock::time_point> closed_since_;
   std::uint64_t seen_sequence_ = 0;
   std::uint64_t consumed_ = 0;  // ring samples delivered (or counted lost) so far
   bool attached_ = false;       // the first read has placed consumed_
