@@ -36,6 +36,7 @@ struct CommandLine {
   std::string run_id = "local";
   std::string result_file;
   std::string plot_file;
+  std::string summary_file;
   std::string params_file = cover::config::default_config_dir() + "/sim/sim_process.yaml";
   cover::dds::DdsCliOptions dds;
 };
@@ -101,9 +102,14 @@ int finish(cover::sim::Fleet& fleet, const cover::sim::SimNode& node, const Comm
                                     " (processes, " + cli.clock + ")",
                                 cli.plot_file);
   }
+  std::string summary;
   for (std::size_t u = 0; u < runs.size(); ++u) {
     spdlog::info("UAV {}: {} ({})", u, runs[u].success ? "SUCCESS" : "FAILED", runs[u].status);
+    summary += "UAV " + std::to_string(u) + ", task '" +
+               fleet.scenario().task_of(static_cast<int>(u)).task_id + "' (" + cli.clock +
+               ", processes)\n" + cover::sim::readable_summary(runs[u]);
   }
+  if (!cli.summary_file.empty()) std::ofstream(cli.summary_file) << summary;
   return out["success"].get<bool>() ? 0 : 1;
 }
 
@@ -126,6 +132,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--result", cli.result_file, "write the run's result JSON here at exit");
   app.add_option("--plot", cli.plot_file, "write the world-frame SVG plot here at exit");
+  app.add_option("--summary", cli.summary_file, "write the readable result here at exit");
   app.add_option("--params", cli.params_file, "cover-sim settings")->capture_default_str();
   cli.dds.add_to(app);
   CLI11_PARSE(app, argc, argv);

@@ -13,35 +13,6 @@
 
 namespace {
 
-void print_table(int number, const std::string& method, const cover::sim::Scenario& scenario,
-                 const cover::sim::ClosedLoopResult& r) {
-  auto cm = [](double m) { return std::isfinite(m) ? m * 100.0 : std::nan(""); };
-  std::printf("Scenario %d (%s), method %s\n", number, scenario.description.c_str(),
-              method.c_str());
-  std::printf("  result            %s\n", r.success ? "SUCCESS" : "FAILED");
-  std::printf("  status            %s\n", r.status.c_str());
-  // A scenario without a landing or a delivery reports NaN for it: say so in words.
-  auto print_error = [&](const char* label, double error_m) {
-    if (std::isfinite(error_m)) {
-      std::printf("  %-17s %.1f cm (horizontal, on the deck)\n", label, cm(error_m));
-    } else {
-      std::printf("  %-17s n/a (the task has none)\n", label);
-    }
-  };
-  print_error("landing error", r.landing_error_m);
-  print_error("delivery error", r.delivery_error_m);
-  std::printf("  final tracking    x %.1f  y %.1f  z %.1f cm (mean |error|, %d samples)\n",
-              cm(r.final_tracking_error_m.x()), cm(r.final_tracking_error_m.y()),
-              cm(r.final_tracking_error_m.z()), r.final_tracking_samples);
-  std::printf("  transitions       %zu, Lt/Ls %.3f\n", r.transitions.size(),
-              r.total_straight_length_m > 0 ? r.total_path_length_m / r.total_straight_length_m
-                                            : std::nan(""));
-  std::printf("  task duration     %.1f s simulated, %.2f s wall, %.0fx real time\n", r.duration_s,
-              r.wall_time_s, r.realtime_factor);
-  std::printf("  MPC step          median %.0f us, p99 %.0f us; stage plan median %.1f ms\n",
-              r.mpc_median_us, r.mpc_p99_us, r.plan_median_ms);
-}
-
 int run(const std::vector<std::string>& args) {
   CLI::App app{"The paper's scenarios 1-4 in closed loop (sec. 5.2)"};
   int number = 2;
@@ -83,7 +54,8 @@ int run(const std::vector<std::string>& args) {
     if (plot->count() > 0) out["plot"] = plot_file;
     std::cout << out.dump(2) << "\n";
   } else {
-    print_table(number, method, scenario, result);
+    std::printf("Scenario %d (%s), method %s\n%s", number, scenario.description.c_str(),
+                method.c_str(), cover::sim::readable_summary(result).c_str());
     if (plot->count() > 0) std::printf("  plot              %s\n", plot_file.c_str());
   }
   return result.success ? 0 : 3;

@@ -1,6 +1,7 @@
 #include "cover/sim/closed_loop_report.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace cover::sim {
 
@@ -34,6 +35,39 @@ nlohmann::json summary_json(const ClosedLoopResult& r) {
           {"plan_median_ms", r.plan_median_ms},
           {"plan_max_ms", r.plan_max_ms},
           {"failsafe_steps", r.failsafe_steps}};
+}
+
+std::string readable_summary(const ClosedLoopResult& r) {
+  auto cm = [](double m) { return std::isfinite(m) ? m * 100.0 : std::nan(""); };
+  std::string text;
+  char line[512];
+  auto add = [&](const char* format, auto... values) {
+    std::snprintf(line, sizeof line, format, values...);
+    text += line;
+  };
+  add("  result            %s\n", r.success ? "SUCCESS" : "FAILED");
+  add("  status            %s\n", r.status.c_str());
+  // A scenario without a landing or a delivery reports NaN for it: say so in words.
+  auto error_line = [&](const char* label, double error_m) {
+    if (std::isfinite(error_m)) {
+      add("  %-17s %.1f cm (horizontal, on the deck)\n", label, cm(error_m));
+    } else {
+      add("  %-17s n/a (the task has none)\n", label);
+    }
+  };
+  error_line("landing error", r.landing_error_m);
+  error_line("delivery error", r.delivery_error_m);
+  add("  final tracking    x %.1f  y %.1f  z %.1f cm (mean |error|, %d samples)\n",
+      cm(r.final_tracking_error_m.x()), cm(r.final_tracking_error_m.y()),
+      cm(r.final_tracking_error_m.z()), r.final_tracking_samples);
+  add("  transitions       %zu, Lt/Ls %.3f\n", r.transitions.size(),
+      r.total_straight_length_m > 0 ? r.total_path_length_m / r.total_straight_length_m
+                                    : std::nan(""));
+  add("  task duration     %.1f s simulated, %.2f s wall, %.0fx real time\n", r.duration_s,
+      r.wall_time_s, r.realtime_factor);
+  add("  MPC step          median %.0f us, p99 %.0f us; stage plan median %.1f ms\n",
+      r.mpc_median_us, r.mpc_p99_us, r.plan_median_ms);
+  return text;
 }
 
 std::string with_suffix(const std::string& path, const std::string& suffix) {

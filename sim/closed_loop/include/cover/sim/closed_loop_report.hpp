@@ -18,6 +18,10 @@ nlohmann::json number_or_null(double value);
 // The run's headline metrics (what `cover-bench scenario --json` prints).
 nlohmann::json summary_json(const ClosedLoopResult& result);
 
+// The run's headline metrics as indented lines a person reads (result, landing and
+// delivery errors, tracking, transitions, duration, controller timing).
+std::string readable_summary(const ClosedLoopResult& result);
+
 // Inserts `suffix` before the extension: ("out/fig.svg", "coni-mpc") -> "out/fig_coni-mpc.svg".
 std::string with_suffix(const std::string& path, const std::string& suffix);
 
