@@ -7,6 +7,7 @@
 #include "cover/wire/control.hpp"
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/enums.hpp"
+#include "cover/wire/reference.hpp"
 #include "cover/wire/sensors.hpp"
 #include "cover/wire/task.hpp"
 
@@ -233,6 +234,34 @@ TEST(Wire, ProgressCountsStagesOverTheTask) {
   EXPECT_DOUBLE_EQ(wire::task_progress(d, 2), 4.0 / 6.0);
   d.state = mission::MissionState::Complete;
   EXPECT_DOUBLE_EQ(wire::task_progress(d, 2), 1.0);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Wire, ReferenceSamplesTheWholeStage) {
+  cover::planner::TrajectoryPiece piece;
+  piece.duration_s = 2.0;
+  piece.coefficients(0, 0) = 1.0;  // x starts at 1 ...
+  piece.coefficients(1, 0) = 0.5;  // ... and moves at 0.5 m/s
+  const cover::planner::Trajectory trajectory({piece});
+  const msg::ReferenceTrajectory m =
+      wire::to_reference(trajectory, 2, 3.0, 1, cover::model::Stage::Final, 0.1);
+  EXPECT_EQ(m.uav_id, 2u);
+  EXPECT_EQ(m.reference_ugv, 1u);
+  EXPECT_EQ(m.stage, msg::Stage::STAGE_FINAL);
+  EXPECT_EQ(m.stamp_ns, 3'000'000'000);
+  ASSERT_EQ(m.positions_m.size(), 21u);
+  ASSERT_EQ(m.velocities_m_s.size(), 21u);
+  EXPECT_DOUBLE_EQ(m.dt_s, 0.1);
+  EXPECT_DOUBLE_EQ(m.positions_m.back().x, 2.0);
+  EXPECT_DOUBLE_EQ(m.velocities_m_s.front().x, 0.5);
+  // A long stage is sampled coarser, never cut short.
+  const msg::ReferenceTrajectory coarse =
+      wire::to_reference(trajectory, 2, 3.0, 1, cover::model::Stage::Final, 0.001, 50);
+  ASSERT_EQ(coarse.positions_m.size(), 50u);
+  EXPECT_DOUBLE_EQ(coarse.positions_m.back().x, 2.0);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "cover/wire/control.hpp"
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/enums.hpp"
+#include "cover/wire/reference.hpp"
 #include "cover/wire/task.hpp"
 
 namespace cover::uav_agent {
@@ -30,6 +31,7 @@ UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
       command_(participant, options_.uav_id),
       status_writer_(participant.make_writer(dds::topics::uav_status(options_.uav_id))),
       task_status_writer_(participant.make_writer(dds::topics::task_status())),
+      reference_writer_(participant.make_writer(dds::topics::uav_reference(options_.uav_id))),
       intake_(participant, options_.uav_id),
       clock_(participant, options_.clock) {
   if (options_.task) accept(*options_.task, 0.0);
@@ -120,6 +122,7 @@ void UavAgentNode::run_realtime() {
 void UavAgentNode::step(double now_s) {
   take_requests(now_s);
   loop_.step(now_s, inputs_, command_);
+  publish_reference_if_replanned();
   log_changes();
   publish_task_status_on_change(now_s);
   if (now_s >= next_status_s_) {
@@ -160,6 +163,15 @@ void UavAgentNode::accept(const mission::Task& task, double now_s) {
     return ugvs;
   }());
   reported_key_.clear();
+}
+
+void UavAgentNode::publish_reference_if_replanned() {
+  const mission::MissionController* controller = loop_.controller();
+  if (!controller || !controller->output().status.planned) return;
+  const mission::StageDecision& d = controller->output().status.stage;
+  reference_writer_.write(wire::to_reference(controller->reference_trajectory(), options_.uav_id,
+                                             controller->reference_start_s(), d.reference_ugv,
+                                             d.stage));
 }
 
 void UavAgentNode::publish_status(double now_s) {

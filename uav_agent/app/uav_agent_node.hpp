@@ -42,6 +42,7 @@ class UavAgentNode {
   void take_requests(double now_s);
   void accept(const mission::Task& task, double now_s);
   void publish_status(double now_s);
+  void publish_reference_if_replanned();
   void publish_task_status_on_change(double now_s);
   void log_changes();
 
@@ -52,6 +53,7 @@ class UavAgentNode {
   DdsCommandOutput command_;
   dds::Writer<msg::UavStatus> status_writer_;
   dds::Writer<msg::TaskStatus> task_status_writer_;
+  dds::Writer<msg::ReferenceTrajectory> reference_writer_;
   TaskIntake intake_;
   AgentClock clock_;
   double next_status_s_ = 0.0;

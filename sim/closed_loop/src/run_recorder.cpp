@@ -42,7 +42,10 @@ void RunRecorder::record(const mission::ControllerStatus& status,
     ++result_.failsafe_steps;
   }
   record_path(status, ws);
-  if (done_time_s_ < 0.0 && mission::is_terminal(status.stage.state)) done_time_s_ = ws.time_s;
+  // An aborted task is over for the run once its safe action has disarmed the motors.
+  const bool over = mission::is_terminal(status.stage.state) &&
+                    (status.stage.state != mission::MissionState::Aborted || !command.armed);
+  if (done_time_s_ < 0.0 && over) done_time_s_ = ws.time_s;
   ++steps_;
 }
 

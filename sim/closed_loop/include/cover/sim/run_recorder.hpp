@@ -29,7 +29,7 @@ class RunRecorder {
 
   // True once the run should stop: the task ended `settle_time_s` ago, or time is up.
   bool finished(double time_s) const;
-  // True once the controller reported the task complete, failed or aborted.
+  // True once the controller reported the task complete or failed, or aborted and landed.
   bool task_ended() const { return done_time_s_ >= 0.0; }
 
   // The metrics. `status` and `state` are the controller's last words on the task.

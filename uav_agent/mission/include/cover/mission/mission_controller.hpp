@@ -96,6 +96,8 @@ class MissionController {
   const ControllerOutput& output() const { return output_; }
   const StageMachine& stage_machine() const { return machine_; }
   const planner::Trajectory& reference_trajectory() const { return trajectory_; }
+  // When reference_trajectory()'s t = 0 was (same clock as step's now_s).
+  double reference_start_s() const { return stage_start_s_; }
   int ignored_inputs() const { return ignored_inputs_; }
 
  private:

@@ -1,0 +1,230 @@
+// The agents and the simulator as a flight stack engineer pokes them: the offboard-loss
+// failsafe when a UAV agent dies mid-flight, and tasks and aborts arriving over DDS.
+// Real processes, real DDS, the simulator's real shared-memory world as ground truth.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/mission/task.hpp"
+#include "cover/process/child_process.hpp"
+#include "cover/shm/segment_name.hpp"
+#include "cover/shm/seqlock_reader.hpp"
+#include "cover/sim/world_segment.hpp"
+#include "cover/wire/task.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using cover::process::ChildProcess;
+using cover::sim::OffboardState;
+using cover::sim::SharedWorld;
+
+std::string bin(const std::string& name) {
+  return std::string(COVER_BIN_DIR) + "/" + name;
+}
+
+std::vector<std::string> dds_env(const std::string& vendor, int domain) {
+  return {"COVER_DDS=" + vendor, "COVER_DDS_DOMAIN=" + std::to_string(domain)};
+}
+
+cover::process::SpawnOptions quiet(const std::string& vendor, int domain, const std::string& log) {
+  cover::process::SpawnOptions options;
+  options.extra_env = dds_env(vendor, domain);
+  options.log_file = ::testing::TempDir() + log;
+  return options;
+}
+
+// Polls the simulator's world (ground truth) until `condition` holds or `timeout` passes.
+bool wait_for_world(cover::shm::SeqlockReader<SharedWorld>& world,
+                    const std::function<bool(const SharedWorld&)>& condition,
+                    std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  auto copy = std::make_unique<SharedWorld>();
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (world.read(*copy) && condition(*copy)) return true;
+    std::this_thread::sleep_for(5ms);
+  }
+  return false;
+}
+
+struct System {
+  int domain;
+  std::string run_id;
+  std::unique_ptr<ChildProcess> sim;
+  std::vector<std::unique_ptr<ChildProcess>> ugvs;
+
+  System(int domain_id, const std::string& scenario) : domain(domain_id) {
+    run_id = "it_" + std::to_string(getpid()) + "_" + std::to_string(domain);
+    sim = std::make_unique<ChildProcess>(
+        std::vector<std::string>{bin("cover-sim"), "--scenario", scenario, "--clock", "realtime",
+                                 "--run-id", run_id},
+        quiet("fastdds", domain, run_id + "_sim.log"));
+    for (int k = 0; k < 2; ++k) {
+      ugvs.push_back(std::make_unique<ChildProcess>(
+          std::vector<std::string>{bin("cover-ugv-agent"), "--id", std::to_string(k), "--run-id",
+                                   run_id},
+          quiet("cyclone", domain, run_id + "_ugv" + std::to_string(k) + ".log")));
+    }
+  }
+  cover::shm::SeqlockReader<SharedWorld> world() const {
+    return cover::shm::SeqlockReader<SharedWorld>::open(
+        cover::shm::segment_name(domain, run_id), cover::sim::kWorldSegmentLayoutVersion, 10s);
+  }
+  std::string segment_path() const {
+    return cover::shm::segment_path(cover::shm::segment_name(domain, run_id));
+  }
+};
+
+TEST(AgentsAndSimulator, OffboardLossLevelsDescendsAndDisarms) {
+  System system(167, "scenario2");
+  auto world = system.world();
+  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--task",
+                    std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml", "--clock", "realtime"},
+                   quiet("fastdds", system.domain, system.run_id + "_uav.log"));
+  // In the air, climbing through 1 m above the ground, under the agent's command.
+  ASSERT_TRUE(wait_for_world(
+      world,
+      [](const SharedWorld& w) {
+        return w.uavs[0].offboard == OffboardState::Offboard && w.uavs[0].state.position_m.z > 1.0;
+      },
+      30s));
+  kill(uav.pid(), SIGKILL);  // the agent dies: no more commands
+  EXPECT_TRUE(wait_for_world(
+      world, [](const SharedWorld& w) { return w.uavs[0].offboard == OffboardState::LossDescent; },
+      3s));
+  double lowest_tilt_cos = 1.0;
+  EXPECT_TRUE(wait_for_world(
+      world,
+      [&](const SharedWorld& w) {
+        const auto q = w.uavs[0].state.attitude.eigen();
+        lowest_tilt_cos = std::min(lowest_tilt_cos, (q * Eigen::Vector3d::UnitZ()).z());
+        return w.uavs[0].offboard == OffboardState::LossDisarmed;
+      },
+      20s));
+  auto final_world = std::make_unique<SharedWorld>();
+  ASSERT_TRUE(world.read(*final_world));
+  EXPECT_TRUE(final_world->uavs[0].contact.resting);
+  EXPECT_EQ(final_world->uavs[0].command.thrust_m_s2, 0.0);  // disarmed
+  EXPECT_GT(lowest_tilt_cos, std::cos(0.5));                 // stayed near level
+  // Interrupted, the simulator removes its world and the UGV agents end with it.
+  EXPECT_EQ(system.sim->terminate(10s, SIGINT), 130);
+  for (auto& ugv : system.ugvs) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
+  EXPECT_NE(access(system.segment_path().c_str(), F_OK), 0);
+}
+
+// Collects the task statuses of one UAV.
+class TaskStatusWatch {
+ public:
+  explicit TaskStatusWatch(cover::dds::Participant& participant)
+      : reader_(participant.make_reader(cover::dds::topics::task_status())) {}
+  bool wait_for(const std::function<bool(const cover::msg::TaskStatus&)>& match,
+                std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    std::uint64_t seen = 0;
+    while (std::chrono::steady_clock::now() < deadline) {
+      const auto latest = reader_.latest();
+      if (latest && match(latest->sample)) return true;
+      if (reader_.wait_for_sample(50ms, seen)) seen = reader_.received_count();
+    }
+    return false;
+  }
+
+ private:
+  cover::dds::Reader<cover::msg::TaskStatus> reader_;
+};
+
+TEST(AgentsAndSimulator, TaskOverDdsIsValidatedRunsAndAborts) {
+  System system(168, "scenario2");
+  auto world = system.world();
+  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2"},
+                   quiet("cyclone", system.domain, system.run_id + "_uav.log"));
+  cover::dds::ParticipantOptions options;
+  options.domain_id = system.domain;
+  cover::dds::Participant station(options);  // the ground station
+  TaskStatusWatch statuses(station);
+  auto requests = station.make_writer(cover::dds::topics::task_request());
+  auto aborts = station.make_writer(cover::dds::topics::task_abort());
+  auto uav_status = station.make_reader(cover::dds::topics::uav_status(0));
+  auto reference = station.make_reader(cover::dds::topics::uav_reference(0));
+  ASSERT_TRUE(requests.wait_for_readers(1, 20s));
+  ASSERT_TRUE(aborts.wait_for_readers(1, 20s));
+
+  cover::mission::Task task =
+      cover::mission::load_task_file(std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml", 2);
+  cover::mission::Task bad = task;
+  bad.task_id = "unknown-ugv";
+  bad.processes[0].to_ugv = 5;
+  requests.write(cover::wire::to_msg(bad, 0.0));
+  EXPECT_TRUE(statuses.wait_for(
+      [](const cover::msg::TaskStatus& s) {
+        return s.task_id == "unknown-ugv" && s.state == cover::msg::TaskState::TASK_REJECTED &&
+               s.message.find("to_ugv") != std::string::npos;
+      },
+      10s));
+
+  requests.write(cover::wire::to_msg(task, 0.0));
+  ASSERT_TRUE(statuses.wait_for(
+      [](const cover::msg::TaskStatus& s) {
+        return s.task_id == "scenario2" && s.state == cover::msg::TaskState::TASK_RUNNING;
+      },
+      10s));
+  ASSERT_TRUE(wait_for_world(
+      world, [](const SharedWorld& w) { return w.uavs[0].state.position_m.z > 1.0; }, 20s));
+  // The ground station sees the flight: 10 Hz status and the stage's reference.
+  ASSERT_TRUE(uav_status.wait_for_sample(5s));
+  ASSERT_TRUE(reference.wait_for_sample(5s));
+  const cover::msg::UavStatus status = uav_status.latest()->sample;
+  EXPECT_EQ(status.task_id, "scenario2");
+  EXPECT_EQ(status.task_state, cover::msg::TaskState::TASK_RUNNING);
+  EXPECT_EQ(status.process_count, 1u);
+  EXPECT_TRUE(status.armed);
+  EXPECT_NE(status.stage, cover::msg::Stage::STAGE_IDLE);
+  EXPECT_EQ(status.solver_status, cover::msg::SolverStatus::SOLVER_OK);
+  EXPECT_GT(status.solve_time_us, 0.0);
+  EXPECT_TRUE(std::isfinite(status.distance_to_stage_point_m));
+  EXPECT_GT(reference.latest()->sample.positions_m.size(), 2u);
+  const auto before = uav_status.received_count();
+  EXPECT_TRUE(uav_status.wait_for_sample(1s, before + 5));  // ~10 Hz: 5 more within 1 s
+  cover::mission::Task second = task;
+  second.task_id = "while-busy";
+  requests.write(cover::wire::to_msg(second, 0.0));
+  EXPECT_TRUE(statuses.wait_for(
+      [](const cover::msg::TaskStatus& s) {
+        return s.task_id == "while-busy" && s.state == cover::msg::TaskState::TASK_REJECTED;
+      },
+      10s));
+
+  cover::msg::TaskAbort abort;
+  abort.task_id = "scenario2";
+  abort.reason = "integration test";
+  aborts.write(abort);
+  EXPECT_TRUE(statuses.wait_for(
+      [](const cover::msg::TaskStatus& s) {
+        return s.task_id == "scenario2" && s.state == cover::msg::TaskState::TASK_CANCELLED;
+      },
+      10s));
+  // Hold, then land where it was: on the ground or a deck, disarmed by the agent itself.
+  EXPECT_TRUE(wait_for_world(
+      world,
+      [](const SharedWorld& w) {
+        return w.uavs[0].contact.resting && w.uavs[0].command.thrust_m_s2 == 0.0 &&
+               w.uavs[0].offboard == OffboardState::Offboard;
+      },
+      30s));
+  // The aborted task has ended: the simulator ends the run (not a success) by itself.
+  EXPECT_EQ(system.sim->wait(30s), std::optional<int>(1));
+  EXPECT_EQ(uav.terminate(10s, SIGINT), 0);
+  for (auto& ugv : system.ugvs) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
+}
+
+}  // namespace
