@@ -75,6 +75,7 @@ class SimNode {
   std::array<std::pair<std::int64_t, std::int64_t>, 256> published_{};
   std::vector<double> latency_ms_;
   double wall_time_s_ = 0.0;
+  std::uint64_t republished_ticks_ = 0;
 
   std::vector<dds::Reader<msg::UavCommand>> command_readers_;
   std::vector<dds::Reader<msg::ControlTrace>> trace_readers_;

@@ -12,7 +12,12 @@ ImuPublisher::ImuPublisher(cover::dds::Participant& participant, std::uint32_t u
       status_writer_(participant.make_writer(cover::dds::topics::ugv_status(ugv_id))) {}
 
 void ImuPublisher::publish_imu(const FilteredImu& imu) {
-  imu_writer_.write(cover::wire::to_msg(imu, ugv_id_, seq_++));
+  last_ = cover::wire::to_msg(imu, ugv_id_, seq_++);
+  imu_writer_.write(*last_);
+}
+
+void ImuPublisher::republish_last() {
+  if (last_) imu_writer_.write(*last_);
 }
 
 void ImuPublisher::publish_status(const UgvStatusReport& report) {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "cover/dds/participant.hpp"
@@ -27,6 +28,10 @@ class ImuPublisher {
 
   // seq counts the published samples from 0, so a reader sees what it missed.
   void publish_imu(const FilteredImu& imu);
+  // The last sample again, same seq and stamp (nothing new from the device): the IMU
+  // topic is best-effort, and a reader that matched just after a sample was sent, or
+  // lost it, would otherwise wait for the next one. Readers judge age by the stamp.
+  void republish_last();
   void publish_status(const UgvStatusReport& report);
   // Before exiting: lets the last (reliable) status reach its readers.
   void flush_status(std::chrono::milliseconds timeout);
@@ -34,6 +39,7 @@ class ImuPublisher {
  private:
   std::uint32_t ugv_id_;
   std::uint32_t seq_ = 0;
+  std::optional<cover::msg::UgvImu> last_;
   cover::dds::Writer<cover::msg::UgvImu> imu_writer_;
   cover::dds::Writer<cover::msg::UgvStatus> status_writer_;
 };

@@ -14,7 +14,10 @@ namespace {
 using cover::clock::monotonic_ns;
 
 // Bounds how long a shutdown request or a stalled device goes unnoticed.
-constexpr std::chrono::milliseconds kReadTimeout{50};
+constexpr std::chrono::milliseconds kReadTimeout{10};
+// A device silent for this long has its last sample published again (see
+// ImuPublisher::republish_last): a simulator in lockstep waits for the agents.
+constexpr std::int64_t kRepeatAfterNs = 20'000'000;
 constexpr std::int64_t kLogIntervalNs = 1'000'000'000;
 
 // Counts an event and says whether a line is due (at most one per kLogIntervalNs).
@@ -43,6 +46,12 @@ int UgvAgent::run() {
     source_->read(batch_, kReadTimeout);
     const std::int64_t now_ns = monotonic_ns();
     for (const ImuSample& sample : batch_) handle(sample, now_ns);
+    if (!batch_.empty()) {
+      last_publish_ns_ = now_ns;
+    } else if (accepted_ > 0 && now_ns - last_publish_ns_ >= kRepeatAfterNs) {
+      publisher_.republish_last();
+      last_publish_ns_ = now_ns;
+    }
     const ImuSourceStatus status = source_->status();
     if (status.lost_samples > lost_reported_) log_lost_samples(status.lost_samples, now_ns);
     update_health(now_ns);

@@ -55,6 +55,7 @@ class UgvAgent {
   std::uint32_t rejected_ = 0;
   std::uint64_t lost_reported_ = 0;
   std::int64_t next_status_ns_ = 0;
+  std::int64_t last_publish_ns_ = 0;  // when an IMU sample last went out (monotonic)
   RateLimitedLog rejections_log_;
   RateLimitedLog lost_log_;
 };
