@@ -7,8 +7,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -85,12 +87,30 @@ struct System {
   }
 };
 
+std::set<std::string> shm_entries() {
+  std::set<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator("/dev/shm")) {
+    names.insert(entry.path().filename().string());
+  }
+  return names;
+}
+
+// Nothing of ours is left in /dev/shm (the tests of this binary run serially).
+void expect_no_new_shm_entries(const std::set<std::string>& before) {
+  for (const std::string& name : shm_entries()) {
+    EXPECT_TRUE(before.count(name) > 0) << "left in /dev/shm: " << name;
+  }
+}
+
 TEST(AgentsAndSimulator, OffboardLossLevelsDescendsAndDisarms) {
+  const auto shm_before = shm_entries();
   System system(167, "scenario2");
   auto world = system.world();
+  // On Cyclone DDS: it is killed, and a killed Fast DDS process leaves its shared-memory
+  // transport files behind (dds-interop.md).
   ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--task",
                     std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml", "--clock", "realtime"},
-                   quiet("fastdds", system.domain, system.run_id + "_uav.log"));
+                   quiet("cyclone", system.domain, system.run_id + "_uav.log"));
   // In the air, climbing through 1 m above the ground, under the agent's command.
   ASSERT_TRUE(wait_for_world(
       world,
@@ -120,6 +140,7 @@ TEST(AgentsAndSimulator, OffboardLossLevelsDescendsAndDisarms) {
   EXPECT_EQ(system.sim->terminate(10s, SIGINT), 130);
   for (auto& ugv : system.ugvs) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
   EXPECT_NE(access(system.segment_path().c_str(), F_OK), 0);
+  expect_no_new_shm_entries(shm_before);
 }
 
 // Collects the task statuses of one UAV.
@@ -143,7 +164,9 @@ class TaskStatusWatch {
   cover::dds::Reader<cover::msg::TaskStatus> reader_;
 };
 
-TEST(AgentsAndSimulator, TaskOverDdsIsValidatedRunsAndAborts) {
+// The whole flight of that test, in a scope of its own: its participants and processes
+// are gone before the shared-memory check.
+void fly_task_over_dds_validate_and_abort() {
   System system(168, "scenario2");
   auto world = system.world();
   ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2"},
@@ -225,6 +248,12 @@ TEST(AgentsAndSimulator, TaskOverDdsIsValidatedRunsAndAborts) {
   EXPECT_EQ(system.sim->wait(30s), std::optional<int>(1));
   EXPECT_EQ(uav.terminate(10s, SIGINT), 0);
   for (auto& ugv : system.ugvs) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
+}
+
+TEST(AgentsAndSimulator, TaskOverDdsIsValidatedRunsAndAborts) {
+  const auto shm_before = shm_entries();
+  fly_task_over_dds_validate_and_abort();
+  expect_no_new_shm_entries(shm_before);  // the station's participant is gone too
 }
 
 }  // namespace
