@@ -159,7 +159,10 @@ bool SimNode::wait_for_commands(std::int64_t tick_ns) {
     return box.command && box.command->stamp_ns == tick_ns && box.trace &&
            box.trace->stamp_ns == tick_ns;
   };
-  const auto deadline = std::chrono::steady_clock::now() + to_ms(params_.stall_timeout_s);
+  // The first tick is still start-up: an agent's reader may match the clock writer a
+  // while after the writer matched it (discovery is not symmetric in time).
+  const double timeout_s = fleet_.tick() == 0 ? params_.startup_timeout_s : params_.stall_timeout_s;
+  const auto deadline = std::chrono::steady_clock::now() + to_ms(timeout_s);
   for (int u = 0; u < fleet_.uav_count(); ++u) {
     // A tick (or its relative states) can be lost: to a reader that matched just after it
     // was written, or to best-effort delivery. Publish it again until answered; the
@@ -175,7 +178,7 @@ bool SimNode::wait_for_commands(std::int64_t tick_ns) {
       spdlog::error(
           "lockstep stalled at t = {:.2f} s: no command from UAV {} (cover-uav-agent --id {}, "
           "topic cover/uav/{}/cmd) for {:.1f} s",
-          wire::to_seconds(tick_ns), u, u, u, params_.stall_timeout_s);
+          wire::to_seconds(tick_ns), u, u, u, timeout_s);
       return false;
     }
   }

@@ -15,7 +15,8 @@ struct SimProcessParams {
   // Lockstep: a tick whose commands have not all arrived after this long stops the run
   // with an error naming the missing UAV agent, s.
   double stall_timeout_s = 5.0;
-  // Before the first tick: every UAV agent must have discovered the simulator by then, s.
+  // Every UAV agent must have discovered the simulator and answered the first tick by
+  // then, s (discovery can take a while; later ticks get stall_timeout_s).
   double startup_timeout_s = 30.0;
   double control_rate_hz = 100.0;
 

@@ -8,7 +8,9 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <optional>
 #include <set>
 #include <string>
@@ -65,12 +67,14 @@ struct System {
   std::unique_ptr<ChildProcess> sim;
   std::vector<std::unique_ptr<ChildProcess>> ugvs;
 
-  System(int domain_id, const std::string& scenario) : domain(domain_id) {
+  System(int domain_id, const std::string& scenario, const std::string& clock = "realtime",
+         const std::vector<std::string>& sim_args = {})
+      : domain(domain_id) {
     run_id = "it_" + std::to_string(getpid()) + "_" + std::to_string(domain);
-    sim = std::make_unique<ChildProcess>(
-        std::vector<std::string>{bin("cover-sim"), "--scenario", scenario, "--clock", "realtime",
-                                 "--run-id", run_id},
-        quiet("fastdds", domain, run_id + "_sim.log"));
+    std::vector<std::string> argv{bin("cover-sim"), "--scenario", scenario, "--clock", clock,
+                                  "--run-id",       run_id};
+    argv.insert(argv.end(), sim_args.begin(), sim_args.end());
+    sim = std::make_unique<ChildProcess>(argv, quiet("fastdds", domain, sim_log()));
     for (int k = 0; k < 2; ++k) {
       ugvs.push_back(std::make_unique<ChildProcess>(
           std::vector<std::string>{bin("cover-ugv-agent"), "--id", std::to_string(k), "--run-id",
@@ -78,6 +82,7 @@ struct System {
           quiet("cyclone", domain, run_id + "_ugv" + std::to_string(k) + ".log")));
     }
   }
+  std::string sim_log() const { return run_id + "_sim.log"; }
   cover::shm::SeqlockReader<SharedWorld> world() const {
     return cover::shm::SeqlockReader<SharedWorld>::open(
         cover::shm::segment_name(domain, run_id), cover::sim::kWorldSegmentLayoutVersion, 10s);
@@ -254,6 +259,28 @@ TEST(AgentsAndSimulator, TaskOverDdsIsValidatedRunsAndAborts) {
   const auto shm_before = shm_entries();
   fly_task_over_dds_validate_and_abort();
   expect_no_new_shm_entries(shm_before);  // the station's participant is gone too
+}
+
+// Lockstep waits for every UAV agent; one that stops answering (here: SIGSTOP) stalls the
+// run, and the simulator ends it after stall_timeout_s naming the missing agent.
+TEST(AgentsAndSimulator, LockstepStallNamesTheMissingAgent) {
+  const std::string params = ::testing::TempDir() + "stall_params.yaml";
+  std::ofstream(params) << "sim_process:\n  stall_timeout_s: 1.0\n";
+  System system(169, "scenario2", "lockstep", {"--params", params});
+  auto world = system.world();
+  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--task",
+                    std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml"},
+                   quiet("cyclone", system.domain, system.run_id + "_uav.log"));
+  ASSERT_TRUE(wait_for_world(
+      world, [](const SharedWorld& w) { return w.tick > 50; }, 30s));
+  kill(uav.pid(), SIGSTOP);
+  EXPECT_EQ(system.sim->wait(10s), std::optional<int>(4));
+  std::ifstream log(::testing::TempDir() + system.sim_log());
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("no command from UAV 0 (cover-uav-agent --id 0"), std::string::npos) << text;
+  kill(uav.pid(), SIGCONT);
+  EXPECT_EQ(uav.terminate(10s, SIGINT), 0);
+  for (auto& ugv : system.ugvs) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
 }
 
 }  // namespace

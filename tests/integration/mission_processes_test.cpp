@@ -13,6 +13,7 @@
 
 #include "cover/process/child_process.hpp"
 #include "cover/sim/closed_loop.hpp"
+#include "cover/sim/closed_loop_report.hpp"
 #include "cover/uav/controller_config.hpp"
 
 namespace {
@@ -107,6 +108,13 @@ void expect_equals_in_process(const std::string& scenario, const Mix& mix, int d
     EXPECT_NEAR(number(run.result, "delivery_error_m"), reference.delivery_error_m, 1e-3);
   }
   EXPECT_NEAR(number(run.result, "duration_s"), reference.duration_s, 0.011);
+  // The result has every key of `cover-bench scenario --json`, with the same kind of value.
+  const nlohmann::json expected_keys = cover::sim::summary_json(reference);
+  for (const auto& [key, value] : expected_keys.items()) {
+    ASSERT_TRUE(run.result.contains(key)) << key;
+    const nlohmann::json& got = run.result[key];
+    EXPECT_TRUE(got.type() == value.type() || (got.is_number() && value.is_number())) << key;
+  }
   for (const auto& p : run.result["processes"]) {
     const std::string name = p["name"];
     const bool on_cyclone = p["dds"] == "cyclone";
