@@ -7,6 +7,7 @@
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -249,6 +250,54 @@ TEST_P(LateJoiner, StateDepthGivesItTheLastEightSamples) {
 }
 
 INSTANTIATE_TEST_SUITE_P(VendorPairs, LateJoiner,
+                         testing::Values(std::pair{Vendor::FastDds, Vendor::FastDds},
+                                         std::pair{Vendor::Cyclone, Vendor::Cyclone},
+                                         std::pair{Vendor::FastDds, Vendor::Cyclone},
+                                         std::pair{Vendor::Cyclone, Vendor::FastDds}),
+                         [](const auto& info) {
+                           return std::string(vendor_name(info.param.first)) + "_to_" +
+                                  vendor_name(info.param.second);
+                         });
+
+// Keyed topics carry one instance per key: a task manager's task statuses are one per task.
+// A vendor's default instance limit (Fast DDS: 10) must not silently drop the 11th task.
+class ManyInstances : public testing::TestWithParam<std::pair<Vendor, Vendor>> {};
+
+TEST_P(ManyInstances, EveryKeyIsDeliveredAndKeptForLateJoiners) {
+  const auto topic = Topic<msg::TaskStatus>::uncatalogued(
+      cover::test::private_prefix("instances") + "/task", topics::task_status().qos());
+  Participant writer_side(cover::test::private_options(GetParam().first));
+  Participant reader_side(cover::test::private_options(GetParam().second));
+  std::mutex mutex;
+  std::set<std::string> live;
+  auto live_reader = reader_side.make_reader(topic, [&](const msg::TaskStatus& s) {
+    std::lock_guard<std::mutex> lock(mutex);
+    live.insert(s.task_id);
+  });
+  auto writer = writer_side.make_writer(topic);
+  ASSERT_TRUE(writer.wait_for_readers(1, 10s));
+  constexpr int kTasks = 60;
+  for (int i = 0; i < kTasks; ++i) {
+    msg::TaskStatus status;
+    status.task_id = "task-" + std::to_string(i);
+    ASSERT_TRUE(writer.write(status)) << "write of instance " << i << " refused";
+  }
+  auto count = [&](const std::set<std::string>& ids) {
+    std::lock_guard<std::mutex> lock(mutex);
+    return ids.size();
+  };
+  EXPECT_TRUE(cover::test::wait_until([&] { return count(live) == kTasks; }, 10s))
+      << count(live) << " of " << kTasks << " instances arrived";
+  std::set<std::string> late;
+  auto late_reader = reader_side.make_reader(topic, [&](const msg::TaskStatus& s) {
+    std::lock_guard<std::mutex> lock(mutex);
+    late.insert(s.task_id);
+  });
+  EXPECT_TRUE(cover::test::wait_until([&] { return count(late) == kTasks; }, 10s))
+      << "a late joiner got " << count(late) << " of " << kTasks << " instances";
+}
+
+INSTANTIATE_TEST_SUITE_P(VendorPairs, ManyInstances,
                          testing::Values(std::pair{Vendor::FastDds, Vendor::FastDds},
                                          std::pair{Vendor::Cyclone, Vendor::Cyclone},
                                          std::pair{Vendor::FastDds, Vendor::Cyclone},

@@ -10,6 +10,9 @@ void QosProfile::validate() const {
   if (history_depth < 1 || history_depth > 1000) {
     throw DdsError("QoS profile '" + name + "': history_depth must be in 1..1000");
   }
+  if (max_instances < 1 || max_instances > 100000) {
+    throw DdsError("QoS profile '" + name + "': max_instances must be in 1..100000");
+  }
   if (!std::isfinite(deadline_s) || deadline_s < 0) {
     throw DdsError("QoS profile '" + name + "': deadline_s must be >= 0");
   }

@@ -53,6 +53,8 @@ dds_qos_t* make_qos(const QosProfile& profile) {
                                ? DDS_DURABILITY_TRANSIENT_LOCAL
                                : DDS_DURABILITY_VOLATILE);
   dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, profile.history_depth);
+  dds_qset_resource_limits(qos, profile.max_instances * profile.history_depth,
+                           profile.max_instances, profile.history_depth);
   if (profile.deadline_s > 0) {
     dds_qset_deadline(qos, static_cast<dds_duration_t>(profile.deadline_s * 1e9));
   }

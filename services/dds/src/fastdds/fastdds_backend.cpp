@@ -102,6 +102,9 @@ void apply_common(const QosProfile& profile, Qos& qos) {
                               : fdds::VOLATILE_DURABILITY_QOS;
   qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
   qos.history().depth = profile.history_depth;
+  qos.resource_limits().max_instances = profile.max_instances;
+  qos.resource_limits().max_samples_per_instance = profile.history_depth;
+  qos.resource_limits().max_samples = profile.max_instances * profile.history_depth;
   if (profile.deadline_s > 0) qos.deadline().period = to_duration(profile.deadline_s);
 }
 

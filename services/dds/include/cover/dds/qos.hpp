@@ -17,6 +17,9 @@ struct QosProfile {
   Durability durability = Durability::Volatile;
   int history_depth = 1;    // keep-last depth per instance
   double deadline_s = 0.0;  // expected max period between samples; 0 = no deadline
+  // Instances (distinct keys) a writer or reader keeps; set on both vendors because Fast
+  // DDS defaults to 10, which silently refuses the 11th task's status.
+  int max_instances = 4096;
 
   void validate() const;  // throws DdsError with the reason
 };
