@@ -54,7 +54,7 @@ TEST(Qos, NamedProfilesSetEveryPolicy) {
 }
 
 TEST(Qos, UnknownProfileAndBadValuesAreErrors) {
-  EXPECT_NE(message_of([] { qos_profile("fast"); }).find("sensor, command or state"),
+  EXPECT_NE(message_of([] { qos_profile("fast"); }).find("sensor, command, state or request"),
             std::string::npos);
   QosProfile bad = sensor_qos();
   bad.history_depth = 0;

@@ -88,6 +88,8 @@ TEST(TopicCatalog, EveryAccessorBindsItsRowAndEveryRowHasOne) {
   expect_catalogued(topics::task_request(), "cover/task/request", patterns);
   expect_catalogued(topics::task_status(), "cover/task/status", patterns);
   expect_catalogued(topics::task_abort(), "cover/task/abort", patterns);
+  expect_catalogued(topics::manager_request(), "cover/manager/request", patterns);
+  expect_catalogued(topics::manager_reply(), "cover/manager/reply", patterns);
   expect_catalogued(topics::sim_clock(), "cover/sim/clock", patterns);
   std::set<std::string> catalogued;
   for (const auto& entry : dds::topic_catalog()) catalogued.insert(entry.pattern);

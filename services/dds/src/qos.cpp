@@ -30,16 +30,21 @@ QosProfile state_qos() {
   return {"state", Reliability::Reliable, Durability::TransientLocal, 8, 0.0};
 }
 
+QosProfile request_qos() {
+  return {"request", Reliability::Reliable, Durability::Volatile, 64, 0.0};
+}
+
 std::vector<std::string> qos_profile_names() {
-  return {"sensor", "command", "state"};
+  return {"sensor", "command", "state", "request"};
 }
 
 QosProfile qos_profile(std::string_view name) {
   if (name == "sensor") return sensor_qos();
   if (name == "command") return command_qos();
   if (name == "state") return state_qos();
+  if (name == "request") return request_qos();
   throw DdsError("unknown QoS profile '" + std::string(name) +
-                 "' (expected sensor, command or state)");
+                 "' (expected sensor, command, state or request)");
 }
 
 }  // namespace cover::dds

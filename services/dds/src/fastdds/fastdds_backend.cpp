@@ -105,6 +105,10 @@ void apply_common(const QosProfile& profile, Qos& qos) {
   qos.resource_limits().max_instances = profile.max_instances;
   qos.resource_limits().max_samples_per_instance = profile.history_depth;
   qos.resource_limits().max_samples = profile.max_instances * profile.history_depth;
+  // Data sharing (AUTO by default for bounded types) maps a file per writer into /dev/shm
+  // sized from these limits, and leaves it behind: the UDP and shared-memory transports
+  // serve a 100 Hz loop well enough.
+  qos.data_sharing().off();
   if (profile.deadline_s > 0) qos.deadline().period = to_duration(profile.deadline_s);
 }
 

@@ -29,10 +29,13 @@ struct QosProfile {
 //  command : reliable, volatile, keep-last 1, deadline 50 ms (UAV commands: the newest
 //            wins, but an arm/disarm or release is not dropped by one lost packet);
 //  state   : reliable, transient-local, keep-last 8 (tasks, task and UAV status,
-//            references: a late joiner gets the latest).
+//            references: a late joiner gets the latest);
+//  request : reliable, volatile, keep-last 64 (requests to the task manager and its
+//            replies: a burst from several stations is queued, none overwritten).
 QosProfile sensor_qos();
 QosProfile command_qos();
 QosProfile state_qos();
+QosProfile request_qos();
 
 // Looks a profile up by name; throws DdsError listing the known names.
 QosProfile qos_profile(std::string_view name);

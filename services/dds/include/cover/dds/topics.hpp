@@ -49,6 +49,12 @@ inline constexpr std::tuple kCatalog{
     TopicDescriptor<msg::TaskAbort>{"cover/task/abort", &command_qos, "on demand",
                                     "task_manager, ground station -> uav_agent",
                                     "stop a UAV's running task: hold, then its safe action"},
+    TopicDescriptor<msg::ManagerRequest>{"cover/manager/request", &request_qos, "on demand",
+                                         "ground station -> task_manager",
+                                         "submit, abort or query tasks"},
+    TopicDescriptor<msg::ManagerReply>{"cover/manager/reply", &request_qos, "on demand",
+                                       "task_manager -> ground station",
+                                       "the answer to one request, by request id"},
     TopicDescriptor<msg::TaskStatus>{"cover/task/status", &state_qos, "on change",
                                      "uav_agent -> task_manager, ground station",
                                      "progress and outcome of each task"},
@@ -90,6 +96,12 @@ inline Topic<msg::TaskStatus> task_status() {
 }
 inline Topic<msg::TaskAbort> task_abort() {
   return bind<msg::TaskAbort>();
+}
+inline Topic<msg::ManagerRequest> manager_request() {
+  return bind<msg::ManagerRequest>();
+}
+inline Topic<msg::ManagerReply> manager_reply() {
+  return bind<msg::ManagerReply>();
 }
 inline Topic<msg::SimClock> sim_clock() {
   return bind<msg::SimClock>();
