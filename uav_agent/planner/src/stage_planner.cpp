@@ -205,7 +205,7 @@ PlanResult StagePlanner::plan_or_throw(const StageProblem& problem) {
   result.iterations = objective.evaluations();
 
   // L-BFGS may stop on a worse trial point; the best point it evaluated is what we keep.
-  const bool have_best = std::isfinite(objective.best_cost()) && objective.best_cost() < 1.0e29;
+  const bool have_best = StageObjective::is_usable_cost(objective.best_cost());
   const double* best = have_best ? objective.best_x().data() : guess.data();
   switch (code) {
     case NLOPT_SUCCESS:
