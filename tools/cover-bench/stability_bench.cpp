@@ -10,6 +10,7 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "cover/model/angles.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
 
@@ -32,7 +33,7 @@ void set_pattern(cover::sim::Scenario& scenario, const std::string& pattern) {
   for (std::size_t k = 0; k < scenario.world.ugvs.size() && k < 2; ++k) {
     cover::sim::UgvMotionPatternParams& p = scenario.world.ugvs[k].pattern;
     p.origin_m = Eigen::Vector2d(centre_x[k], 0.0);
-    p.phase_rad = k == 0 ? 0.0 : M_PI / 2.0;
+    p.phase_rad = k == 0 ? 0.0 : cover::model::kPi / 2.0;
     if (pattern == "circle") {
       p.kind = MotionPatternKind::Circle;
       p.speed_m_s = 0.5;
@@ -109,8 +110,7 @@ int run(const std::vector<std::string>& args) {
           cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
       cover::sim::ClosedLoopOptions options;
       options.record_paths = plot->count() > 0 && i == 0;
-      const cover::sim::ClosedLoop loop(scenario, config,
-                                        options);
+      const cover::sim::ClosedLoop loop(scenario, config, options);
       const cover::sim::ClosedLoopResult result = loop.run();
       Row row{patterns[i], method, !result.transitions.empty(), {}, result.status};
       if (row.switched) row.transition = result.transitions.front();

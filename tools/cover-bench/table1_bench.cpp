@@ -19,6 +19,7 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "cover/model/angles.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
 
@@ -154,7 +155,6 @@ int run(const std::vector<std::string>& args) {
 
   // A cyclic run tends to lock into a few geometries (its period against the UGVs' turn);
   // runs from spread starting phases sample the relative positions more evenly.
-  constexpr double kTwoPi = 6.283185307179586;
   std::vector<Row> rows;
   for (std::size_t s = 0; s < settings.size(); ++s) {
     for (const std::string& method : methods) {
@@ -162,13 +162,12 @@ int run(const std::vector<std::string>& args) {
       const auto config =
           cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
       for (int phase = 0; phase < phases; ++phase) {
-        cover::sim::Scenario scenario =
-            table1_scenario(row.v, row.w, transitions, separation_m, kTwoPi * phase / phases);
+        cover::sim::Scenario scenario = table1_scenario(row.v, row.w, transitions, separation_m,
+                                                        cover::model::kTwoPi * phase / phases);
         if (app.count("--seed") > 0) scenario.world.seed = seed;
         cover::sim::ClosedLoopOptions options;
         options.record_paths = plot->count() > 0 && s == 0 && phase == 0;
-        const cover::sim::ClosedLoop loop(scenario, config,
-                                          options);
+        const cover::sim::ClosedLoop loop(scenario, config, options);
         const cover::sim::ClosedLoopResult result = loop.run();
         row.add_run(result, transitions);
         if (!options.record_paths) continue;
