@@ -103,11 +103,11 @@ int run(const std::vector<std::string>& args) {
 
   std::vector<Row> rows;
   for (std::size_t i = 0; i < patterns.size(); ++i) {
-    for (const char* method : {"coni-mpc", "no-ref-vxy", "cover"}) {
+    for (const cover::sampc::Mode mode : cover::bench::baseline_first_modes()) {
+      const std::string method = cover::sampc::to_string(mode);
       cover::sim::Scenario scenario = fig8_scenario(patterns[i]);
       if (app.count("--seed") > 0) scenario.world.seed = seed;
-      const auto config =
-          cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
+      const auto config = cover::uav::ControllerConfig::load_default(mode);
       cover::sim::ClosedLoopOptions options;
       options.record_paths = plot->count() > 0 && i == 0;
       const cover::sim::ClosedLoop loop(scenario, config, options);
@@ -115,8 +115,9 @@ int run(const std::vector<std::string>& args) {
       Row row{patterns[i], method, !result.transitions.empty(), {}, result.status};
       if (row.switched) row.transition = result.transitions.front();
       if (options.record_paths) {
-        const std::string file =
-            std::string(method) == "cover" ? plot_file : cover::sim::with_suffix(plot_file, method);
+        const std::string file = mode == cover::sampc::Mode::Cover
+                                     ? plot_file
+                                     : cover::sim::with_suffix(plot_file, method);
         const std::string title = "Fig. 8, " + patterns[i] + ": " + method;
         if (!cover::sim::write_path_plot(result, scenario, title, file)) {
           std::cerr << "cannot write " << file << "\n";

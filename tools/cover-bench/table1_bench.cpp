@@ -134,9 +134,11 @@ int run(const std::vector<std::string>& args) {
                  "runs per cell, G1 starting 1/phases of a turn further each time (default 12)")
       ->check(CLI::Range(1, 36));
   app.add_option("--seed", seed, "world seed (default: the scenario file's)");
-  std::vector<std::string> methods = {"coni-mpc", "no-ref-vxy", "cover"};
+  std::vector<std::string> methods;
+  for (const cover::sampc::Mode mode : cover::bench::baseline_first_modes())
+    methods.emplace_back(cover::sampc::to_string(mode));
   app.add_option("--method", methods, "methods to run (default: all three)")
-      ->check(CLI::IsMember({"coni-mpc", "no-ref-vxy", "cover"}));
+      ->check(CLI::IsMember(cover::bench::method_names()));
   double separation_m = 0.0;
   app.add_option("--separation-m", separation_m,
                  "distance between the two circle centres, m (default: the scenario file's, 5)")
@@ -159,8 +161,8 @@ int run(const std::vector<std::string>& args) {
   for (std::size_t s = 0; s < settings.size(); ++s) {
     for (const std::string& method : methods) {
       Row row{settings[s].first, settings[s].second, method};
-      const auto config =
-          cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
+      const cover::sampc::Mode mode = *cover::sampc::parse_mode(method);
+      const auto config = cover::uav::ControllerConfig::load_default(mode);
       for (int phase = 0; phase < phases; ++phase) {
         cover::sim::Scenario scenario = table1_scenario(row.v, row.w, transitions, separation_m,
                                                         cover::model::kTwoPi * phase / phases);
@@ -171,8 +173,9 @@ int run(const std::vector<std::string>& args) {
         const cover::sim::ClosedLoopResult result = loop.run();
         row.add_run(result, transitions);
         if (!options.record_paths) continue;
-        const std::string file =
-            method == "cover" ? plot_file : cover::sim::with_suffix(plot_file, method);
+        const std::string file = mode == cover::sampc::Mode::Cover
+                                     ? plot_file
+                                     : cover::sim::with_suffix(plot_file, method);
         char title[160];
         std::snprintf(title, sizeof(title), "Table 1, v = %.2f m/s, w = %.2f rad/s: %s", row.v,
                       row.w, method.c_str());
