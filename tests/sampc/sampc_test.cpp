@@ -354,8 +354,9 @@ TEST(Sampc, FrameSwitchSmoothingLowersTheBodyRateStep) {
   EXPECT_GT(unsmoothed_step, smoothed_step);
 }
 
-// A sensor may hand over -q for q (e.g. as the yaw passes 180 deg). Before the measurement
-// was aligned with the plan's hemisphere, that flip commanded full thrust for a few steps.
+// A sensor may hand over -q for q (e.g. as the yaw passes 180 deg). SAMPC aligns the
+// measurement with the plan's hemisphere: unaligned, the flip commands full thrust for a
+// few steps.
 TEST(Sampc, QuaternionSignFlipOfTheMeasurementChangesNothing) {
   const SampcParams params;
   Sampc mpc(params);

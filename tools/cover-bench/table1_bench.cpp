@@ -4,7 +4,7 @@
 //
 // One long cyclic run locks into a few relative geometries (its period against the UGVs'
 // turn), and each method into different ones, since their stages last differently: over
-// 20 transitions cover's (0.8, 0.35) ratio moved between 1.17 and 1.30 with planner
+// 20 transitions cover's (0.8, 0.35) ratio ranges from 1.17 to 1.30 across planner
 // settings whose plans hardly differ. So each cell is `--phases` short cyclic runs
 // (default 12 x there-and-back) with G1 starting a further 1/phases of a turn each time:
 // every method starts its first transitions from the same, evenly spread geometries, and

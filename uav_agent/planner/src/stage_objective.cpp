@@ -8,7 +8,7 @@ namespace cover::planner {
 
 namespace {
 // d^Order/ds^Order of one quintic piece at s, by Horner's rule. Written out because
-// Eigen's generic row-vector products are not inlined and dominated the cost function.
+// Eigen's generic row-vector products are not inlined and would dominate the cost function.
 template <int Order>
 Eigen::RowVector3d evaluate_derivative(const Eigen::Matrix<double, 6, 3>& coefficients, double s) {
   Eigen::RowVector3d value = Eigen::RowVector3d::Zero();
