@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cover/model/angles.hpp"
+
 namespace cover::sim {
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 struct KindName {
   MotionPatternKind kind;
@@ -136,7 +136,7 @@ UgvMotionPattern::UgvMotionPattern(const UgvMotionPatternParams& params) : param
           v / star_peak_speed_per_rate(params_.radius_m, params_.star_depth, params_.star_points);
       break;
     case MotionPatternKind::SCurve: {
-      const double wave_number = kTwoPi / params_.wavelength_m;
+      const double wave_number = model::kTwoPi / params_.wavelength_m;
       parameter_rate_ = v / std::hypot(1.0, params_.half_width_m * wave_number);
       break;
     }
@@ -197,7 +197,7 @@ UgvMotionPattern::LocalCurve UgvMotionPattern::local_curve(double t_s) const {
       break;
     }
     case MotionPatternKind::SCurve: {
-      const double k = kTwoPi / params_.wavelength_m, w = params_.half_width_m, u = rate;
+      const double k = model::kTwoPi / params_.wavelength_m, w = params_.half_width_m, u = rate;
       const double th = k * u * t_s + params_.phase_rad;
       const double ku = k * u;
       c.p = {u * t_s, w * std::sin(th)};

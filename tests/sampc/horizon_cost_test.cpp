@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/model/angles.hpp"
 #include "cover/model/quaternion.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 
@@ -210,12 +211,12 @@ TEST(HorizonCost, YawReferenceIsRateLimitedFromTheMeasuredYaw) {
     for (int k = 0; k <= params.horizon_steps; ++k) {
       const Eigen::Vector4d& r = cost.nodes[k].attitude_ref;
       const double yaw = 2.0 * std::atan2(r(3), r(0));
-      const double step = std::remainder(yaw - previous, 2.0 * 3.141592653589793);
+      const double step = std::remainder(yaw - previous, model::kTwoPi);
       EXPECT_LE(std::abs(step), params.yaw_reference_rate_rad_s * params.step_s + 1e-9) << k;
       if (k > 0) EXPECT_LT(step, 0.0) << "turns the short way round, k = " << k;
       previous = yaw;
     }
-    EXPECT_NEAR(std::remainder(previous - start, 2.0 * 3.141592653589793),
+    EXPECT_NEAR(std::remainder(previous - start, model::kTwoPi),
                 -params.yaw_reference_rate_rad_s * params.step_s * params.horizon_steps, 1e-9);
   }
 }

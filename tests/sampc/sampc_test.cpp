@@ -4,6 +4,7 @@
 #include <limits>
 #include <random>
 
+#include "cover/model/angles.hpp"
 #include "cover/model/dynamics.hpp"
 #include "cover/model/quaternion.hpp"
 #include "cover/sampc/reference_solver.hpp"
@@ -256,11 +257,13 @@ TEST(Sampc, FeedbackInANewStageRePreparesWithThatStagesCost) {
 // The UAV state re-expressed in a frame 3 m along x and turned by 90 deg about z: the
 // jump a frame switch causes (position, velocity and attitude all change).
 model::UavState in_switched_frame(const model::UavState& state) {
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(model::kPi / 2, Vector3d::UnitZ()).toRotationMatrix();
   model::UavState switched = state;
   switched.head<3>() = turn.transpose() * (state.head<3>() - Vector3d(3.0, 0.0, 0.0));
   switched.segment<3>(3) = turn.transpose() * state.segment<3>(3);
-  switched.segment<4>(6) = model::multiply(model::yaw_quaternion(-M_PI / 2), state.segment<4>(6));
+  switched.segment<4>(6) =
+      model::multiply(model::yaw_quaternion(-model::kPi / 2), state.segment<4>(6));
   return switched;
 }
 
@@ -351,8 +354,9 @@ TEST(Sampc, FrameSwitchSmoothingLowersTheBodyRateStep) {
   EXPECT_GT(unsmoothed_step, smoothed_step);
 }
 
-// A sensor may hand over -q for q (e.g. as the yaw passes 180 deg). Before the measurement
-// was aligned with the plan's hemisphere, that flip commanded full thrust for a few steps.
+// A sensor may hand over -q for q (e.g. as the yaw passes 180 deg). SAMPC aligns the
+// measurement with the plan's hemisphere: unaligned, the flip commands full thrust for a
+// few steps.
 TEST(Sampc, QuaternionSignFlipOfTheMeasurementChangesNothing) {
   const SampcParams params;
   Sampc mpc(params);

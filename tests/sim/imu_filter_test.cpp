@@ -6,6 +6,7 @@
 #include <fstream>
 #include <limits>
 
+#include "cover/model/angles.hpp"
 #include "cover/ugv/imu_filter.hpp"
 
 namespace cover::ugv {
@@ -81,7 +82,7 @@ TEST(ImuFilter, StepResponseMatchesFirstOrderCutOffDespiteJitter) {
   params.specific_force_cutoff_hz = 10.0;
   ImuFilter filter(params);
   filter.update(sample_at(0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));
-  const double tau = 1.0 / (2.0 * M_PI * 10.0);
+  const double tau = 1.0 / (cover::model::kTwoPi * 10.0);
   // jittered 200 Hz stamps: 3, 7, 5, 3, 7, ... ms
   const double periods[] = {0.003, 0.007, 0.005};
   double t = 0.0;

@@ -2,13 +2,14 @@
 
 #include <cmath>
 
+#include "cover/model/angles.hpp"
 #include "cover/sim/ugv_motion_pattern.hpp"
 #include "test_worlds.hpp"
 
 namespace cover::sim {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
+using model::kPi;
 
 double wrap_angle(double a) {
   return std::atan2(std::sin(a), std::cos(a));

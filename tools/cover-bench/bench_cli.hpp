@@ -3,8 +3,11 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <string>
 #include <vector>
+
+#include "cover/sampc/sampc_params.hpp"
 
 namespace cover::bench {
 
@@ -19,6 +22,26 @@ inline int parse_args(CLI::App& app, std::vector<std::string> args) {
     return app.exit(e);
   }
   return -1;
+}
+
+// SAMPC's method names in cover::sampc::kModes' order: for CLI::IsMember and help texts.
+inline std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const sampc::Mode mode : sampc::kModes) names.emplace_back(sampc::to_string(mode));
+  return names;
+}
+
+// "cover | no-ref-vxy | coni-mpc" with `separator` between the names.
+inline std::string joined_method_names(const std::string& separator) {
+  std::string text;
+  for (const std::string& name : method_names()) text += (text.empty() ? "" : separator) + name;
+  return text;
+}
+
+// The comparison tables (Table 1, Fig. 8) run and list the CoNi-MPC baseline first and
+// COVER last, as the paper's tables do: kModes reversed.
+inline std::vector<sampc::Mode> baseline_first_modes() {
+  return {std::rbegin(sampc::kModes), std::rend(sampc::kModes)};
 }
 
 }  // namespace cover::bench

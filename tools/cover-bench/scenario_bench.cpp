@@ -23,8 +23,8 @@ int run(const std::vector<std::string>& args) {
   app.add_option("number", number, "scenario 1|2|3|4")->required()->check(CLI::Range(1, 4));
   app.add_flag("--json", json, "print JSON instead of a table");
   app.add_option("--seed", seed, "world seed (default: the scenario file's)");
-  app.add_option("--method", method, "cover | no-ref-vxy | coni-mpc")
-      ->check(CLI::IsMember({"cover", "no-ref-vxy", "coni-mpc"}));
+  app.add_option("--method", method, cover::bench::joined_method_names(" | "))
+      ->check(CLI::IsMember(cover::bench::method_names()));
   CLI::Option* plot =
       app.add_option("--plot", plot_file, "write a top-view SVG (default file scenario<N>.svg)");
   plot->expected(0, 1);
@@ -33,7 +33,7 @@ int run(const std::vector<std::string>& args) {
   const std::string name = "scenario" + std::to_string(number);
   cover::sim::Scenario scenario = cover::sim::Scenario::load_file(cover::sim::scenario_path(name));
   if (app.count("--seed") > 0) scenario.world.seed = seed;
-  const auto config = cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
+  const auto config = cover::uav::ControllerConfig::load_default(*cover::sampc::parse_mode(method));
   const cover::sim::ClosedLoop loop(scenario, config);
   const cover::sim::ClosedLoopResult result = loop.run();
 

@@ -10,6 +10,7 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "cover/model/angles.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
 
@@ -32,7 +33,7 @@ void set_pattern(cover::sim::Scenario& scenario, const std::string& pattern) {
   for (std::size_t k = 0; k < scenario.world.ugvs.size() && k < 2; ++k) {
     cover::sim::UgvMotionPatternParams& p = scenario.world.ugvs[k].pattern;
     p.origin_m = Eigen::Vector2d(centre_x[k], 0.0);
-    p.phase_rad = k == 0 ? 0.0 : M_PI / 2.0;
+    p.phase_rad = k == 0 ? 0.0 : cover::model::kPi / 2.0;
     if (pattern == "circle") {
       p.kind = MotionPatternKind::Circle;
       p.speed_m_s = 0.5;
@@ -102,21 +103,21 @@ int run(const std::vector<std::string>& args) {
 
   std::vector<Row> rows;
   for (std::size_t i = 0; i < patterns.size(); ++i) {
-    for (const char* method : {"coni-mpc", "no-ref-vxy", "cover"}) {
+    for (const cover::sampc::Mode mode : cover::bench::baseline_first_modes()) {
+      const std::string method = cover::sampc::to_string(mode);
       cover::sim::Scenario scenario = fig8_scenario(patterns[i]);
       if (app.count("--seed") > 0) scenario.world.seed = seed;
-      const auto config =
-          cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
+      const auto config = cover::uav::ControllerConfig::load_default(mode);
       cover::sim::ClosedLoopOptions options;
       options.record_paths = plot->count() > 0 && i == 0;
-      const cover::sim::ClosedLoop loop(scenario, config,
-                                        options);
+      const cover::sim::ClosedLoop loop(scenario, config, options);
       const cover::sim::ClosedLoopResult result = loop.run();
       Row row{patterns[i], method, !result.transitions.empty(), {}, result.status};
       if (row.switched) row.transition = result.transitions.front();
       if (options.record_paths) {
-        const std::string file =
-            std::string(method) == "cover" ? plot_file : cover::sim::with_suffix(plot_file, method);
+        const std::string file = mode == cover::sampc::Mode::Cover
+                                     ? plot_file
+                                     : cover::sim::with_suffix(plot_file, method);
         const std::string title = "Fig. 8, " + patterns[i] + ": " + method;
         if (!cover::sim::write_path_plot(result, scenario, title, file)) {
           std::cerr << "cannot write " << file << "\n";

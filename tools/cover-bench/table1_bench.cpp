@@ -4,7 +4,7 @@
 //
 // One long cyclic run locks into a few relative geometries (its period against the UGVs'
 // turn), and each method into different ones, since their stages last differently: over
-// 20 transitions cover's (0.8, 0.35) ratio moved between 1.17 and 1.30 with planner
+// 20 transitions cover's (0.8, 0.35) ratio ranges from 1.17 to 1.30 across planner
 // settings whose plans hardly differ. So each cell is `--phases` short cyclic runs
 // (default 12 x there-and-back) with G1 starting a further 1/phases of a turn each time:
 // every method starts its first transitions from the same, evenly spread geometries, and
@@ -13,12 +13,14 @@
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "cover/model/angles.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
 
@@ -114,118 +116,157 @@ void print_table(const std::vector<Row>& rows) {
       "moves with the target UGV plus the approach, so the UGV's curve is in its path.\n");
 }
 
-int run(const std::vector<std::string>& args) {
-  CLI::App app{"Table 1: cyclic transitions between two circling UGVs (L_t / L_s)"};
+// What the command line asks for.
+struct Options {
   bool json = false;
-  double v = 0.0;
-  double w = 0.0;
   int transitions = 2;
   int phases = 12;
-  std::uint64_t seed = 0;
+  std::optional<std::uint64_t> seed;  // none: the scenario file's
+  std::vector<std::string> methods;
+  double separation_m = 0.0;
+  bool plot = false;
   std::string plot_file;
-  app.add_flag("--json", json, "print JSON instead of a table");
+  std::vector<std::pair<double, double>> settings;  // (v, w)
+};
+
+// Fills `options`; returns -1 to go on, or the exit code (after --help or a usage error).
+int parse_options(const std::vector<std::string>& args, Options& options) {
+  CLI::App app{"Table 1: cyclic transitions between two circling UGVs (L_t / L_s)"};
+  double v = 0.0;
+  double w = 0.0;
+  std::uint64_t seed = 0;
+  app.add_flag("--json", options.json, "print JSON instead of a table");
   auto* v_opt = app.add_option("--v", v, "UGV speed, m/s (with --w; default: the paper's three)");
   auto* w_opt = app.add_option("--w", w, "UGV turn rate, rad/s");
-  app.add_option("--transitions", transitions,
+  app.add_option("--transitions", options.transitions,
                  "transition processes per run (default 2: there and back)")
       ->check(CLI::Range(1, 100));
-  app.add_option("--phases", phases,
+  app.add_option("--phases", options.phases,
                  "runs per cell, G1 starting 1/phases of a turn further each time (default 12)")
       ->check(CLI::Range(1, 36));
   app.add_option("--seed", seed, "world seed (default: the scenario file's)");
-  std::vector<std::string> methods = {"coni-mpc", "no-ref-vxy", "cover"};
-  app.add_option("--method", methods, "methods to run (default: all three)")
-      ->check(CLI::IsMember({"coni-mpc", "no-ref-vxy", "cover"}));
-  double separation_m = 0.0;
-  app.add_option("--separation-m", separation_m,
+  for (const cover::sampc::Mode mode : cover::bench::baseline_first_modes())
+    options.methods.emplace_back(cover::sampc::to_string(mode));
+  app.add_option("--method", options.methods, "methods to run (default: all three)")
+      ->check(CLI::IsMember(cover::bench::method_names()));
+  app.add_option("--separation-m", options.separation_m,
                  "distance between the two circle centres, m (default: the scenario file's, 5)")
       ->check(CLI::Range(0.5, 50.0));
   CLI::Option* plot = app.add_option(
-      "--plot", plot_file,
+      "--plot", options.plot_file,
       "SVG of the first setting's cover run (default table1.svg); baselines get _<method>");
   plot->expected(0, 1);
   v_opt->needs(w_opt);
   w_opt->needs(v_opt);
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
 
-  std::vector<std::pair<double, double>> settings = {{0.5, 0.25}, {0.5, 0.35}, {0.8, 0.35}};
-  if (v_opt->count() > 0) settings = {{v, w}};
-  if (plot->count() > 0 && plot_file.empty()) plot_file = "table1.svg";
+  if (app.count("--seed") > 0) options.seed = seed;
+  options.settings = {{0.5, 0.25}, {0.5, 0.35}, {0.8, 0.35}};
+  if (v_opt->count() > 0) options.settings = {{v, w}};
+  options.plot = plot->count() > 0;
+  if (options.plot && options.plot_file.empty()) options.plot_file = "table1.svg";
+  return -1;
+}
 
+// The run's plot: cover's under the given name, the baselines' with _<method>.
+bool write_plot(const Options& options, const Row& row, cover::sampc::Mode mode,
+                const cover::sim::ClosedLoopResult& result, const cover::sim::Scenario& scenario) {
+  const std::string file = mode == cover::sampc::Mode::Cover
+                               ? options.plot_file
+                               : cover::sim::with_suffix(options.plot_file, row.method);
+  char title[160];
+  std::snprintf(title, sizeof(title), "Table 1, v = %.2f m/s, w = %.2f rad/s: %s", row.v, row.w,
+                row.method.c_str());
+  if (cover::sim::write_path_plot(result, scenario, title, file)) return true;
+  std::cerr << "cannot write " << file << "\n";
+  return false;
+}
+
+// One cell: `options.phases` runs of one setting and method. The first setting's first run
+// is plotted when asked. False when the plot cannot be written.
+bool run_cell(const Options& options, std::size_t setting, Row& row) {
+  const cover::sampc::Mode mode = *cover::sampc::parse_mode(row.method);
+  const auto config = cover::uav::ControllerConfig::load_default(mode);
   // A cyclic run tends to lock into a few geometries (its period against the UGVs' turn);
   // runs from spread starting phases sample the relative positions more evenly.
-  constexpr double kTwoPi = 6.283185307179586;
+  for (int phase = 0; phase < options.phases; ++phase) {
+    cover::sim::Scenario scenario =
+        table1_scenario(row.v, row.w, options.transitions, options.separation_m,
+                        cover::model::kTwoPi * phase / options.phases);
+    if (options.seed) scenario.world.seed = *options.seed;
+    cover::sim::ClosedLoopOptions loop_options;
+    loop_options.record_paths = options.plot && setting == 0 && phase == 0;
+    const cover::sim::ClosedLoop loop(scenario, config, loop_options);
+    const cover::sim::ClosedLoopResult result = loop.run();
+    row.add_run(result, options.transitions);
+    if (loop_options.record_paths && !write_plot(options, row, mode, result, scenario)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Per transition, to see which geometry bends the path.
+nlohmann::json transitions_json(const Row& r) {
+  nlohmann::json stages = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.transitions.size(); ++i) {
+    const cover::sim::TransitionRecord& t = r.transitions[i];
+    stages.push_back({{"run", r.run_of_transition[i]},
+                      {"from", t.from_ugv},
+                      {"to", t.to_ugv},
+                      {"completed", t.completed},
+                      {"start_s", t.start_time_s},
+                      {"duration_s", t.end_time_s - t.start_time_s},
+                      {"Ls", t.straight_length_m},
+                      {"Lt", t.path_length_m},
+                      {"eq30_law_Ls", t.eq30_law.straight_length_m},
+                      {"eq30_law_Lt", t.eq30_law.path_length_m},
+                      {"eq30_law_duration_s", t.eq30_law.duration_s}});
+  }
+  return stages;
+}
+
+nlohmann::json table_json(const Options& options, const std::vector<Row>& rows) {
+  nlohmann::json out;
+  out["transitions_per_run"] = options.transitions;
+  out["runs_per_row"] = options.phases;
+  out["rows"] = nlohmann::json::array();
+  for (const Row& r : rows) {
+    out["rows"].push_back({{"v", r.v},
+                           {"w", r.w},
+                           {"method", r.method},
+                           {"Ls", r.Ls()},
+                           {"Lt", r.Lt()},
+                           {"ratio", cover::sim::number_or_null(r.ratio())},
+                           {"eq30_law_ratio", cover::sim::number_or_null(r.eq30_law_ratio())},
+                           {"transitions", r.completed()},
+                           {"failures", r.requested - r.completed()},
+                           {"statuses", r.statuses},
+                           {"realtime_factor", r.realtime_factor()},
+                           {"per_transition", transitions_json(r)}});
+  }
+  if (options.plot) out["plot"] = options.plot_file;
+  return out;
+}
+
+int run(const std::vector<std::string>& args) {
+  Options options;
+  if (int rc = parse_options(args, options); rc >= 0) return rc;
+
   std::vector<Row> rows;
-  for (std::size_t s = 0; s < settings.size(); ++s) {
-    for (const std::string& method : methods) {
-      Row row{settings[s].first, settings[s].second, method};
-      const auto config =
-          cover::uav::ControllerConfig::load_default(*cover::sim::parse_method(method));
-      for (int phase = 0; phase < phases; ++phase) {
-        cover::sim::Scenario scenario =
-            table1_scenario(row.v, row.w, transitions, separation_m, kTwoPi * phase / phases);
-        if (app.count("--seed") > 0) scenario.world.seed = seed;
-        cover::sim::ClosedLoopOptions options;
-        options.record_paths = plot->count() > 0 && s == 0 && phase == 0;
-        const cover::sim::ClosedLoop loop(scenario, config,
-                                          options);
-        const cover::sim::ClosedLoopResult result = loop.run();
-        row.add_run(result, transitions);
-        if (!options.record_paths) continue;
-        const std::string file =
-            method == "cover" ? plot_file : cover::sim::with_suffix(plot_file, method);
-        char title[160];
-        std::snprintf(title, sizeof(title), "Table 1, v = %.2f m/s, w = %.2f rad/s: %s", row.v,
-                      row.w, method.c_str());
-        if (!cover::sim::write_path_plot(result, scenario, title, file)) {
-          std::cerr << "cannot write " << file << "\n";
-          return 1;
-        }
-      }
+  for (std::size_t s = 0; s < options.settings.size(); ++s) {
+    for (const std::string& method : options.methods) {
+      Row row{options.settings[s].first, options.settings[s].second, method};
+      if (!run_cell(options, s, row)) return 1;
       rows.push_back(std::move(row));
     }
   }
 
-  if (json) {
-    nlohmann::json out;
-    out["transitions_per_run"] = transitions;
-    out["runs_per_row"] = phases;
-    out["rows"] = nlohmann::json::array();
-    for (const Row& r : rows) {
-      // Per stage, to see which geometry bends the path.
-      nlohmann::json stages = nlohmann::json::array();
-      for (std::size_t i = 0; i < r.transitions.size(); ++i) {
-        const cover::sim::TransitionRecord& t = r.transitions[i];
-        stages.push_back({{"run", r.run_of_transition[i]},
-                          {"from", t.from_ugv},
-                          {"to", t.to_ugv},
-                          {"completed", t.completed},
-                          {"start_s", t.start_time_s},
-                          {"duration_s", t.end_time_s - t.start_time_s},
-                          {"Ls", t.straight_length_m},
-                          {"Lt", t.path_length_m},
-                          {"eq30_law_Ls", t.eq30_law.straight_length_m},
-                          {"eq30_law_Lt", t.eq30_law.path_length_m},
-                          {"eq30_law_duration_s", t.eq30_law.duration_s}});
-      }
-      out["rows"].push_back({{"v", r.v},
-                             {"w", r.w},
-                             {"method", r.method},
-                             {"Ls", r.Ls()},
-                             {"Lt", r.Lt()},
-                             {"ratio", cover::sim::number_or_null(r.ratio())},
-                             {"eq30_law_ratio", cover::sim::number_or_null(r.eq30_law_ratio())},
-                             {"transitions", r.completed()},
-                             {"failures", r.requested - r.completed()},
-                             {"statuses", r.statuses},
-                             {"realtime_factor", r.realtime_factor()},
-                             {"per_transition", stages}});
-    }
-    if (plot->count() > 0) out["plot"] = plot_file;
-    std::cout << out.dump(2) << "\n";
+  if (options.json) {
+    std::cout << table_json(options, rows).dump(2) << "\n";
   } else {
     print_table(rows);
-    if (plot->count() > 0) std::printf("plot: %s (baselines: _<method>)\n", plot_file.c_str());
+    if (options.plot) std::printf("plot: %s (baselines: _<method>)\n", options.plot_file.c_str());
   }
   return 0;
 }

@@ -53,73 +53,103 @@ void write_csv(const std::string& path, const cover::planner::Trajectory& trajec
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"Plan one COVER stage (MINCO minimum jerk, L-BFGS) and report it"};
+// The command line.
+struct Options {
   std::string from = "0,0,0", v0 = "0,0,0", to, omega = "0,0,0", csv;
   std::string config = cover::config::default_config_dir() + "/planner.yaml";
   double vmax = 0.0, amax = 0.0, csv_step = 0.02;
   bool transition = false, json = false;
-  app.add_option("--from", from, "start position x,y,z (m, stage frame)");
-  app.add_option("--v0", v0, "start velocity x,y,z (m/s, stage frame)");
-  app.add_option("--to", to, "goal (transition point) x,y,z (m)")->required();
-  app.add_option("--vmax", vmax, "relative speed limit (m/s); default from the config");
-  app.add_option("--amax", amax, "relative acceleration limit (m/s^2); default from the config");
-  app.add_option("--omega", omega, "UGV angular velocity x,y,z (rad/s), used with --transition");
-  app.add_flag("--transition", transition, "transition stage: v0 = v + omega x p (eq. 23)");
-  app.add_option("--config", config, "planner YAML")->check(CLI::ExistingFile);
-  app.add_option("--csv", csv, "write samples t,p,v,a to this file");
-  app.add_option("--csv-step", csv_step, "CSV sample period (s)")->check(CLI::PositiveNumber);
-  app.add_flag("--json", json, "print JSON");
+};
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("--from", o.from, "start position x,y,z (m, stage frame)");
+  app.add_option("--v0", o.v0, "start velocity x,y,z (m/s, stage frame)");
+  app.add_option("--to", o.to, "goal (transition point) x,y,z (m)")->required();
+  app.add_option("--vmax", o.vmax, "relative speed limit (m/s); default from the config");
+  app.add_option("--amax", o.amax, "relative acceleration limit (m/s^2); default from the config");
+  app.add_option("--omega", o.omega, "UGV angular velocity x,y,z (rad/s), used with --transition");
+  app.add_flag("--transition", o.transition, "transition stage: v0 = v + omega x p (eq. 23)");
+  app.add_option("--config", o.config, "planner YAML")->check(CLI::ExistingFile);
+  app.add_option("--csv", o.csv, "write samples t,p,v,a to this file");
+  app.add_option("--csv-step", o.csv_step, "CSV sample period (s)")->check(CLI::PositiveNumber);
+  app.add_flag("--json", o.json, "print JSON");
+}
+
+// The stage the options describe, without its limits. Throws CLI::ValidationError for a
+// malformed vector.
+cover::planner::StageProblem make_problem(const Options& o) {
+  cover::planner::StageProblem problem;
+  problem.start_position_m = parse_vector(o.from, "--from");
+  problem.start_velocity_m_s = parse_vector(o.v0, "--v0");
+  problem.goal_position_m = parse_vector(o.to, "--to");
+  problem.ugv_angular_velocity_rad_s = parse_vector(o.omega, "--omega");
+  problem.transition_stage = o.transition;
+  return problem;
+}
+
+nlohmann::json report(const cover::planner::PlanResult& result,
+                      const cover::planner::TrajectoryMetrics& m) {
+  nlohmann::json out;
+  out["status"] = cover::planner::to_string(result.status);
+  out["reason"] = result.reason;
+  out["duration_s"] = m.duration_s;
+  out["max_speed"] = m.max_speed_m_s;
+  out["max_acc"] = m.max_acc_m_s2;
+  out["speed_violation"] = m.speed_violation;
+  out["acc_violation"] = m.acc_violation;
+  out["end_pos_error_m"] = m.end_position_error_m;
+  out["end_speed"] = m.end_speed_m_s;
+  out["start_pos_error_m"] = m.start_position_error_m;
+  out["start_vel_error_m_s"] = m.start_velocity_error_m_s;
+  const auto& v = result.initial_velocity_m_s;
+  out["initial_velocity"] = {v.x(), v.y(), v.z()};
+  out["pieces"] = result.trajectory.piece_count();
+  out["iterations"] = result.iterations;
+  out["solve_ms"] = result.solve_ms;
+  return out;
+}
+
+// Indented JSON, or one aligned "key value" line per entry.
+void print_report(const nlohmann::json& out, bool json) {
+  if (json) {
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  for (const auto& [key, value] : out.items()) {
+    std::cout << "  " << key << std::string(key.size() < 20 ? 20 - key.size() : 1, ' ')
+              << value.dump() << "\n";
+  }
+}
+
+// Plans, writes the CSV if asked, prints the report; the exit code: 0 for a usable plan,
+// 3 otherwise. Throws on a bad vector, config or CSV path.
+int plan_or_throw(const CLI::App& app, const Options& o) {
+  // The vectors first: a malformed one is reported before a config error.
+  cover::planner::StageProblem problem = make_problem(o);
+  const auto params = cover::planner::PlannerParams::load_file(o.config);
+  problem.vmax_m_s = app.count("--vmax") > 0 ? o.vmax : params.default_vmax_m_s;
+  problem.amax_m_s2 = app.count("--amax") > 0 ? o.amax : params.default_amax_m_s2;
+  cover::planner::StagePlanner planner(params);
+  const auto result = planner.plan(problem);
+  const auto m = cover::planner::measure_trajectory(result.trajectory, problem);
+  if (!o.csv.empty()) write_csv(o.csv, result.trajectory, o.csv_step);
+  print_report(report(result, m), o.json);
+  return cover::planner::is_usable(result.status) ? 0 : 3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Plan one COVER stage (MINCO minimum jerk, L-BFGS) and report it"};
+  Options options;
+  add_options(app, options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-
   try {
-    cover::planner::StageProblem problem;
-    problem.start_position_m = parse_vector(from, "--from");
-    problem.start_velocity_m_s = parse_vector(v0, "--v0");
-    problem.goal_position_m = parse_vector(to, "--to");
-    problem.ugv_angular_velocity_rad_s = parse_vector(omega, "--omega");
-    problem.transition_stage = transition;
-    const auto params = cover::planner::PlannerParams::load_file(config);
-    problem.vmax_m_s = app.count("--vmax") > 0 ? vmax : params.default_vmax_m_s;
-    problem.amax_m_s2 = app.count("--amax") > 0 ? amax : params.default_amax_m_s2;
-
-    cover::planner::StagePlanner planner(params);
-    const auto result = planner.plan(problem);
-    const auto m = cover::planner::measure_trajectory(result.trajectory, problem);
-    if (!csv.empty()) write_csv(csv, result.trajectory, csv_step);
-
-    nlohmann::json out;
-    out["status"] = cover::planner::to_string(result.status);
-    out["reason"] = result.reason;
-    out["duration_s"] = m.duration_s;
-    out["max_speed"] = m.max_speed_m_s;
-    out["max_acc"] = m.max_acc_m_s2;
-    out["speed_violation"] = m.speed_violation;
-    out["acc_violation"] = m.acc_violation;
-    out["end_pos_error_m"] = m.end_position_error_m;
-    out["end_speed"] = m.end_speed_m_s;
-    out["start_pos_error_m"] = m.start_position_error_m;
-    out["start_vel_error_m_s"] = m.start_velocity_error_m_s;
-    const auto& v = result.initial_velocity_m_s;
-    out["initial_velocity"] = {v.x(), v.y(), v.z()};
-    out["pieces"] = result.trajectory.piece_count();
-    out["iterations"] = result.iterations;
-    out["solve_ms"] = result.solve_ms;
-    if (json) {
-      std::cout << out.dump(2) << "\n";
-    } else {
-      for (const auto& [key, value] : out.items()) {
-        std::cout << "  " << key << std::string(key.size() < 20 ? 20 - key.size() : 1, ' ')
-                  << value.dump() << "\n";
-      }
-    }
-    return cover::planner::is_usable(result.status) ? 0 : 3;
+    return plan_or_throw(app, options);
   } catch (const CLI::ValidationError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {

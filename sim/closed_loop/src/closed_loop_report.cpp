@@ -5,10 +5,6 @@
 
 namespace cover::sim {
 
-std::optional<sampc::Mode> parse_method(const std::string& name) {
-  return sampc::parse_mode(name);
-}
-
 nlohmann::json number_or_null(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }

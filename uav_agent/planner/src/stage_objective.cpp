@@ -7,12 +7,8 @@
 namespace cover::planner {
 
 namespace {
-// Returned for a point where MINCO broke down (durations so short the system is singular):
-// large but finite so the L-BFGS line search simply backs off.
-constexpr double kUnusableCost = 1.0e30;
-
 // d^Order/ds^Order of one quintic piece at s, by Horner's rule. Written out because
-// Eigen's generic row-vector products are not inlined and dominated the cost function.
+// Eigen's generic row-vector products are not inlined and would dominate the cost function.
 template <int Order>
 Eigen::RowVector3d evaluate_derivative(const Eigen::Matrix<double, 6, 3>& coefficients, double s) {
   Eigen::RowVector3d value = Eigen::RowVector3d::Zero();

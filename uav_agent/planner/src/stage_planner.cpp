@@ -34,7 +34,7 @@ double rest_to_rest_duration(double distance_m, double vmax_m_s, double amax_m_s
 
 // Where the start velocity alone carries the UAV by time t when it brakes at `decel`: the
 // initial guess bends by this much, never more than the braking distance. (Bending by
-// v0 t made long stages start with a multi-metre detour, and L-BFGS then settled in a
+// v0 t would start long stages with a multi-metre detour, from which L-BFGS settles in a
 // wobbly local minimum: a 7.2 m transition planned as 14.6 s instead of about 8.)
 Eigen::Vector3d braking_offset(const Eigen::Vector3d& v0, double decel, double t) {
   const double speed = v0.norm();
@@ -205,7 +205,7 @@ PlanResult StagePlanner::plan_or_throw(const StageProblem& problem) {
   result.iterations = objective.evaluations();
 
   // L-BFGS may stop on a worse trial point; the best point it evaluated is what we keep.
-  const bool have_best = std::isfinite(objective.best_cost()) && objective.best_cost() < 1.0e29;
+  const bool have_best = StageObjective::is_usable_cost(objective.best_cost());
   const double* best = have_best ? objective.best_x().data() : guess.data();
   switch (code) {
     case NLOPT_SUCCESS:

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cover/model/angles.hpp"
 #include "cover/model/quaternion.hpp"
 
 namespace cover::sampc {
@@ -54,11 +55,8 @@ double NodeCost::evaluate(const model::UavState& x, const model::Input& u, model
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 2.0 * kPi;
-
 double wrapped_angle(double angle_rad) {
-  return std::remainder(angle_rad, kTwoPi);  // in [-pi, pi]
+  return std::remainder(angle_rad, model::kTwoPi);  // in [-pi, pi]
 }
 
 // Yaw of the UAV in the reference frame, from its attitude quaternion [w, x, y, z].
@@ -75,8 +73,8 @@ double measured_yaw(const model::UavState& x) {
 double yaw_error_to_target(const SampcParams& params, double from_yaw_rad, double target_yaw_rad,
                            int turn_sign) {
   double error = wrapped_angle(target_yaw_rad - from_yaw_rad);
-  if (turn_sign * error < 0.0 && std::abs(error) > kPi - params.yaw_flip_hysteresis_rad) {
-    error += turn_sign * kTwoPi;
+  if (turn_sign * error < 0.0 && std::abs(error) > model::kPi - params.yaw_flip_hysteresis_rad) {
+    error += turn_sign * model::kTwoPi;
   }
   return error;
 }

@@ -2,14 +2,14 @@
 
 #include <cmath>
 
+#include "cover/model/angles.hpp"
+
 namespace cover::ugv {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
-
 double time_constant_s(double cutoff_hz) {
-  return 1.0 / (kTwoPi * cutoff_hz);
+  return 1.0 / (model::kTwoPi * cutoff_hz);
 }
 
 // Exact step response weight of a first-order lag over dt: correct for any dt > 0.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <iosfwd>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -60,6 +61,19 @@ class SvgPlot {
     std::string label;
     std::string colour;
   };
+
+  struct Layout;  // svg_plot.cpp
+  // render()'s parts, in the order they are drawn.
+  void padded_bounds(Eigen::Vector2d& lo, Eigen::Vector2d& hi) const;
+  std::vector<const SvgStyle*> legend_entries() const;
+  Layout make_layout(const std::vector<const SvgStyle*>& entries) const;
+  void write_header(std::ostream& svg, const Layout& layout) const;
+  static void write_grid(std::ostream& svg, const Layout& layout);
+  static void write_frame(std::ostream& svg, const Layout& layout);
+  void write_paths(std::ostream& svg, const Layout& layout) const;
+  void write_markers(std::ostream& svg, const Layout& layout) const;
+  static void write_legend(std::ostream& svg, const Layout& layout,
+                           const std::vector<const SvgStyle*>& entries);
 
   std::string title_;
   int width_px_;

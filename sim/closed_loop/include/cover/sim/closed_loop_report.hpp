@@ -1,16 +1,11 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
 
-#include "cover/sampc/sampc_params.hpp"
 #include "cover/sim/closed_loop.hpp"
 
 namespace cover::sim {
-
-// "cover" | "no-ref-vxy" | "coni-mpc" (the benchmarks' method names); nullopt otherwise.
-std::optional<sampc::Mode> parse_method(const std::string& name);
 
 // A number for JSON: NaN (not measured) becomes null.
 nlohmann::json number_or_null(double value);

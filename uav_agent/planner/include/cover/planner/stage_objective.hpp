@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include "cover/planner/minco.hpp"
 #include "cover/planner/planner_params.hpp"
@@ -15,6 +16,12 @@ namespace cover::planner {
 // exact (MINCO adjoint). Buffers are sized at construction; evaluate() does not allocate.
 class StageObjective {
  public:
+  // What evaluate() returns at a point where MINCO broke down (durations so short the
+  // system is singular): large but finite, so that the L-BFGS line search simply backs off.
+  static constexpr double kUnusableCost = 1.0e30;
+  // False for kUnusableCost and for what is not finite: no point worth keeping has it.
+  static bool is_usable_cost(double cost) { return std::isfinite(cost) && cost < kUnusableCost; }
+
   explicit StageObjective(const PlannerParams& params);
 
   // Boundary conditions: start (p0, v0, 0), end (goal, 0, 0); limits vm, am.
