@@ -1,5 +1,5 @@
 // fake_process: a stand-in for cover-sim and the agents in cover-launch's tests.
-// It prints COVER_DDS, COVER_DDS_DOMAIN and its arguments, then behaves as told by
+// It prints its pid, COVER_DDS, COVER_DDS_DOMAIN and its arguments, then behaves as told by
 // `--mode=`:
 //   wait    (default) run until SIGINT or SIGTERM, print which one, exit 0
 //   exit    exit with --code=N after --after-ms=T
@@ -8,7 +8,9 @@
 // It also lists any descriptor above 2 it inherited ("open fd: N"). Other options: --ready=PATH
 // (create PATH once signals are handled, so a test knows the process is up), --await=PATH (mode
 // exit: first wait until PATH exists; repeatable),
-// --shm=NAME (create /dev/shm/NAME and leave it), --result=PATH (write {"fake": true}).
+// --shm=NAME (create /dev/shm/NAME and leave it), --result=PATH (write {"fake": true}),
+// --once=PATH (a first run, PATH absent, creates PATH and exits with --code at once, before
+// --ready; a later run, PATH present, goes on as told: a respawned process that dies once).
 // Unknown arguments are only printed. Every mode gives up after 30 s, so a broken test
 // cannot leave it running for ever.
 #include <dirent.h>
@@ -38,6 +40,7 @@ struct Options {
   std::vector<std::string> await;
   std::string shm;
   std::string result;
+  std::string once;
 };
 
 Options parse(int argc, char** argv) {
@@ -55,6 +58,7 @@ Options parse(int argc, char** argv) {
     if (auto v = value("--await=")) options.await.push_back(v);
     if (auto v = value("--shm=")) options.shm = v;
     if (auto v = value("--result=")) options.result = v;
+    if (auto v = value("--once=")) options.once = v;
   }
   return options;
 }
@@ -62,6 +66,7 @@ Options parse(int argc, char** argv) {
 void print_environment(int argc, char** argv) {
   const char* vendor = std::getenv("COVER_DDS");
   const char* domain = std::getenv("COVER_DDS_DOMAIN");
+  std::printf("pid: %d\n", static_cast<int>(getpid()));
   std::printf("COVER_DDS=%s\nCOVER_DDS_DOMAIN=%s\n", vendor ? vendor : "", domain ? domain : "");
   for (int i = 1; i < argc; ++i) std::printf("arg: %s\n", argv[i]);
   // Descriptors beyond stdin, stdout and stderr that the launcher let through.
@@ -116,6 +121,11 @@ int main(int argc, char** argv) {
     sigprocmask(SIG_BLOCK, &set, nullptr);  // taken with sigtimedwait
   }
   print_environment(argc, argv);
+  if (!options.once.empty() && access(options.once.c_str(), F_OK) != 0) {
+    touch(options.once, "first run\n");
+    std::printf("first run: exiting with %d\n", options.code);
+    return options.code;
+  }
   if (!options.shm.empty()) {
     const int fd = shm_open(("/" + options.shm).c_str(), O_CREAT | O_RDWR, 0600);
     if (fd >= 0) close(fd);

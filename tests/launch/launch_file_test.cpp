@@ -40,6 +40,9 @@ launch:
       executable: ./bin/cover-ugv-agent
       args: [--id, "0", "--run-id={run_id}"]
       dds: cyclone
+      respawn: true
+      respawn_delay_s: 0.25
+      max_respawns: 3
 )";
 
 TEST(LaunchFile, ParsesEveryKey) {
@@ -57,6 +60,9 @@ TEST(LaunchFile, ParsesEveryKey) {
   EXPECT_EQ(file.processes[1].executable, "./bin/cover-ugv-agent");
   EXPECT_EQ(file.processes[1].dds, "cyclone");
   EXPECT_FALSE(file.processes[1].ends_run);
+  EXPECT_TRUE(file.processes[1].respawn.enabled);
+  EXPECT_DOUBLE_EQ(file.processes[1].respawn.delay_s, 0.25);
+  EXPECT_EQ(file.processes[1].respawn.max_respawns, 3);
 }
 
 TEST(LaunchFile, DefaultsStandForOptionalKeys) {
@@ -70,6 +76,39 @@ launch:
   EXPECT_TRUE(file.variables.empty());
   EXPECT_EQ(file.processes[0].dds, "fastdds");
   EXPECT_TRUE(file.processes[0].args.empty());
+  EXPECT_FALSE(file.processes[0].respawn.enabled);
+  EXPECT_DOUBLE_EQ(file.processes[0].respawn.delay_s, 1.0);
+  EXPECT_EQ(file.processes[0].respawn.max_respawns, 10);
+}
+
+TEST(LaunchFile, RespawnKeysAreValidated) {
+  const auto error_with = [](const std::string& keys) {
+    return error_of(
+        "launch: {name: a, processes: [{name: p, executable: x, ends_run: true}, "
+        "{name: q, executable: y, " +
+        keys + "}]}");
+  };
+  const auto contains = [](const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+  };
+  const std::string both = error_of(
+      "launch: {name: a, processes: [{name: p, executable: x, ends_run: true, "
+      "respawn: true}]}");
+  EXPECT_TRUE(contains(both, "respawn: true and ends_run: true")) << both;
+  EXPECT_TRUE(contains(both, "process 'p'")) << both;
+  const std::string negative = error_with("respawn: true, respawn_delay_s: -0.5");
+  EXPECT_TRUE(contains(negative, "respawn_delay_s must be")) << negative;
+  EXPECT_TRUE(contains(negative, "process 'q'")) << negative;
+  EXPECT_TRUE(contains(error_with("respawn: true, respawn_delay_s: .nan"), "respawn_delay_s"));
+  EXPECT_TRUE(contains(error_with("respawn: true, max_respawns: 0"), "max_respawns must be >= 1"));
+  EXPECT_TRUE(contains(error_with("respawn: true, max_respawns: 1.5"), "max_respawns"));
+  EXPECT_TRUE(contains(error_with("respawn: yes please"), "respawn"));
+  EXPECT_TRUE(contains(error_with("respawns: true"), "unknown key 'respawns'"));
+  // A delay of 0 restarts at once; max_respawns bounds it.
+  EXPECT_NO_THROW(
+      parse("launch: {name: a, processes: [{name: p, executable: x, ends_run: true}, "
+            "{name: q, executable: y, respawn: true, respawn_delay_s: 0, "
+            "max_respawns: 1}]}"));
 }
 
 TEST(LaunchFile, UnknownKeysAreNamed) {
@@ -170,6 +209,7 @@ TEST(LaunchFile, ShippedExampleLoads) {
   ASSERT_EQ(file.processes.size(), 4u);
   EXPECT_TRUE(file.processes[0].ends_run);
   EXPECT_EQ(file.processes[1].dds, "cyclone");
+  EXPECT_FALSE(file.processes[1].respawn.enabled);  // the keys are shown with their defaults
 }
 
 }  // namespace

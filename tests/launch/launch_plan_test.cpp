@@ -147,11 +147,29 @@ TEST(LaunchPlan, ExpandsBuiltinsAndSetsEnvironment) {
   EXPECT_EQ(plan.processes[0].env,
             (std::vector<std::string>{"COVER_LOG_LEVEL=debug", "COVER_DDS=cyclone",
                                       "COVER_DDS_DOMAIN=12"}));
+  EXPECT_FALSE(plan.processes[0].respawn.enabled);
   options.variables = {{"sede", "1"}};
   EXPECT_THROW(make_plan(file, options), std::invalid_argument);  // undeclared variable
   options.variables = {};
   options.domain_id = 233;
   EXPECT_THROW(make_plan(file, options), std::invalid_argument);
+}
+
+TEST(LaunchPlan, CarriesTheRespawnPolicy) {
+  LaunchFile file;
+  file.name = "standing";
+  ProcessSpec agent;
+  agent.name = "agent";
+  agent.executable = "cover-uav-agent";
+  agent.respawn = {true, 0.5, 4};
+  file.processes = {agent};
+  LaunchOptions options;
+  options.run_dir = "/tmp/runs/y";
+  const LaunchPlan plan = make_plan(file, options);
+  const RespawnPolicy& respawn = plan.processes.at(0).respawn;
+  EXPECT_TRUE(respawn.enabled);
+  EXPECT_DOUBLE_EQ(respawn.delay_s, 0.5);
+  EXPECT_EQ(respawn.max_respawns, 4);
 }
 
 TEST(LaunchExecutable, BareNamesBesideSelfThenPath) {

@@ -54,6 +54,23 @@ bool pid_gone(int pid) {
   return kill(pid, 0) == -1 && errno == ESRCH;
 }
 
+std::size_t count(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+// The pid in the launcher's "started NAME pid P..." lines, in order.
+std::vector<int> started_pids(const std::string& launch_log, const std::string& name) {
+  std::vector<int> pids;
+  const std::string prefix = "started " + name + " pid ";
+  for (auto at = launch_log.find(prefix); at != std::string::npos;
+       at = launch_log.find(prefix, at + 1)) {
+    pids.push_back(std::stoi(launch_log.substr(at + prefix.size())));
+  }
+  return pids;
+}
+
 class LaunchProcess : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -341,6 +358,124 @@ launch:
                        "leftover segment removed: /dev/shm/" + segment));
 }
 
+TEST_F(LaunchProcess, RespawningProcessIsRestartedAndTheRunEndsNormally) {
+  // ugv0's first run exits 3 at once; its restart waits for SIGINT. The simulator ends the
+  // run once the restarted ugv0 is ready, which only the second run gets to.
+  const auto result = run(R"(
+launch:
+  name: respawn
+  grace_period_s: 0.3
+  processes:
+    - name: sim
+      executable: fake_process
+      args: [--mode=exit, "--await={run_dir}/ugv0.ready"]
+      ends_run: true
+    - name: ugv0
+      executable: fake_process
+      args: ["--once={run_dir}/ugv0.first", --code=3, "--ready={run_dir}/ugv0.ready"]
+      respawn: true
+      respawn_delay_s: 0.05
+)",
+                          {"--json"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto report = result.json();
+  EXPECT_EQ(report["processes"][0]["respawns"], 0);
+  EXPECT_EQ(report["processes"][1]["respawns"], 1);
+  EXPECT_EQ(report["processes"][1]["stopped_by"], "SIGINT");
+  EXPECT_EQ(report["processes"][1]["exit_code"], 0);  // the latest run's
+
+  const std::string launch_log = read_text(run_dir_ / "launch.log");
+  const auto pids = started_pids(launch_log, "ugv0");
+  ASSERT_EQ(pids.size(), 2u) << launch_log;
+  EXPECT_NE(pids[0], pids[1]);
+  EXPECT_EQ(report["processes"][1]["pid"], pids[1]) << "the latest pid is reported";
+  const std::string died = "ugv0 (pid " + std::to_string(pids[0]) +
+                           ") died: exit code 3; respawning in 0.05 s (1 of 10)";
+  EXPECT_TRUE(contains(launch_log, died)) << launch_log;
+  EXPECT_TRUE(contains(launch_log, "started ugv0 pid " + std::to_string(pids[1]) + " (respawn 1)"))
+      << launch_log;
+  // The log was appended to: both runs' lines, same argv and environment.
+  const std::string ugv0 = log_of("ugv0");
+  EXPECT_TRUE(contains(ugv0, "pid: " + std::to_string(pids[0]) + "\n")) << ugv0;
+  EXPECT_TRUE(contains(ugv0, "first run: exiting with 3")) << ugv0;
+  EXPECT_TRUE(contains(ugv0, "pid: " + std::to_string(pids[1]) + "\n")) << ugv0;
+  EXPECT_TRUE(contains(ugv0, "got SIGINT")) << ugv0;
+  EXPECT_EQ(count(ugv0, "COVER_DDS=fastdds\n"), 2u) << ugv0;
+  EXPECT_LT(ugv0.find("first run"), ugv0.find("got SIGINT")) << ugv0;
+  expect_all_gone(report);
+  EXPECT_TRUE(pid_gone(pids[0]));
+}
+
+TEST_F(LaunchProcess, MaxRespawnsExceededExits4NamingIt) {
+  // Death by a signal is respawned too; with no delay the limit is reached at once.
+  const auto result = run(R"(
+launch:
+  name: crashloop
+  grace_period_s: 0.3
+  processes:
+    - {name: sim, executable: fake_process, ends_run: true}
+    - name: uav0
+      executable: fake_process
+      args: [--mode=signal]
+      respawn: true
+      respawn_delay_s: 0
+      max_respawns: 2
+)",
+                          {"--json"});
+  EXPECT_EQ(result.exit_code, 4) << result.err;
+  const std::string signal_text = "killed by signal " + std::to_string(SIGUSR1);
+  EXPECT_TRUE(contains(result.err, "died: " + signal_text)) << result.err;
+  EXPECT_TRUE(contains(result.err, "respawning in 0.0 s (1 of 2)")) << result.err;
+  EXPECT_TRUE(contains(result.err, "respawning in 0.0 s (2 of 2)")) << result.err;
+  EXPECT_FALSE(contains(result.err, "(3 of 2)")) << result.err;
+  EXPECT_TRUE(contains(result.err, "uav0 (pid ")) << result.err;
+  EXPECT_TRUE(contains(result.err, "died unexpectedly: " + signal_text)) << result.err;
+  EXPECT_TRUE(contains(result.err, "max_respawns 2 used up")) << result.err;
+  const auto report = result.json();
+  EXPECT_EQ(report["processes"][1]["respawns"], 2);
+  EXPECT_EQ(report["processes"][1]["exit_code"], 128 + SIGUSR1);
+  EXPECT_EQ(report["processes"][0]["stopped_by"], "SIGINT");
+  EXPECT_EQ(count(log_of("uav0"), "pid: "), 3u) << "three runs, one log";
+  expect_all_gone(report);
+}
+
+TEST_F(LaunchProcess, SigintDuringRespawnDelayDoesNotRestart) {
+  const std::string file = write_launch(R"(
+launch:
+  name: interrupted-respawn
+  grace_period_s: 0.3
+  processes:
+    - {name: sim, executable: fake_process, args: ["--ready={run_dir}/sim.ready"], ends_run: true}
+    - name: ugv0
+      executable: fake_process
+      args: [--mode=exit, --code=1]
+      respawn: true
+      respawn_delay_s: 30
+)");
+  const auto started = steady_clock::now();
+  auto launcher = start({file, "--run-dir", run_dir_.string(), "--json"});
+  const auto launch_log = [&] { return read_text(run_dir_ / "launch.log"); };
+  ASSERT_TRUE(eventually([&] {
+    return fs::exists(run_dir_ / "sim.ready") && contains(launch_log(), "respawning in 30.0 s");
+  })) << "ugv0 never died: "
+      << launch_log();
+  kill(launcher->pid(), SIGINT);
+  const auto result = finish(*launcher);
+  const double elapsed_s = std::chrono::duration<double>(steady_clock::now() - started).count();
+  EXPECT_EQ(result.exit_code, 130) << result.err;
+  EXPECT_LT(elapsed_s, 10.0) << "the respawn delay must not hold up the shutdown";
+  const auto report = result.json();
+  EXPECT_EQ(report["processes"][1]["respawns"], 0);
+  EXPECT_EQ(report["processes"][1]["exit_code"], 1);
+  EXPECT_EQ(report["processes"][1]["stopped_by"], "");
+  EXPECT_EQ(report["processes"][0]["stopped_by"], "SIGINT");
+  EXPECT_EQ(started_pids(launch_log(), "ugv0").size(), 1u) << launch_log();
+  EXPECT_TRUE(contains(launch_log(), "ugv0: waiting for its respawn, not restarted"))
+      << launch_log();
+  EXPECT_EQ(count(log_of("ugv0"), "pid: "), 1u) << log_of("ugv0");
+  expect_all_gone(report);
+}
+
 TEST_F(LaunchProcess, MissingExecutableStartsNothingAndExits4) {
   const auto result = run(R"(
 launch:
@@ -369,6 +504,13 @@ launch:
 )");
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_TRUE(contains(result.err, "unknown key 'arg'")) << result.err;
+  result = run(R"(
+launch:
+  name: bad
+  processes: [{name: sim, executable: fake_process, ends_run: true, respawn: true}]
+)");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_TRUE(contains(result.err, "respawn: true and ends_run: true")) << result.err;
   result = run(valid, {"--dds", "uav*=cyclone"});
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_TRUE(contains(result.err, "uav*")) << result.err;
@@ -388,6 +530,7 @@ TEST_F(LaunchProcess, HelpExplainsFormatAndExitCodes) {
   const auto result = finish(*launcher);
   EXPECT_EQ(result.exit_code, 0);
   EXPECT_TRUE(contains(result.out, "ends_run")) << result.out;
+  EXPECT_TRUE(contains(result.out, "respawn_delay_s")) << result.out;
   EXPECT_TRUE(contains(result.out, "Exit codes")) << result.out;
   EXPECT_TRUE(contains(result.out, "130")) << result.out;
 }

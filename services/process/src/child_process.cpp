@@ -48,8 +48,9 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const SpawnOpti
     posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   }
   if (!options.log_file.empty()) {
+    const int mode = options.append_log ? O_APPEND : O_TRUNC;
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, options.log_file.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+                                     O_WRONLY | O_CREAT | mode, 0644);
     if (!options.capture_stdout) {
       posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
     }

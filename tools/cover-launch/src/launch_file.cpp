@@ -37,6 +37,9 @@ ProcessSpec parse_process(const YAML::Node& node, const std::string& context) {
   process.optional("dds", spec.dds);
   process.optional("env", spec.env);
   process.optional("ends_run", spec.ends_run);
+  process.optional("respawn", spec.respawn.enabled);
+  process.optional("respawn_delay_s", spec.respawn.delay_s);
+  process.optional("max_respawns", spec.respawn.max_respawns);
   process.reject_unknown_keys();
   return spec;
 }
@@ -56,6 +59,16 @@ void validate_arguments(const ProcessSpec& spec, const std::set<std::string>& kn
   }
 }
 
+void validate_respawn(const ProcessSpec& spec, const std::string& context) {
+  const RespawnPolicy& respawn = spec.respawn;
+  config::check(!(respawn.enabled && spec.ends_run), context,
+                "respawn: true and ends_run: true exclude each other (the ends_run process's "
+                "exit ends the run)");
+  config::check(std::isfinite(respawn.delay_s) && respawn.delay_s >= 0.0, context,
+                "respawn_delay_s must be a number of seconds >= 0");
+  config::check(respawn.max_respawns >= 1, context, "max_respawns must be >= 1");
+}
+
 void validate_process(const ProcessSpec& spec, const std::set<std::string>& known) {
   const std::string context = "process '" + spec.name + "'";
   config::check(only_chars(spec.name, "_-"), "process name '" + spec.name + "'",
@@ -68,6 +81,7 @@ void validate_process(const ProcessSpec& spec, const std::set<std::string>& know
     config::check(key != "COVER_DDS" && key != "COVER_DDS_DOMAIN", context,
                   "env: " + key + " is set by the launcher (use dds: / --domain)");
   }
+  validate_respawn(spec, context);
   validate_arguments(spec, known);
 }
 

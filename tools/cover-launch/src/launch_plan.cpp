@@ -25,8 +25,13 @@ void apply_variables(LaunchFile& file, const std::map<std::string, std::string>&
 
 PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& values,
                             int domain_id) {
-  PlannedProcess planned{spec.name, spec.executable, expand_arguments(spec.args, values), spec.dds,
-                         {},        spec.ends_run};
+  PlannedProcess planned;
+  planned.name = spec.name;
+  planned.executable = spec.executable;
+  planned.args = expand_arguments(spec.args, values);
+  planned.dds = spec.dds;
+  planned.ends_run = spec.ends_run;
+  planned.respawn = spec.respawn;
   for (const auto& [key, value] : spec.env) planned.env.push_back(key + "=" + value);
   planned.env.push_back("COVER_DDS=" + spec.dds);
   planned.env.push_back("COVER_DDS_DOMAIN=" + std::to_string(domain_id));

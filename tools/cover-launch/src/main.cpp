@@ -32,6 +32,9 @@ Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
         dds: fastdds         fastdds | cyclone, given as $COVER_DDS
         env: {KEY: value}
         ends_run: true       exactly one process: its exit ends the run
+        respawn: false       restart it when it dies (not with ends_run)
+        respawn_delay_s: 1.0 wait before each restart (>= 0)
+        max_respawns: 10     one more death is an unexpected death (exit 4)
   Placeholders: {run_dir} {run_id} {domain} {config_dir} and every variable; an argument
   whose placeholder is empty is dropped. {{ and }} are literal braces.
 

@@ -31,7 +31,8 @@ nlohmann::json make_report(const LaunchPlan& plan, const RunOutcome& outcome) {
                          {"dds", process.dds},
                          {"pid", optional_number(process.pid)},
                          {"exit_code", optional_number(process.exit_code)},
-                         {"stopped_by", process.stopped_by}});
+                         {"stopped_by", process.stopped_by},
+                         {"respawns", process.respawns}});
   }
   report["processes"] = std::move(processes);
   report["run_dir"] = plan.run_dir;
@@ -53,6 +54,9 @@ std::string make_summary(const LaunchPlan& plan, const RunOutcome& outcome) {
     text << "pid " << *process.pid << ", exit code "
          << (process.exit_code ? std::to_string(*process.exit_code) : "?");
     if (!process.stopped_by.empty()) text << ", stopped with " << process.stopped_by;
+    if (process.respawns > 0) {
+      text << ", respawned " << process.respawns << (process.respawns == 1 ? " time" : " times");
+    }
     text << "\n";
   }
   text << outcome.reason << " -> exit code " << outcome.exit_code << "\n";

@@ -1,6 +1,7 @@
 #include "cover/launch/supervisor.hpp"
 
 #include <signal.h>
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -8,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "cover/launch/executable_lookup.hpp"
 #include "cover/launch/exit_codes.hpp"
@@ -19,6 +21,7 @@ namespace cover::launch {
 namespace {
 
 using std::chrono::milliseconds;
+using std::chrono::steady_clock;
 
 // How often the watch loop looks for exited children. A shutdown signal wakes it at once;
 // an exit is noticed within this period, which is far below any grace period.
@@ -27,9 +30,13 @@ constexpr milliseconds kWatchPeriod{10};
 constexpr milliseconds kKillWait{5000};
 
 struct Child {
+  std::size_t index = 0;  // in the plan
   const PlannedProcess* spec = nullptr;
-  std::unique_ptr<process::ChildProcess> process;
+  std::unique_ptr<process::ChildProcess> process;  // the latest run
   ProcessOutcome* outcome = nullptr;
+  // Set while a dead respawning process waits for its restart. A deadline checked by the
+  // watch loop, not a sleep: the others stay watched and a signal is still seen at once.
+  std::optional<steady_clock::time_point> respawn_at;
 };
 
 std::string join(const std::vector<std::string>& words) {
@@ -46,14 +53,38 @@ std::string describe_exit(const process::ChildProcess& process) {
   return "exit code " + std::to_string(process.exit_code().value_or(-1));
 }
 
-// Polls once; records and logs the exit the first time it is seen.
-bool has_exited(Child& child) {
+// "1.0", "0.25": seconds with at least one decimal, as a launch file writes them.
+std::string seconds_text(double seconds) {
+  std::string text = fmt::format("{:.3f}", seconds);
+  while (text.back() == '0' && text[text.size() - 2] != '.') text.pop_back();
+  return text;
+}
+
+// Polls once; true once the child has exited, its exit code then recorded. Silent, so
+// that the caller can log a death as final or as one to respawn.
+bool poll_exit(Child& child) {
   if (child.outcome->exit_code) return true;
   if (!child.process->wait(milliseconds(0))) return false;
   child.outcome->exit_code = child.process->exit_code();
+  return true;
+}
+
+void log_exit(const Child& child) {
   spdlog::info("{} (pid {}) exited: {}", child.spec->name, child.process->pid(),
                describe_exit(*child.process));
+}
+
+// Polls once; records and logs the exit the first time it is seen.
+bool has_exited(Child& child) {
+  if (child.outcome->exit_code) return true;
+  if (!poll_exit(child)) return false;
+  log_exit(child);
   return true;
+}
+
+bool may_respawn(const Child& child) {
+  const RespawnPolicy& policy = child.spec->respawn;
+  return policy.enabled && child.outcome->respawns < policy.max_respawns;
 }
 
 // SIGINT, grace, SIGTERM, grace, SIGKILL. SIGKILL goes to the child's process group, so
@@ -129,21 +160,34 @@ class Supervisor {
     return true;
   }
 
-  bool start(std::size_t index) {
-    const PlannedProcess& spec = plan_.processes[index];
+  std::vector<std::string> argv_of(std::size_t index) const {
     std::vector<std::string> argv{executables_[index]};
-    argv.insert(argv.end(), spec.args.begin(), spec.args.end());
+    const auto& args = plan_.processes[index].args;
+    argv.insert(argv.end(), args.begin(), args.end());
+    return argv;
+  }
+
+  // A restart appends to the log, which holds why the earlier run died.
+  std::unique_ptr<process::ChildProcess> spawn(std::size_t index, bool restart) const {
+    const PlannedProcess& spec = plan_.processes[index];
     process::SpawnOptions options;
     options.extra_env = spec.env;
     options.log_file = (std::filesystem::path(plan_.run_dir) / (spec.name + ".log")).string();
+    options.append_log = restart;
     options.null_stdin = true;
     options.new_process_group = true;
     options.close_other_fds = true;
+    return std::make_unique<process::ChildProcess>(argv_of(index), options);
+  }
+
+  bool start(std::size_t index) {
+    const PlannedProcess& spec = plan_.processes[index];
     try {
-      auto child = std::make_unique<process::ChildProcess>(argv, options);
+      auto child = spawn(index, /*restart=*/false);
       outcome_.processes[index].pid = child->pid();
-      spdlog::info("started {} pid {} dds {}: {}", spec.name, child->pid(), spec.dds, join(argv));
-      children_.push_back({&spec, std::move(child), &outcome_.processes[index]});
+      spdlog::info("started {} pid {} dds {}: {}", spec.name, child->pid(), spec.dds,
+                   join(argv_of(index)));
+      children_.push_back({index, &spec, std::move(child), &outcome_.processes[index], {}});
       return true;
     } catch (const std::exception& e) {
       spdlog::error("{}: {}", spec.name, e.what());
@@ -160,10 +204,52 @@ class Supervisor {
         return;
       }
       for (auto& child : children_) {
-        if (has_exited(child)) return judge_exit(child);
+        if (!watch_one(child)) return;
       }
       process::ShutdownSignal::wait_for(kWatchPeriod);
     }
+  }
+
+  // One look at one child: a due respawn, or an exit. False when the run is over.
+  bool watch_one(Child& child) {
+    if (child.respawn_at) return steady_clock::now() < *child.respawn_at || respawn(child);
+    if (!poll_exit(child)) return true;
+    if (may_respawn(child)) {
+      schedule_respawn(child);
+      return true;
+    }
+    log_exit(child);
+    judge_exit(child);
+    return false;
+  }
+
+  void schedule_respawn(Child& child) {
+    const RespawnPolicy& policy = child.spec->respawn;
+    spdlog::warn("{} (pid {}) died: {}; respawning in {} s ({} of {})", child.spec->name,
+                 child.process->pid(), describe_exit(*child.process), seconds_text(policy.delay_s),
+                 child.outcome->respawns + 1, policy.max_respawns);
+    child.respawn_at = steady_clock::now() + std::chrono::duration_cast<steady_clock::duration>(
+                                                 std::chrono::duration<double>(policy.delay_s));
+  }
+
+  // Same argv and environment as the first start. False when the restart itself fails,
+  // which ends the run as a process that could not be started.
+  bool respawn(Child& child) {
+    child.respawn_at.reset();
+    const std::string& name = child.spec->name;
+    try {
+      child.process = spawn(child.index, /*restart=*/true);
+    } catch (const std::exception& e) {
+      spdlog::error("{}: {}", name, e.what());
+      finish(kExitProcessDied, name + " could not be restarted: " + e.what());
+      return false;
+    }
+    child.outcome->pid = child.process->pid();
+    child.outcome->exit_code.reset();
+    ++child.outcome->respawns;
+    spdlog::info("started {} pid {} (respawn {})", name, child.process->pid(),
+                 child.outcome->respawns);
+    return true;
   }
 
   void judge_exit(const Child& child) {
@@ -174,15 +260,26 @@ class Supervisor {
       finish(kExitEndsRunFailed, child.spec->name + " failed: " + how);
       spdlog::error("{} ended the run with a failure: {}", child.spec->name, how);
     } else {
+      // A respawning process gets here only once max_respawns restarts are used up.
+      const std::string used_up =
+          child.spec->respawn.enabled
+              ? " (max_respawns " + std::to_string(child.spec->respawn.max_respawns) + " used up)"
+              : "";
       finish(kExitProcessDied, child.spec->name + " (pid " + std::to_string(child.process->pid()) +
-                                   ") died unexpectedly: " + how);
+                                   ") died unexpectedly: " + how + used_up);
       spdlog::error("{}", outcome_.reason);
     }
   }
 
   void stop_all() {
     const milliseconds grace(static_cast<long>(plan_.grace_period_s * 1000.0));
-    for (auto child = children_.rbegin(); child != children_.rend(); ++child) stop(*child, grace);
+    for (auto child = children_.rbegin(); child != children_.rend(); ++child) {
+      if (child->respawn_at) {
+        spdlog::info("{}: waiting for its respawn, not restarted", child->spec->name);
+        child->respawn_at.reset();
+      }
+      stop(*child, grace);  // a dead one is only recorded
+    }
   }
 
   void remove_leftovers() {

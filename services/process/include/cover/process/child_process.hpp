@@ -16,6 +16,9 @@ struct SpawnOptions {
   // Truncated and opened in the child for stderr, and for stdout unless it is captured: a
   // supervisor keeps one log per process without relaying bytes itself.
   std::string log_file;
+  // Appends to log_file instead of truncating it (O_APPEND): a restarted process adds its
+  // lines after those of its earlier run, which tell why it died.
+  bool append_log = false;
   bool null_stdin = false;  // stdin from /dev/null (a child in its own group must not read the tty)
   // The child leads a new process group, so a Ctrl-C at the terminal reaches only the
   // parent, which then stops its children in its own order.

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "cover/launch/respawn_policy.hpp"
+
 namespace cover::launch {
 
 // One process of a launch file, as written (placeholders not yet expanded).
@@ -16,6 +18,7 @@ struct ProcessSpec {
   std::string dds = "fastdds";  // fastdds | cyclone, given to the child as COVER_DDS
   std::map<std::string, std::string> env;
   bool ends_run = false;  // exactly one process ends the run when it exits
+  RespawnPolicy respawn;  // keys respawn, respawn_delay_s, max_respawns
 };
 
 // A whole local system: `launch:` in a launch file. See config/launch/example.yaml.

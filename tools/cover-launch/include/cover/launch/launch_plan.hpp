@@ -8,6 +8,7 @@
 
 #include "cover/launch/dds_override.hpp"
 #include "cover/launch/launch_file.hpp"
+#include "cover/launch/respawn_policy.hpp"
 
 namespace cover::launch {
 
@@ -28,6 +29,7 @@ struct PlannedProcess {
   std::string dds;
   std::vector<std::string> env;  // "KEY=value": the file's env, COVER_DDS, COVER_DDS_DOMAIN
   bool ends_run = false;
+  RespawnPolicy respawn;
 };
 
 struct LaunchPlan {

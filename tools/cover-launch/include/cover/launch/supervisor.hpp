@@ -12,9 +12,10 @@ namespace cover::launch {
 struct ProcessOutcome {
   std::string name;
   std::string dds;
-  std::optional<int> pid;        // none when it was never started
-  std::optional<int> exit_code;  // 128 + signal when killed by a signal
+  std::optional<int> pid;        // the latest one; none when it was never started
+  std::optional<int> exit_code;  // of the latest run; 128 + signal when killed by a signal
   std::string stopped_by;        // "", "SIGINT", "SIGTERM" or "SIGKILL": the last one sent
+  int respawns = 0;              // restarts after a death (respawn: true)
 };
 
 struct RunOutcome {
@@ -28,6 +29,8 @@ struct RunOutcome {
 // until the run is over (the ends_run process exits, another one dies, or SIGINT/SIGTERM
 // reaches the launcher through ShutdownSignal), then stops the survivors one after
 // another in reverse start order: SIGINT, grace period, SIGTERM, grace period, SIGKILL.
+// A process with respawn: true that dies is restarted after its delay instead, up to
+// max_respawns times; one waiting for its restart when the run ends is not restarted.
 // Finally removes /dev/shm entries named with the run id. Logs every decision.
 RunOutcome supervise(const LaunchPlan& plan);
 
