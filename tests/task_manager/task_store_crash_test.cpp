@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <random>
 #include <set>
@@ -50,8 +51,20 @@ std::vector<std::string> read_ids(FILE* in, std::size_t count) {
   return ids;
 }
 
-// Runs one child, kills it after `kill_after` reports; returns every id it reported.
-std::vector<std::string> run_and_kill(const std::string& path, int round, std::size_t kill_after) {
+// The parent reads each id as soon as it is written, so a kill right after the n-th report
+// would always land at the same point of the child's loop. A seeded spin of up to a few
+// submit cycles moves it anywhere in the loop. Not a synchronisation: the order of events
+// is already fixed by the pipe; this only picks where within the next cycles the kill falls.
+void spin_for(std::chrono::microseconds duration) {
+  const auto until = std::chrono::steady_clock::now() + duration;
+  while (std::chrono::steady_clock::now() < until) {
+  }
+}
+
+// Runs one child, kills it after `kill_after` reports and `delay`; returns every id it
+// reported.
+std::vector<std::string> run_and_kill(const std::string& path, int round, std::size_t kill_after,
+                                      std::chrono::microseconds delay) {
   int fds[2];
   if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = fork();
@@ -63,6 +76,7 @@ std::vector<std::string> run_and_kill(const std::string& path, int round, std::s
   close(fds[1]);
   FILE* in = fdopen(fds[0], "r");
   std::vector<std::string> ids = read_ids(in, kill_after);
+  spin_for(delay);
   kill(pid, SIGKILL);
   int status = 0;
   waitpid(pid, &status, 0);
@@ -75,13 +89,15 @@ std::vector<std::string> run_and_kill(const std::string& path, int round, std::s
 }
 
 TEST(TaskStoreCrash, SigkillMidSubmitLosesNothingCommittedAndLeavesNoPartialTask) {
+  constexpr int kRounds = 20;
   testing::TempDir dir;
   const std::string path = dir.file("crash.db");
   std::set<std::string> reported;
-  for (int round = 0; round < 4; ++round) {
+  for (int round = 0; round < kRounds; ++round) {
     std::mt19937 rng(1000 + round);
-    const std::size_t kill_after = std::uniform_int_distribution<std::size_t>(5, 120)(rng);
-    const auto ids = run_and_kill(path, round, kill_after);
+    const std::size_t kill_after = std::uniform_int_distribution<std::size_t>(5, 60)(rng);
+    const std::chrono::microseconds delay(std::uniform_int_distribution<int>(0, 8000)(rng));
+    const auto ids = run_and_kill(path, round, kill_after, delay);
     ASSERT_GE(ids.size(), kill_after) << "round " << round;
     reported.insert(ids.begin(), ids.end());
 
