@@ -272,16 +272,20 @@ TEST_F(DispatcherTest, ASilentAgentAfterARestartFailsOnceTheTimeoutHasPassed) {
 TEST_F(DispatcherTest, ADispatchTheAgentNeverTakesFailsAfterTheDispatchTimeout) {
   hear(0, 1.0, "previous", AgentTask::Succeeded);
   submit("t1", 0, 1.0);
+  submit("t2", 0, 1.0);
   ASSERT_EQ(step(1.0).dispatch.size(), 1u);
   for (double t = 1.5; t <= 6.0; t += 0.5) {
     hear_again(0, t);
-    step(t);
+    // The agent looks idle (it reports its previous task done), but t1 is still on its way.
+    EXPECT_TRUE(step(t).dispatch.empty()) << "t = " << t;
     EXPECT_EQ(state("t1"), TaskState::Dispatched) << "t = " << t;
   }
   hear_again(0, 6.1);
-  step(6.1);
+  const Actions actions = step(6.1);
   EXPECT_EQ(state("t1"), TaskState::Failed);
   EXPECT_EQ(reason("t1"), "UAV 0 did not take the task within 5.0 s");
+  ASSERT_EQ(actions.dispatch.size(), 1u);
+  EXPECT_EQ(actions.dispatch[0].record.task_id, "t2");
 }
 
 TEST_F(DispatcherTest, ADispatchTheAgentRejectsIsRejectedWithItsReason) {
