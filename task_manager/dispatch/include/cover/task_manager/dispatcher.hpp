@@ -1,0 +1,76 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cover/mission/task.hpp"
+#include "cover/task_manager/live_view.hpp"
+#include "cover/task_manager/task_limits.hpp"
+#include "cover/task_manager/task_store.hpp"
+
+namespace cover::task_manager {
+
+struct Dispatch {  // send this task to that UAV (cover/task/request)
+  int uav_id = 0;
+  TaskRecord record;
+};
+struct AbortOnUav {  // send this abort (cover/task/abort)
+  int uav_id = 0;
+  std::string task_id;
+  std::string reason;
+};
+struct Actions {
+  std::vector<Dispatch> dispatch;
+  std::vector<AbortOnUav> abort;
+};
+
+// The manager's logic over the store: one queue per UAV, served in submission order, each
+// task advanced from what its agent reports. Pure: no threads, no DDS, no clock (times are
+// passed in). Everything that must survive a restart is in the store; a new Dispatcher on
+// the same store re-learns Dispatched/Running tasks from the reports.
+class Dispatcher {
+ public:
+  Dispatcher(TaskStore& store, TaskLimits limits);
+
+  // Validates (why_not_flyable) and stores: Queued, or Rejected with the reason. Idempotent
+  // by task id: a repeat returns the stored record, created = false, whatever the live view.
+  TaskStore::SubmitResult submit(const mission::Task& task, const std::string& submitter,
+                                 const std::string& request_id, const LiveView& live, double now_s);
+
+  // Queued: becomes Aborted. Dispatched / Running: returns the AbortOnUav to send; the task
+  // becomes Aborted when the agent reports it Cancelled, and step() re-sends the abort until
+  // then. Final or unknown: ok = false with the reason.
+  struct AbortResult {
+    bool ok = false;
+    std::string message;
+    std::optional<AbortOnUav> send;
+  };
+  AbortResult abort(const std::string& task_id, const std::string& reason, double now_s);
+
+  // Called periodically and on every new report: advances every Dispatched/Running task from
+  // its agent's report, then dispatches the next Queued task to every UAV that has none in
+  // flight and whose agent is up and idle. Returns what to send.
+  Actions step(const LiveView& live, double now_s);
+
+ private:
+  void advance(const TaskRecord& record, const LiveView& live, double now_s);
+  void advance_reported(const TaskRecord& record, const AgentReport& report, double now_s);
+  void advance_unreported(const TaskRecord& record, const AgentReport& report, double now_s);
+  void finish(const TaskRecord& record, TaskState to, const std::string& reason, double now_s);
+  bool agent_up(const LiveView& live, int uav_id, double now_s) const;
+  double silence_s(const LiveView& live, int uav_id, double now_s) const;
+  void dispatch_idle_uavs(const LiveView& live, double now_s, Actions& actions);
+
+  TaskStore& store_;
+  TaskLimits limits_;
+  // Aborts sent for tasks in flight, by task id, re-sent until the agent confirms. Held in
+  // memory only: after a restart the operator's abort must be repeated.
+  std::map<std::string, AbortOnUav> pending_aborts_;
+  // The first step's time: an agent this Dispatcher has never heard counts as silent from
+  // then, not from the epoch (a restarted manager waits for the heartbeats).
+  std::optional<double> started_s_;
+};
+
+}  // namespace cover::task_manager

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <string>
+
+#include "cover/config/yaml_reader.hpp"
+
+namespace cover::task_manager {
+
+// What the manager accepts and how long it waits (config/task_manager.yaml, section
+// task_manager). The limits are the vehicle's and the field's, tighter than the sanity
+// bounds of mission::Task::validate.
+struct TaskLimits {
+  double max_horizontal_m = 20.0;  // |x|, |y| of every point in its UGV frame
+  double min_z_m = -0.5;
+  double max_z_m = 10.0;
+  double max_vmax_m_s = 3.0;         // the vehicle's speed limit
+  double max_amax_m_s2 = 5.0;        // the vehicle's acceleration limit
+  double heartbeat_timeout_s = 2.0;  // an agent / UGV IMU not heard for this long is "not up"
+  double dispatch_timeout_s = 5.0;   // a dispatched task the agent has not taken by then fails
+
+  static TaskLimits load(config::YamlReader& reader);
+  static TaskLimits load_file(const std::string& path);
+  // Throws config::ConfigError naming the key.
+  void validate() const;
+};
+
+}  // namespace cover::task_manager

@@ -1,0 +1,131 @@
+#include "cover/task_manager/flyability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "cover/config/config_error.hpp"
+
+namespace cover::task_manager {
+namespace {
+
+// Values as a person typed them: 9, 3.5, 0.25 (not 9.000000).
+std::string number(double value) {
+  if (std::isnan(value)) return "NaN";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
+// Durations to a tenth of a second: "3.2 s".
+std::string seconds(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f s", value);
+  return text;
+}
+
+std::optional<std::string> check_point(const Eigen::Vector3d& point, const std::string& where,
+                                       const TaskLimits& limits) {
+  static constexpr const char* kAxes[] = {"x", "y", "z"};
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::string name = where + "." + kAxes[axis];
+    const double value = point[axis];
+    if (std::isnan(value)) return name + " is NaN";
+    if (!std::isfinite(value)) return name + " is infinite";
+    if (axis < 2 && std::abs(value) > limits.max_horizontal_m) {
+      return name + " " + number(value) + " m is beyond the +-" + number(limits.max_horizontal_m) +
+             " m limit";
+    }
+  }
+  if (point.z() < limits.min_z_m) {
+    return where + ".z " + number(point.z()) + " m is below the " + number(limits.min_z_m) +
+           " m limit";
+  }
+  if (point.z() > limits.max_z_m) {
+    return where + ".z " + number(point.z()) + " m is above the " + number(limits.max_z_m) +
+           " m limit";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> check_process(const mission::TransitionProcess& p,
+                                         const TaskLimits& limits) {
+  if (auto why = check_point(p.initial_point_m, "initial_point_m", limits)) return why;
+  if (auto why = check_point(p.transition_point_m, "transition_point_m", limits)) return why;
+  if (auto why = check_point(p.final_point_m, "final_point_m", limits)) return why;
+  // Non-positive or NaN limits are left to Task::validate, which names them.
+  if (p.vmax_m_s > limits.max_vmax_m_s) {
+    return "vmax_m_s " + number(p.vmax_m_s) + " is above the vehicle's " +
+           number(limits.max_vmax_m_s) + " m/s";
+  }
+  if (p.amax_m_s2 > limits.max_amax_m_s2) {
+    return "amax_m_s2 " + number(p.amax_m_s2) + " is above the vehicle's " +
+           number(limits.max_amax_m_s2) + " m/s^2";
+  }
+  return std::nullopt;
+}
+
+std::vector<int> ugvs_of(const mission::Task& task) {
+  std::vector<int> ugvs;
+  for (const auto& p : task.processes) {
+    for (const int k : {p.from_ugv, p.to_ugv}) {
+      if (std::find(ugvs.begin(), ugvs.end(), k) == ugvs.end()) ugvs.push_back(k);
+    }
+  }
+  return ugvs;
+}
+
+// The task's structure (chain, ids, final actions) is mission::Task::validate's; every UGV
+// the task names is allowed there, whether it is up is checked against the live view.
+std::optional<std::string> check_structure(const mission::Task& task) {
+  const std::vector<int> ugvs = ugvs_of(task);
+  const int ugv_count = ugvs.empty() ? 1 : *std::max_element(ugvs.begin(), ugvs.end()) + 1;
+  try {
+    task.validate(std::max(ugv_count, 1));
+  } catch (const config::ConfigError& e) {
+    return std::string(e.what());
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> check_uav(int uav_id, const LiveView& live, const TaskLimits& limits,
+                                     double now_s) {
+  const std::string uav = "UAV " + std::to_string(uav_id);
+  const auto agent = live.agents.find(uav_id);
+  if (agent == live.agents.end()) return uav + " is not up (never heard)";
+  const double silence_s = now_s - agent->second.heard_s;
+  if (silence_s > limits.heartbeat_timeout_s) {
+    return uav + " is not up (no heartbeat for " + seconds(silence_s) + ")";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> check_ugvs(const mission::Task& task, const LiveView& live,
+                                      const TaskLimits& limits, double now_s) {
+  for (const int k : ugvs_of(task)) {
+    const std::string ugv = "UGV " + std::to_string(k) + " is not publishing its IMU";
+    const auto imu = live.ugv_imu_heard_s.find(k);
+    if (imu == live.ugv_imu_heard_s.end()) return ugv;
+    const double silence_s = now_s - imu->second;
+    if (silence_s > limits.heartbeat_timeout_s) {
+      return ugv + " (not heard for " + seconds(silence_s) + ")";
+    }
+  }
+  return std::nullopt;
+}
+}  // namespace
+
+std::optional<std::string> why_not_flyable(const mission::Task& task, const LiveView& live,
+                                           const TaskLimits& limits, double now_s) {
+  for (std::size_t i = 0; i < task.processes.size(); ++i) {
+    if (auto why = check_process(task.processes[i], limits)) {
+      return "process " + std::to_string(i) + ": " + *why;
+    }
+  }
+  if (auto why = check_structure(task)) return why;
+  if (auto why = check_uav(task.uav_id, live, limits, now_s)) return why;
+  return check_ugvs(task, live, limits, now_s);
+}
+
+}  // namespace cover::task_manager
