@@ -37,6 +37,7 @@ struct CommandLine {
   std::string result_file;
   std::string plot_file;
   std::string summary_file;
+  bool standing = false;
   std::string params_file = cover::config::default_config_dir() + "/sim/sim_process.yaml";
   cover::dds::DdsCliOptions dds;
 };
@@ -133,6 +134,8 @@ int main(int argc, char** argv) {
   app.add_option("--result", cli.result_file, "write the run's result JSON here at exit");
   app.add_option("--plot", cli.plot_file, "write the world-frame SVG plot here at exit");
   app.add_option("--summary", cli.summary_file, "write the readable result here at exit");
+  app.add_flag("--standing", cli.standing,
+               "run until stopped (a standing system flying the tasks it is sent), no result");
   app.add_option("--params", cli.params_file, "cover-sim settings")->capture_default_str();
   cli.dds.add_to(app);
   CLI11_PARSE(app, argc, argv);
@@ -148,6 +151,7 @@ int main(int argc, char** argv) {
     cover::sim::SimRunOptions options;
     options.clock = cli.clock == "lockstep" ? cover::sim::SimClockMode::Lockstep
                                             : cover::sim::SimClockMode::Realtime;
+    options.standing = cli.standing;
     const std::string segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
     // Declared first, removed last: see SimNode.
     cover::shm::SeqlockWriter<cover::sim::SharedWorld> segment(
@@ -162,7 +166,7 @@ int main(int argc, char** argv) {
         return finish(fleet, node, cli);
       case cover::sim::SimExit::Interrupted:
         spdlog::info("interrupted at t = {:.2f} s", fleet.time_s());
-        return 130;
+        return cli.standing ? 0 : 130;  // a standing world ends by being stopped
       case cover::sim::SimExit::Stalled:
       case cover::sim::SimExit::StartupTimeout:
         return 4;

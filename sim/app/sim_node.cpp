@@ -153,7 +153,7 @@ void SimNode::publish_tick() {
   clock_writer_.write(tick);
 }
 
-bool SimNode::wait_for_commands(std::int64_t tick_ns) {
+SimNode::TickWait SimNode::wait_for_commands(std::int64_t tick_ns) {
   std::unique_lock<std::mutex> lock(mutex_);
   auto answered = [&](const Mailbox& box) {
     return box.command && box.command->stamp_ns == tick_ns && box.trace &&
@@ -169,6 +169,7 @@ bool SimNode::wait_for_commands(std::int64_t tick_ns) {
     // agents step each tick once.
     while (!arrived_.wait_for(lock, kRepublishPeriod, [&] { return answered(mailboxes_[u]); }) &&
            std::chrono::steady_clock::now() < deadline) {
+      if (process::ShutdownSignal::requested()) return TickWait::Interrupted;
       lock.unlock();
       publish_tick();
       ++republished_ticks_;
@@ -179,10 +180,10 @@ bool SimNode::wait_for_commands(std::int64_t tick_ns) {
           "lockstep stalled at t = {:.2f} s: no command from UAV {} (cover-uav-agent --id {}, "
           "topic cover/uav/{}/cmd) for {:.1f} s",
           wire::to_seconds(tick_ns), u, u, u, timeout_s);
-      return false;
+      return TickWait::Stalled;
     }
   }
-  return true;
+  return TickWait::Answered;
 }
 
 void SimNode::apply_commands(bool lockstep) {
@@ -212,11 +213,22 @@ void SimNode::apply_commands(bool lockstep) {
   }
 }
 
+bool SimNode::run_over() const {
+  return !options_.standing && fleet_.finished();
+}
+
 SimExit SimNode::run_lockstep() {
-  while (!fleet_.finished()) {
+  while (!run_over()) {
     if (process::ShutdownSignal::requested()) return SimExit::Interrupted;
     publish_tick();
-    if (!wait_for_commands(wire::to_stamp_ns(fleet_.time_s()))) return SimExit::Stalled;
+    switch (wait_for_commands(wire::to_stamp_ns(fleet_.time_s()))) {
+      case TickWait::Answered:
+        break;
+      case TickWait::Stalled:
+        return SimExit::Stalled;
+      case TickWait::Interrupted:
+        return SimExit::Interrupted;
+    }
     apply_commands(true);
     fleet_.advance();
   }
@@ -226,7 +238,7 @@ SimExit SimNode::run_lockstep() {
 SimExit SimNode::run_realtime() {
   const auto period = std::chrono::nanoseconds(static_cast<long>(1e9 / params_.control_rate_hz));
   auto next = std::chrono::steady_clock::now();
-  while (!fleet_.finished()) {
+  while (!run_over()) {
     if (process::ShutdownSignal::requested()) return SimExit::Interrupted;
     publish_tick();
     next += period;

@@ -20,6 +20,9 @@ enum class SimClockMode { Lockstep, Realtime };
 
 struct SimRunOptions {
   SimClockMode clock = SimClockMode::Lockstep;
+  // A standing world (a system that flies whatever tasks it is sent): runs until stopped,
+  // whatever the scenario's task and max_duration_s say.
+  bool standing = false;
 };
 
 // Why a run ended.
@@ -53,10 +56,12 @@ class SimNode {
   };
 
   bool wait_for_agents();
+  bool run_over() const;
   SimExit run_lockstep();
   SimExit run_realtime();
   void publish_tick();
-  bool wait_for_commands(std::int64_t tick_ns);
+  enum class TickWait { Answered, Stalled, Interrupted };
+  TickWait wait_for_commands(std::int64_t tick_ns);
   void apply_commands(bool lockstep);
   void on_command(int uav, const msg::UavCommand& command);
 

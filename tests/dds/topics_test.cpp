@@ -102,7 +102,8 @@ TEST(TopicCatalog, QosComesFromTheRow) {
   EXPECT_EQ(topics::relative_state(0, 0).qos().name, "sensor");
   EXPECT_EQ(topics::uav_command(0).qos().name, "command");
   EXPECT_EQ(topics::uav_command(0).qos().reliability, dds::Reliability::Reliable);
-  EXPECT_EQ(topics::task_request().qos().durability, dds::Durability::TransientLocal);
+  EXPECT_EQ(topics::task_request().qos().durability, dds::Durability::Volatile);  // no stale tasks
+  EXPECT_EQ(topics::task_status().qos().durability, dds::Durability::TransientLocal);
 }
 
 TEST(TopicCatalog, NamesResolveOnlyWithDecimalIds) {

@@ -5,6 +5,7 @@
 
 #include "cover/dds/cli_options.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "task_commands.hpp"
 #include "topic_commands.hpp"
 
 int main(int argc, char** argv) {
@@ -41,6 +42,48 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   pub_dds.add_to(*pub);
 
+  // Task commands (the task manager's ground-station side).
+  cover::cli::TaskCommandOptions task_options;
+  cover::dds::DdsCliOptions task_dds;
+  auto add_task_flags = [&](CLI::App* command) {
+    command
+        ->add_option("--timeout", task_options.timeout_s,
+                     "seconds to reach the task manager and get its answer")
+        ->capture_default_str();
+    command->add_flag("--json", task_options.json, "JSON instead of text");
+    task_dds.add_to(*command);
+  };
+  cover::cli::SubmitRequest submit_request;
+  auto* submit = app.add_subcommand(
+      "submit", "Submit a task file (config/tasks/*.yaml format, docs/tasks.md); prints its id");
+  submit->add_option("file", submit_request.file, "task YAML")->required();
+  submit->add_option("--uav", submit_request.uav,
+                     "fly it on this UAV (default: the file's uav_id)");
+  submit->add_flag("--wait", submit_request.wait,
+                   "follow it to the end; exit 0 only if it succeeded");
+  add_task_flags(submit);
+  bool list_all = false;
+  auto* list = app.add_subcommand("list", "The tasks queued and in flight");
+  list->add_flag("--all", list_all, "also the ended ones");
+  add_task_flags(list);
+  std::string task_id;
+  auto* status = app.add_subcommand("status", "One task's record");
+  status->add_option("id", task_id, "task id")->required();
+  add_task_flags(status);
+  auto* watch = app.add_subcommand(
+      "watch", "Follow a task: a line per change (redrawn in place on a terminal) until it ends");
+  watch->add_option("id", task_id, "task id")->required();
+  add_task_flags(watch);
+  std::string abort_reason;
+  auto* abort = app.add_subcommand(
+      "abort", "Abort a task: queued, it is dropped; flying, the UAV holds then lands/hovers");
+  abort->add_option("id", task_id, "task id")->required();
+  abort->add_option("--reason", abort_reason, "recorded with the abort");
+  add_task_flags(abort);
+  app.footer(
+      "Task commands exit 0 when accepted / found / succeeded, 1 when rejected, unknown or not\n"
+      "succeeded, 2 on a bad file or usage, 3 when no task manager answers within --timeout.");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*topics) {
@@ -51,6 +94,12 @@ int main(int argc, char** argv) {
     }
     if (*echo) return cover::cli::echo(echo_dds.resolve("cover-echo"), echo_request);
     if (*pub) return cover::cli::publish(pub_dds.resolve("cover-pub"), pub_request);
+    const auto station = [&] { return task_dds.resolve("cover-station"); };
+    if (*submit) return cover::cli::submit(station(), task_options, submit_request);
+    if (*list) return cover::cli::list_tasks(station(), task_options, list_all);
+    if (*status) return cover::cli::task_status(station(), task_options, task_id);
+    if (*watch) return cover::cli::watch(station(), task_options, task_id);
+    if (*abort) return cover::cli::abort_task(station(), task_options, task_id, abort_reason);
   } catch (const std::exception& e) {
     std::cerr << "cover: " << e.what() << "\n";
     return 2;

@@ -43,7 +43,8 @@ inline constexpr std::tuple kCatalog{
     TopicDescriptor<msg::ReferenceTrajectory, UavId>{
         "cover/uav/<u>/reference", &state_qos, "per stage", "uav_agent -> ground station",
         "sampled reference of the current stage, for display"},
-    TopicDescriptor<msg::TransitionTask>{"cover/task/request", &state_qos, "on demand",
+    // Volatile: a UAV agent that (re)starts must not receive, and fly, old tasks.
+    TopicDescriptor<msg::TransitionTask>{"cover/task/request", &request_qos, "on demand",
                                          "task_manager -> uav_agent",
                                          "task sequences dispatched to a UAV"},
     TopicDescriptor<msg::TaskAbort>{"cover/task/abort", &command_qos, "on demand",

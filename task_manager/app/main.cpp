@@ -1,0 +1,65 @@
+// cover-task-manager: accepts tasks from ground stations, persists them (SQLite), keeps one
+// queue per UAV, dispatches each to its UAV agent when it is free, follows it to the end.
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "cover/config/config_error.hpp"
+#include "cover/config/yaml_reader.hpp"
+#include "cover/dds/cli_options.hpp"
+#include "cover/dds/dds_error.hpp"
+#include "cover/logging/log.hpp"
+#include "cover/process/shutdown_signal.hpp"
+#include "cover/task_manager/store_error.hpp"
+#include "manager_node.hpp"
+
+namespace {
+
+constexpr const char* kExitCodes =
+    "Exit codes: 0 stopped by SIGINT/SIGTERM; 2 usage or configuration error;\n"
+    "3 the database cannot be opened (path, permissions, a newer schema) or DDS cannot start.";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cover::process::ShutdownSignal::install();
+  CLI::App app{"cover-task-manager: task queues per UAV, persisted, dispatched and followed"};
+  app.footer(kExitCodes);
+  std::string db_path = "cover_tasks.db";
+  std::string config_path = cover::config::default_config_dir() + "/task_manager.yaml";
+  cover::task_manager::ManagerOptions options;
+  cover::dds::DdsCliOptions dds;
+  app.add_option("--db", db_path, "SQLite database (created if missing; WAL, synchronous FULL)")
+      ->capture_default_str();
+  app.add_option("--config", config_path, "limits and timeouts")->capture_default_str();
+  app.add_option("--max-uavs", options.max_uavs, "UAV ids 0..N-1 are served")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  dds.add_to(app);
+  CLI11_PARSE(app, argc, argv);
+  cover::logging::init("task_manager");
+  try {
+    const auto limits = cover::task_manager::TaskLimits::load_file(config_path);
+    cover::task_manager::TaskStore store(db_path);
+    const auto participant_options = dds.resolve("cover-task-manager");
+    cover::dds::Participant participant(participant_options);
+    const auto active = store.in_states(
+        {cover::task_manager::TaskState::Dispatched, cover::task_manager::TaskState::Running});
+    spdlog::info("database {} (schema {}): {} task(s) in flight to re-learn; {} on domain {}",
+                 db_path, store.schema_version(), active.size(),
+                 cover::dds::vendor_name(participant_options.vendor),
+                 participant_options.domain_id);
+    cover::task_manager::ManagerNode node(participant, store, limits, options);
+    return node.run();
+  } catch (const cover::config::ConfigError& e) {
+    std::cerr << "cover-task-manager: " << e.what() << "\n";
+    return 2;
+  } catch (const cover::task_manager::StoreError& e) {
+    std::cerr << "cover-task-manager: " << e.what() << "\n";
+    return 3;
+  } catch (const cover::dds::DdsError& e) {
+    std::cerr << "cover-task-manager: " << e.what() << "\n";
+    return 3;
+  }
+}

@@ -1,0 +1,172 @@
+#include "manager_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+#include "cover/clock/clock.hpp"
+#include "cover/process/shutdown_signal.hpp"
+#include "cover/wire/task.hpp"
+#include "managed_task_msg.hpp"
+
+namespace cover::task_manager {
+namespace {
+
+double wall_s() {
+  return clock::ns_to_s(clock::system_ns());
+}
+
+msg::ManagerReply reply_to(const msg::ManagerRequest& request, bool ok, std::string message) {
+  msg::ManagerReply reply;
+  reply.request_id = request.request_id;
+  reply.stamp_ns = clock::system_ns();
+  reply.ok = ok;
+  reply.message = std::move(message);
+  return reply;
+}
+
+}  // namespace
+
+ManagerNode::ManagerNode(dds::Participant& participant, TaskStore& store, TaskLimits limits,
+                         ManagerOptions options)
+    : store_(store),
+      dispatcher_(store, limits),
+      options_(options),
+      fleet_(participant, options.max_uavs, options.max_ugvs),
+      reply_writer_(participant.make_writer(dds::topics::manager_reply())),
+      dispatch_writer_(participant.make_writer(dds::topics::task_request())),
+      abort_writer_(participant.make_writer(dds::topics::task_abort())) {
+  request_reader_ = participant.make_reader(
+      dds::topics::manager_request(), [this](const msg::ManagerRequest& r) { on_request(r); });
+}
+
+void ManagerNode::on_request(const msg::ManagerRequest& request) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    requests_.push_back(request);
+  }
+  arrived_.notify_one();
+}
+
+int ManagerNode::run() {
+  const auto period = std::chrono::milliseconds(static_cast<long>(options_.step_period_s * 1000));
+  while (!process::ShutdownSignal::requested()) {
+    std::deque<msg::ManagerRequest> batch;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      arrived_.wait_for(lock, period, [this] { return !requests_.empty(); });
+      batch.swap(requests_);
+    }
+    const double now = wall_s();
+    for (const msg::ManagerRequest& request : batch) handle(request, now);
+    step(now);
+  }
+  spdlog::info("shutting down");
+  return 0;
+}
+
+void ManagerNode::handle(const msg::ManagerRequest& request, double now_s) {
+  msg::ManagerReply reply;
+  try {
+    switch (request.kind) {
+      case msg::ManagerRequestKind::MANAGER_SUBMIT:
+        reply = submit(request, now_s);
+        break;
+      case msg::ManagerRequestKind::MANAGER_ABORT:
+        reply = abort(request, now_s);
+        break;
+      case msg::ManagerRequestKind::MANAGER_QUERY:
+        reply = query(request);
+        break;
+      default:
+        reply = reply_to(request, false, "unknown request kind");
+    }
+  } catch (const std::exception& e) {
+    // A store failure is reported, logged, and the manager keeps serving.
+    spdlog::error("request {} from {}: {}", request.request_id, request.submitter, e.what());
+    reply = reply_to(request, false, std::string("task manager error: ") + e.what());
+  }
+  reply_writer_.write(reply);
+}
+
+msg::ManagerReply ManagerNode::submit(const msg::ManagerRequest& request, double now_s) {
+  const mission::Task task = wire::from_msg(request.task);
+  const TaskStore::SubmitResult result =
+      dispatcher_.submit(task, request.submitter, request.request_id, fleet_.view(), now_s);
+  const TaskRecord& r = result.record;
+  const bool rejected = r.state == TaskState::Rejected;
+  std::string message;
+  if (!result.created) {
+    message = "task '" + r.task_id + "' is already known: " + to_string(r.state);
+  } else if (rejected) {
+    message = "rejected: " + r.reason;
+    spdlog::warn("task '{}' from {} rejected: {}", r.task_id, request.submitter, r.reason);
+  } else {
+    message = "queued for UAV " + std::to_string(r.uav_id);
+    spdlog::info("task '{}' from {} queued for UAV {} (position {})", r.task_id, request.submitter,
+                 r.uav_id, r.queue_position);
+  }
+  msg::ManagerReply reply = reply_to(request, !rejected, message);
+  reply.tasks.push_back(to_msg(r));
+  return reply;
+}
+
+msg::ManagerReply ManagerNode::abort(const msg::ManagerRequest& request, double now_s) {
+  const std::string reason =
+      request.reason.empty() ? "aborted by " + request.submitter : request.reason;
+  const Dispatcher::AbortResult result = dispatcher_.abort(request.task_id, reason, now_s);
+  if (result.send) {
+    msg::TaskAbort abort;
+    abort.uav_id = static_cast<std::uint32_t>(result.send->uav_id);
+    abort.stamp_ns = clock::system_ns();
+    abort.task_id = result.send->task_id;
+    abort.reason = result.send->reason;
+    abort_writer_.write(abort);
+  }
+  spdlog::info("abort of '{}' from {}: {}", request.task_id, request.submitter, result.message);
+  msg::ManagerReply reply = reply_to(request, result.ok, result.message);
+  if (const auto record = store_.find(request.task_id)) reply.tasks.push_back(to_msg(*record));
+  return reply;
+}
+
+msg::ManagerReply ManagerNode::query(const msg::ManagerRequest& request) const {
+  if (request.task_id.empty()) {
+    msg::ManagerReply reply = reply_to(request, true, "");
+    for (const TaskRecord& r : store_.list(request.include_final)) reply.tasks.push_back(to_msg(r));
+    return reply;
+  }
+  const auto record = store_.find(request.task_id);
+  if (!record) return reply_to(request, false, "no task '" + request.task_id + "'");
+  msg::ManagerReply reply = reply_to(request, true, "");
+  reply.tasks.push_back(to_msg(*record));
+  return reply;
+}
+
+void ManagerNode::step(double now_s) {
+  const auto before = store_.in_states({TaskState::Dispatched, TaskState::Running});
+  send(dispatcher_.step(fleet_.view(), now_s), now_s);
+  for (const TaskRecord& r : before) {
+    const auto after = store_.find(r.task_id);
+    if (after && after->state != r.state) {
+      spdlog::info("task '{}' on UAV {}: {} -> {} ({})", r.task_id, r.uav_id, to_string(r.state),
+                   to_string(after->state), after->reason);
+    }
+  }
+}
+
+void ManagerNode::send(const Actions& actions, double now_s) {
+  for (const Dispatch& d : actions.dispatch) {
+    spdlog::info("task '{}' sent to UAV {}", d.record.task_id, d.uav_id);
+    dispatch_writer_.write(wire::to_msg(d.record.task, now_s));
+  }
+  for (const AbortOnUav& a : actions.abort) {
+    msg::TaskAbort abort;
+    abort.uav_id = static_cast<std::uint32_t>(a.uav_id);
+    abort.stamp_ns = clock::system_ns();
+    abort.task_id = a.task_id;
+    abort.reason = a.reason;
+    abort_writer_.write(abort);
+  }
+}
+
+}  // namespace cover::task_manager

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/task_manager/dispatcher.hpp"
+#include "cover/task_manager/task_store.hpp"
+#include "fleet_watch.hpp"
+
+namespace cover::task_manager {
+
+struct ManagerOptions {
+  int max_uavs = 4;
+  int max_ugvs = 8;
+  double step_period_s = 0.1;  // the dispatcher's pace when no request arrives
+};
+
+// cover-task-manager's DDS side: requests from ground stations in, replies out; tasks to
+// the UAV agents (cover/task/request), aborts (cover/task/abort); the fleet heard through
+// FleetWatch. The logic is the Dispatcher's, the memory the TaskStore's.
+class ManagerNode {
+ public:
+  ManagerNode(dds::Participant& participant, TaskStore& store, TaskLimits limits,
+              ManagerOptions options);
+  // Until shutdown is requested; the exit code.
+  int run();
+
+ private:
+  void on_request(const msg::ManagerRequest& request);
+  void handle(const msg::ManagerRequest& request, double now_s);
+  msg::ManagerReply submit(const msg::ManagerRequest& request, double now_s);
+  msg::ManagerReply abort(const msg::ManagerRequest& request, double now_s);
+  msg::ManagerReply query(const msg::ManagerRequest& request) const;
+  void step(double now_s);
+  void send(const Actions& actions, double now_s);
+
+  TaskStore& store_;
+  Dispatcher dispatcher_;
+  ManagerOptions options_;
+  FleetWatch fleet_;
+  dds::Writer<msg::ManagerReply> reply_writer_;
+  dds::Writer<msg::TransitionTask> dispatch_writer_;
+  dds::Writer<msg::TaskAbort> abort_writer_;
+  std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::deque<msg::ManagerRequest> requests_;
+  dds::Reader<msg::ManagerRequest> request_reader_;  // last: its callback uses the above
+};
+
+}  // namespace cover::task_manager
