@@ -16,6 +16,9 @@ double wall_s() {
   return clock::ns_to_s(clock::system_ns());
 }
 
+// Far more than the requests in flight from every station within a resend period.
+constexpr std::size_t kRememberedReplies = 1024;
+
 msg::ManagerReply reply_to(const msg::ManagerRequest& request, bool ok, std::string message) {
   msg::ManagerReply reply;
   reply.request_id = request.request_id;
@@ -35,7 +38,9 @@ ManagerNode::ManagerNode(dds::Participant& participant, TaskStore& store, TaskLi
       fleet_(participant, options.max_uavs, options.max_ugvs),
       reply_writer_(participant.make_writer(dds::topics::manager_reply())),
       dispatch_writer_(participant.make_writer(dds::topics::task_request())),
-      abort_writer_(participant.make_writer(dds::topics::task_abort())) {
+      abort_writer_(participant.make_writer(dds::topics::task_abort())),
+      listening_since_s_(wall_s()),
+      listen_first_s_(limits.heartbeat_timeout_s) {
   request_reader_ = participant.make_reader(
       dds::topics::manager_request(), [this](const msg::ManagerRequest& r) { on_request(r); });
 }
@@ -58,7 +63,20 @@ int ManagerNode::run() {
       batch.swap(requests_);
     }
     const double now = wall_s();
-    for (const msg::ManagerRequest& request : batch) handle(request, now);
+    const bool listened = now - listening_since_s_ >= listen_first_s_;
+    if (listened) {
+      while (!held_.empty()) {
+        handle(held_.front(), now);
+        held_.pop_front();
+      }
+    }
+    for (const msg::ManagerRequest& request : batch) {
+      if (!listened && request.kind == msg::ManagerRequestKind::MANAGER_SUBMIT) {
+        held_.push_back(request);
+      } else {
+        handle(request, now);
+      }
+    }
     step(now);
   }
   spdlog::info("shutting down");
@@ -66,6 +84,10 @@ int ManagerNode::run() {
 }
 
 void ManagerNode::handle(const msg::ManagerRequest& request, double now_s) {
+  if (const auto seen = answered_.find(request.request_id); seen != answered_.end()) {
+    reply_writer_.write(seen->second);
+    return;
+  }
   msg::ManagerReply reply;
   try {
     switch (request.kind) {
@@ -87,6 +109,12 @@ void ManagerNode::handle(const msg::ManagerRequest& request, double now_s) {
     reply = reply_to(request, false, std::string("task manager error: ") + e.what());
   }
   reply_writer_.write(reply);
+  answered_[request.request_id] = reply;
+  answered_order_.push_back(request.request_id);
+  if (answered_order_.size() > kRememberedReplies) {
+    answered_.erase(answered_order_.front());
+    answered_order_.pop_front();
+  }
 }
 
 msg::ManagerReply ManagerNode::submit(const msg::ManagerRequest& request, double now_s) {

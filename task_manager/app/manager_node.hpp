@@ -2,7 +2,9 @@
 
 #include <condition_variable>
 #include <deque>
+#include <map>
 #include <mutex>
+#include <string>
 
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
@@ -47,6 +49,15 @@ class ManagerNode {
   std::mutex mutex_;
   std::condition_variable arrived_;
   std::deque<msg::ManagerRequest> requests_;
+  // The replies to recent requests, by request id: a station re-sends until answered, and
+  // a repeat gets the first answer instead of being carried out again.
+  std::map<std::string, msg::ManagerReply> answered_;
+  // Submissions are judged against the live fleet, which a manager that has just started
+  // has not heard yet: they wait until it has listened for one heartbeat timeout.
+  double listening_since_s_ = 0.0;
+  double listen_first_s_ = 0.0;
+  std::deque<msg::ManagerRequest> held_;
+  std::deque<std::string> answered_order_;
   dds::Reader<msg::ManagerRequest> request_reader_;  // last: its callback uses the above
 };
 

@@ -2,12 +2,17 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+
 #include <cstdlib>
 #include <random>
 
 #include "cover/clock/clock.hpp"
 
 namespace cover::cli {
+namespace {
+constexpr std::chrono::milliseconds kResendPeriod{300};
+}  // namespace
 
 ManagerClient::ManagerClient(dds::Participant& participant, std::chrono::milliseconds timeout)
     : participant_(participant),
@@ -58,9 +63,17 @@ msg::ManagerReply ManagerClient::call(msg::ManagerRequest request) {
     awaited_id_ = request.request_id;
     reply_.reset();
   }
-  writer_.write(request);
+  // Sent again until answered: a manager whose reader matched this writer a moment after
+  // the writer matched it misses the first copy (volatile). The manager answers a repeated
+  // request id with its first reply, so a request is carried out once.
   std::unique_lock<std::mutex> lock(mutex_);
-  if (arrived_.wait_until(lock, deadline, [this] { return reply_.has_value(); })) return *reply_;
+  while (std::chrono::steady_clock::now() < deadline) {
+    lock.unlock();
+    writer_.write(request);
+    lock.lock();
+    const auto next = std::min(deadline, std::chrono::steady_clock::now() + kResendPeriod);
+    if (arrived_.wait_until(lock, next, [this] { return reply_.has_value(); })) return *reply_;
+  }
   throw ManagerUnreachable("the task manager did not answer within " +
                            std::to_string(timeout_s).substr(0, 4) + " s");
 }
