@@ -183,7 +183,7 @@ TEST(TaskManager, BadSubmissionsAreRejectedWithAReasonAndTheManagerKeepsServing)
 }
 
 TEST(TaskManager, KilledWhileATaskRunsTheRestartedManagerRecordsItsTrueResult) {
-  StandingSystem system(173, "cyclone");
+  StandingSystem system(173, "fastdds");
   ASSERT_EQ(system.cover({"submit", system.task_file("survivor")}).first, 0);
   std::string state;
   for (int i = 0; i < 100 && state != "MANAGED_RUNNING"; ++i) {

@@ -30,6 +30,7 @@ ParticipantOptions ParticipantOptions::load_file(const std::string& path) {
   dds.optional("domain_id", options.domain_id);
   dds.optional("interface", options.interface_name);
   dds.optional("peers", options.peers);
+  dds.optional("fastdds_shared_memory", options.fastdds_shared_memory);
   dds.reject_unknown_keys();
   try {
     options.vendor = parse_vendor(vendor);

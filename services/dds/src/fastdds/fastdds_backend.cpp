@@ -81,8 +81,10 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
     udp->maxInitialPeersRange = 32;  // more than 4 participants per host
     qos.transport().use_builtin_transports = false;
     qos.transport().user_transports.push_back(udp);
-    qos.transport().user_transports.push_back(
-        std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+    if (options.fastdds_shared_memory) {
+      qos.transport().user_transports.push_back(
+          std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+    }
   }
   for (const auto& peer : options.peers) {
     eprosima::fastrtps::rtps::Locator_t locator;

@@ -19,6 +19,11 @@ struct ParticipantOptions {
   // Unicast discovery peers (IPv4 addresses), for networks that drop multicast (WiFi).
   // When set, multicast discovery is turned off on both vendors.
   std::vector<std::string> peers;
+  // Fast DDS's shared-memory transport between Fast DDS processes on one host. Off by
+  // default: a Fast DDS process that is killed leaves its segments in /dev/shm, and a
+  // participant restarted on its port could not receive over it (a task manager killed
+  // and restarted stayed deaf to its fleet); loopback UDP costs a few microseconds.
+  bool fastdds_shared_memory = false;
   std::string participant_name = "cover";
 
   void validate() const;  // throws DdsError naming the bad field
