@@ -5,17 +5,25 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/mission/task.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/task_manager/task_store.hpp"
+#include "cover/wire/task.hpp"
+#include "manager_client.hpp"
 
 namespace {
 
@@ -38,30 +46,55 @@ cover::process::SpawnOptions quiet(const std::string& vendor, int domain, const 
 // that an operator's abort finds the task in flight), and a task manager on `db`.
 class StandingSystem {
  public:
-  StandingSystem(int domain, const std::string& manager_vendor)
+  StandingSystem(int domain, const std::string& manager_vendor,
+                 const std::string& clock = "realtime", int uavs = 1)
       : domain_(domain), manager_vendor_(manager_vendor) {
     run_id_ = "tm_" + std::to_string(getpid()) + "_" + std::to_string(domain);
     db_ = ::testing::TempDir() + run_id_ + ".db";
     fs::remove(db_);
-    children_.push_back(spawn({bin("cover-sim"), "--scenario", "scenario1", "--standing", "--clock",
-                               "realtime", "--run-id", run_id_},
+    const std::string scenario = uavs == 1 ? "scenario1" : "fleet_two_uavs";
+    children_.push_back(spawn({bin("cover-sim"), "--scenario", scenario, "--standing", "--clock",
+                               clock, "--run-id", run_id_},
                               "fastdds", "sim"));
     for (const char* k : {"0", "1"}) {
       children_.push_back(spawn({bin("cover-ugv-agent"), "--id", k, "--run-id", run_id_}, "cyclone",
                                 std::string("ugv") + k));
     }
-    children_.push_back(
-        spawn({bin("cover-uav-agent"), "--id", "0", "--ugv-count", "2", "--clock", "realtime"},
-              "fastdds", "uav"));
+    for (int u = 0; u < uavs; ++u) {
+      children_.push_back(spawn(
+          {bin("cover-uav-agent"), "--id", std::to_string(u), "--ugv-count", "2", "--clock", clock},
+          u == 0 ? "fastdds" : "cyclone", "uav" + std::to_string(u)));
+    }
     start_manager();
+    wait_until_up(uavs);
   }
   ~StandingSystem() {
     manager_.reset();
     for (auto it = children_.rbegin(); it != children_.rend(); ++it) (*it)->terminate(10s, SIGINT);
   }
 
+  // Until every UAV agent's heartbeat and both UGVs' IMU can be heard here (the manager,
+  // listening as long, then hears them too): tasks are judged against the live fleet.
+  void wait_until_up(int uavs) {
+    cover::dds::ParticipantOptions options;
+    options.vendor = cover::dds::Vendor::Cyclone;
+    options.domain_id = domain_;
+    cover::dds::Participant probe(options);
+    for (int u = 0; u < uavs; ++u) {
+      auto status =
+          probe.make_reader(cover::dds::topics::uav_status(static_cast<std::uint32_t>(u)));
+      ASSERT_TRUE(status.wait_for_sample(30s)) << "UAV " << u << " agent never heard";
+    }
+    for (std::uint32_t k = 0; k < 2; ++k) {
+      auto imu = probe.make_reader(cover::dds::topics::ugv_imu(k));
+      ASSERT_TRUE(imu.wait_for_sample(30s)) << "UGV " << k << " IMU never heard";
+    }
+  }
+
   void start_manager() {
-    manager_ = spawn({bin("cover-task-manager"), "--db", db_}, manager_vendor_, "manager");
+    ++manager_starts_;
+    manager_ = spawn({bin("cover-task-manager"), "--db", db_}, manager_vendor_,
+                     "manager" + std::to_string(manager_starts_));
   }
   void kill_manager() {
     kill(manager_->pid(), SIGKILL);
@@ -84,6 +117,7 @@ class StandingSystem {
     const int code = cli.wait(30s).value_or(-1);
     return {code, nlohmann::json::parse(last, nullptr, false)};
   }
+  int domain() const { return domain_; }
   std::string task_file(const std::string& id, const std::string& extra = "",
                         const std::string& vmax = "1.5") const {
     const std::string path = ::testing::TempDir() + run_id_ + "_" + id + ".yaml";
@@ -109,6 +143,7 @@ class StandingSystem {
   std::string db_;
   std::vector<std::unique_ptr<ChildProcess>> children_;
   std::unique_ptr<ChildProcess> manager_;
+  int manager_starts_ = 0;
 };
 
 std::string state_of(const nlohmann::json& reply) {
@@ -203,6 +238,148 @@ TEST(TaskManager, KilledWhileATaskRunsTheRestartedManagerRecordsItsTrueResult) {
   ASSERT_TRUE(record);
   EXPECT_EQ(record->state, cover::task_manager::TaskState::Succeeded) << record->reason;
   EXPECT_EQ(store.list(true).size(), 1u);
+}
+
+// A short task that ends hovering over the other UGV (no landing): the next one starts there.
+cover::mission::Task hop(const std::string& id, int uav, int from, int to) {
+  cover::mission::Task task;
+  task.task_id = id;
+  task.uav_id = uav;
+  cover::mission::TransitionProcess p;
+  p.from_ugv = from;
+  p.to_ugv = to;
+  p.initial_point_m = {0, 0, 1.0};
+  p.transition_point_m = {0, 0, 1.0};
+  p.final_point_m = {0, 0, 1.0};
+  p.vmax_m_s = 1.5;
+  task.processes.push_back(p);
+  return task;
+}
+
+// Submits through the test's own ground station, re-trying while the manager restarts.
+cover::msg::ManagerReply submit_until_answered(cover::cli::ManagerClient& client,
+                                               const cover::mission::Task& task) {
+  cover::msg::ManagerRequest r;
+  r.kind = cover::msg::ManagerRequestKind::MANAGER_SUBMIT;
+  r.task = cover::wire::to_msg(task, 0.0);
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    try {
+      return client.call(r);
+    } catch (const cover::cli::ManagerUnreachable&) {
+    }
+  }
+  throw std::runtime_error("no task manager for " + task.task_id);
+}
+
+int count_final(cover::cli::ManagerClient& client, int* succeeded) {
+  cover::msg::ManagerRequest r;
+  r.kind = cover::msg::ManagerRequestKind::MANAGER_QUERY;
+  r.include_final = true;
+  const cover::msg::ManagerReply reply = client.call(r);
+  int final_count = 0;
+  *succeeded = 0;
+  for (const auto& t : reply.tasks) {
+    using S = cover::msg::ManagedTaskState;
+    if (t.state == S::MANAGED_SUCCEEDED) ++*succeeded;
+    if (t.state == S::MANAGED_SUCCEEDED || t.state == S::MANAGED_FAILED ||
+        t.state == S::MANAGED_ABORTED || t.state == S::MANAGED_REJECTED) {
+      ++final_count;
+    }
+  }
+  return final_count;
+}
+
+// 200 tasks queued for one UAV in lockstep; the manager SIGKILLed at 5 seeded moments and
+// started again each time: every task recorded exactly once, dispatched once, in order.
+TEST(TaskManager, TwoHundredTasksSurviveFiveKillsEachRecordedOnceInOrder) {
+  constexpr int kTasks = 200;
+  StandingSystem system(174, "fastdds", "lockstep");
+  cover::dds::ParticipantOptions options;
+  options.vendor = cover::dds::Vendor::Cyclone;
+  options.domain_id = system.domain();
+  cover::dds::Participant station(options);
+  cover::cli::ManagerClient client(station, 5s);
+  for (int i = 0; i < kTasks; ++i) {
+    char id[16];
+    std::snprintf(id, sizeof id, "hop%03d", i);
+    const auto reply = submit_until_answered(client, hop(id, 0, i % 2, 1 - i % 2));
+    ASSERT_TRUE(reply.ok) << id << ": " << reply.message;
+  }
+  std::mt19937 rng(2026);
+  std::vector<int> kill_after;
+  for (int i = 0; i < 5; ++i) kill_after.push_back(20 + static_cast<int>(rng() % 160));
+  std::sort(kill_after.begin(), kill_after.end());
+  const auto deadline = std::chrono::steady_clock::now() + 400s;
+  int done = 0;
+  int succeeded = 0;
+  std::size_t kills = 0;
+  while (done < kTasks && std::chrono::steady_clock::now() < deadline) {
+    try {
+      done = count_final(client, &succeeded);
+    } catch (const cover::cli::ManagerUnreachable&) {
+      continue;  // restarting
+    }
+    if (kills < kill_after.size() && done >= kill_after[kills]) {
+      system.kill_manager();
+      system.start_manager();
+      ++kills;
+    }
+  }
+  ASSERT_EQ(done, kTasks) << succeeded << " succeeded before the deadline";
+  EXPECT_EQ(kills, kill_after.size());
+  EXPECT_EQ(system.stop_manager(), 0);
+
+  cover::task_manager::TaskStore store(system.db());
+  const auto records = store.list(true);
+  ASSERT_EQ(records.size(), static_cast<std::size_t>(kTasks));
+  double last_dispatch_s = 0.0;
+  for (int i = 0; i < kTasks; ++i) {
+    const auto& r = records[static_cast<std::size_t>(i)];
+    char id[16];
+    std::snprintf(id, sizeof id, "hop%03d", i);
+    EXPECT_EQ(r.task_id, id);  // submission order
+    EXPECT_EQ(r.state, cover::task_manager::TaskState::Succeeded) << id << ": " << r.reason;
+    int dispatched = 0;
+    for (const auto& change : store.history(r.task_id)) {
+      if (change.to != cover::task_manager::TaskState::Dispatched) continue;
+      ++dispatched;
+      EXPECT_GE(change.time_s, last_dispatch_s) << id << " dispatched out of order";
+      last_dispatch_s = change.time_s;
+    }
+    EXPECT_EQ(dispatched, 1) << id;
+  }
+}
+
+// Two UAVs, two queues, one manager: both fly at once.
+TEST(TaskManager, TwoUavsAreServedAtOnceFromTwoQueues) {
+  StandingSystem system(175, "cyclone", "lockstep", 2);
+  cover::dds::ParticipantOptions options;
+  options.domain_id = system.domain();
+  cover::dds::Participant station(options);
+  cover::cli::ManagerClient client(station, 5s);
+  for (int i = 0; i < 3; ++i) {
+    const auto a = submit_until_answered(client, hop("a" + std::to_string(i), 0, i % 2, 1 - i % 2));
+    ASSERT_TRUE(a.ok) << a.message;
+    const auto b = submit_until_answered(client, hop("b" + std::to_string(i), 1, 1 - i % 2, i % 2));
+    ASSERT_TRUE(b.ok) << b.message;
+  }
+  int succeeded = 0;
+  const auto deadline = std::chrono::steady_clock::now() + 120s;
+  while (count_final(client, &succeeded) < 6 && std::chrono::steady_clock::now() < deadline) {
+  }
+  EXPECT_EQ(succeeded, 6);
+  cover::task_manager::TaskStore store(system.db());
+  // Both queues were in flight together: b0 was dispatched before a0 ended.
+  double a0_end = 0.0, b0_dispatch = 0.0;
+  for (const auto& c : store.history("a0")) {
+    if (c.to == cover::task_manager::TaskState::Succeeded) a0_end = c.time_s;
+  }
+  for (const auto& c : store.history("b0")) {
+    if (c.to == cover::task_manager::TaskState::Dispatched) b0_dispatch = c.time_s;
+  }
+  EXPECT_GT(b0_dispatch, 0.0);
+  EXPECT_LT(b0_dispatch, a0_end);
+  EXPECT_EQ(system.stop_manager(), 0);
 }
 
 }  // namespace

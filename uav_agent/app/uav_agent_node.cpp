@@ -53,6 +53,9 @@ void UavAgentNode::run_lockstep() {
   while (!process::ShutdownSignal::requested()) {
     const auto tick = clock_.next_tick(100ms);
     if (!tick) {
+      // The heartbeat goes on between ticks (before the first, or while the simulator
+      // waits for another agent): a ground side must see this agent is up.
+      publish_status(last_step_s_);
       if (std::chrono::steady_clock::now() - last_tick > to_ms(options_.silence_warning_s)) {
         spdlog::warn("no simulator tick on cover/sim/clock for {:.1f} s",
                      options_.silence_warning_s);
@@ -115,11 +118,16 @@ void UavAgentNode::run_realtime() {
       process::ShutdownSignal::wait_for(to_ms(period_s));
     }
     const auto now = clock_.now_s();
-    if (now) step(*now);
+    if (now) {
+      step(*now);
+    } else {
+      publish_status(last_step_s_);  // no simulator time yet: the heartbeat still goes out
+    }
   }
 }
 
 void UavAgentNode::step(double now_s) {
+  last_step_s_ = now_s;
   take_requests(now_s);
   loop_.step(now_s, inputs_, command_);
   publish_reference_if_replanned();

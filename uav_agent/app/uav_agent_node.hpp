@@ -57,6 +57,7 @@ class UavAgentNode {
   TaskIntake intake_;
   AgentClock clock_;
   double next_status_s_ = 0.0;
+  double last_step_s_ = 0.0;  // time of the last control step (the status stamp between steps)
   std::string reported_key_;  // task id, state, process, stage of the last TaskStatus
   std::string logged_stage_;  // stage line last logged
   mission::Failsafe logged_failsafe_ = mission::Failsafe::WaitingForInputs;

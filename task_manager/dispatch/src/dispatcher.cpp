@@ -77,8 +77,25 @@ Actions Dispatcher::step(const LiveView& live, double now_s) {
       ++it;
     }
   }
+  resend_untaken_dispatches(live, now_s, actions);
   dispatch_idle_uavs(live, now_s, actions);
   return actions;
+}
+
+// A dispatch can be lost (the manager killed between recording it and sending it, a reader
+// not yet matched): while the agent is up, idle and reports another task, send it again.
+// Never to an agent that reports this task in any state: it would fly it twice.
+void Dispatcher::resend_untaken_dispatches(const LiveView& live, double now_s, Actions& actions) {
+  for (const TaskRecord& record : store_.in_states({TaskState::Dispatched})) {
+    const auto agent = live.agents.find(record.uav_id);
+    if (agent == live.agents.end() || !agent_up(live, record.uav_id, now_s)) continue;
+    const AgentReport& report = agent->second;
+    if (report.task_id == record.task_id || !agent_idle(report.task_state)) continue;
+    double& last = last_sent_s_[record.task_id];
+    if (last > 0.0 && now_s - last < kResendPeriod_s) continue;
+    last = now_s;
+    actions.dispatch.push_back({record.uav_id, record});
+  }
 }
 
 void Dispatcher::advance(const TaskRecord& record, const LiveView& live, double now_s) {
@@ -136,7 +153,10 @@ void Dispatcher::advance_unreported(const TaskRecord& record, const AgentReport&
                                     double now_s) {
   const std::string uav = uav_name(record.uav_id);
   if (record.state == TaskState::Dispatched) {
-    if (now_s - record.updated_s <= limits_.dispatch_timeout_s) return;
+    // From the dispatch, or from this manager's start: the time it was down is not the
+    // agent's fault.
+    const double since_s = std::max(record.updated_s, *started_s_);
+    if (now_s - since_s <= limits_.dispatch_timeout_s) return;
     const auto pending = pending_aborts_.find(record.task_id);
     if (pending != pending_aborts_.end()) {
       finish(record, TaskState::Aborted, pending->second.reason + " (" + uav + " never took it)",
@@ -160,6 +180,7 @@ void Dispatcher::finish(const TaskRecord& record, TaskState to, const std::strin
                         double now_s) {
   store_.set_state(record.task_id, to, reason, now_s);
   pending_aborts_.erase(record.task_id);
+  last_sent_s_.erase(record.task_id);
 }
 
 bool Dispatcher::agent_up(const LiveView& live, int uav_id, double now_s) const {
@@ -189,6 +210,7 @@ void Dispatcher::dispatch_idle_uavs(const LiveView& live, double now_s, Actions&
     next->state = TaskState::Dispatched;
     next->updated_s = now_s;
     next->reason = reason;
+    last_sent_s_[next->task_id] = now_s;
     actions.dispatch.push_back({uav_id, std::move(*next)});
   }
 }

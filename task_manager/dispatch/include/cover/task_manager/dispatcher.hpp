@@ -62,6 +62,9 @@ class Dispatcher {
   bool agent_up(const LiveView& live, int uav_id, double now_s) const;
   double silence_s(const LiveView& live, int uav_id, double now_s) const;
   void dispatch_idle_uavs(const LiveView& live, double now_s, Actions& actions);
+  void resend_untaken_dispatches(const LiveView& live, double now_s, Actions& actions);
+
+  static constexpr double kResendPeriod_s = 1.0;
 
   TaskStore& store_;
   TaskLimits limits_;
@@ -71,6 +74,8 @@ class Dispatcher {
   // The first step's time: an agent this Dispatcher has never heard counts as silent from
   // then, not from the epoch (a restarted manager waits for the heartbeats).
   std::optional<double> started_s_;
+  // When each Dispatched task was last sent (memory only: a restart re-sends at once).
+  std::map<std::string, double> last_sent_s_;
 };
 
 }  // namespace cover::task_manager
