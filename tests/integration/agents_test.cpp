@@ -153,11 +153,18 @@ class TaskStatusWatch {
  public:
   explicit TaskStatusWatch(cover::dds::Participant& participant)
       : reader_(participant.make_reader(cover::dds::topics::task_status())) {}
+  // `send` (re-)sends the request the status answers, every 300 ms until it is seen: a
+  // volatile request written just as the agent's reader matches can be missed.
   bool wait_for(const std::function<bool(const cover::msg::TaskStatus&)>& match,
-                std::chrono::milliseconds timeout) {
+                std::chrono::milliseconds timeout, const std::function<void()>& send = {}) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
+    auto next_send = std::chrono::steady_clock::now();
     std::uint64_t seen = 0;
     while (std::chrono::steady_clock::now() < deadline) {
+      if (send && std::chrono::steady_clock::now() >= next_send) {
+        send();
+        next_send += 300ms;
+      }
       const auto latest = reader_.latest();
       if (latest && match(latest->sample)) return true;
       if (reader_.wait_for_sample(50ms, seen)) seen = reader_.received_count();
@@ -192,20 +199,18 @@ void fly_task_over_dds_validate_and_abort() {
   cover::mission::Task bad = task;
   bad.task_id = "unknown-ugv";
   bad.processes[0].to_ugv = 5;
-  requests.write(cover::wire::to_msg(bad, 0.0));
   EXPECT_TRUE(statuses.wait_for(
       [](const cover::msg::TaskStatus& s) {
         return s.task_id == "unknown-ugv" && s.state == cover::msg::TaskState::TASK_REJECTED &&
                s.message.find("to_ugv") != std::string::npos;
       },
-      10s));
+      10s, [&] { requests.write(cover::wire::to_msg(bad, 0.0)); }));
 
-  requests.write(cover::wire::to_msg(task, 0.0));
   ASSERT_TRUE(statuses.wait_for(
       [](const cover::msg::TaskStatus& s) {
         return s.task_id == "scenario2" && s.state == cover::msg::TaskState::TASK_RUNNING;
       },
-      10s));
+      10s, [&] { requests.write(cover::wire::to_msg(task, 0.0)); }));
   ASSERT_TRUE(wait_for_world(
       world, [](const SharedWorld& w) { return w.uavs[0].state.position_m.z > 1.0; }, 20s));
   // The ground station sees the flight: 10 Hz status and the stage's reference.
@@ -225,22 +230,20 @@ void fly_task_over_dds_validate_and_abort() {
   EXPECT_TRUE(uav_status.wait_for_sample(1s, before + 5));  // ~10 Hz: 5 more within 1 s
   cover::mission::Task second = task;
   second.task_id = "while-busy";
-  requests.write(cover::wire::to_msg(second, 0.0));
   EXPECT_TRUE(statuses.wait_for(
       [](const cover::msg::TaskStatus& s) {
         return s.task_id == "while-busy" && s.state == cover::msg::TaskState::TASK_REJECTED;
       },
-      10s));
+      10s, [&] { requests.write(cover::wire::to_msg(second, 0.0)); }));
 
   cover::msg::TaskAbort abort;
   abort.task_id = "scenario2";
   abort.reason = "integration test";
-  aborts.write(abort);
   EXPECT_TRUE(statuses.wait_for(
       [](const cover::msg::TaskStatus& s) {
         return s.task_id == "scenario2" && s.state == cover::msg::TaskState::TASK_CANCELLED;
       },
-      10s));
+      10s, [&] { aborts.write(abort); }));
   // Hold, then land where it was: on the ground or a deck, disarmed by the agent itself.
   EXPECT_TRUE(wait_for_world(
       world,

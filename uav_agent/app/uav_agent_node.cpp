@@ -141,6 +141,12 @@ void UavAgentNode::step(double now_s) {
 
 void UavAgentNode::take_requests(double now_s) {
   while (const auto request = intake_.take_task()) {
+    // A sender re-sends until it sees the task taken: the task already flying is not new.
+    const mission::Task* current = loop_.task();
+    if (current && current->task_id == request->task_id &&
+        !mission::is_terminal(loop_.task_state())) {
+      continue;
+    }
     accept(wire::from_msg(*request), now_s);
   }
   while (const auto abort = intake_.take_abort()) {
