@@ -28,6 +28,11 @@ YamlReader::YamlReader(const YAML::Node& node, std::string context)
   }
 }
 
+std::string line_of(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.line >= 0 ? " (line " + std::to_string(mark.line + 1) + ")" : "";
+}
+
 YamlReader YamlReader::child(const std::string& key) {
   read_keys_.push_back(key);
   YAML::Node sub = node_.IsMap() ? node_[key] : YAML::Node();
@@ -43,7 +48,7 @@ void YamlReader::reject_unknown_keys() const {
   for (const auto& entry : node_) {
     const auto key = entry.first.as<std::string>();
     if (std::find(read_keys_.begin(), read_keys_.end(), key) == read_keys_.end()) {
-      throw ConfigError(context_ + ": unknown key '" + key + "'");
+      throw ConfigError(context_ + ": unknown key '" + key + "'" + line_of(entry.first));
     }
   }
 }

@@ -55,6 +55,9 @@ class YamlReader {
 // otherwise the struct's defaults stand. Use in `Params::load_file`.
 YamlReader open_section(const std::string& path, const std::string& section, bool required);
 
+// " (line N)" of a node read from a file, "" when it has no position (built in code).
+std::string line_of(const YAML::Node& node);
+
 // Throws ConfigError("<context>: <message>") when `condition` is false. For `valid()`.
 void check(bool condition, const std::string& context, const std::string& message);
 
@@ -75,14 +78,15 @@ void YamlReader::decode(const std::string& key, const YAML::Node& value_node, T&
       if (static_cast<int>(list.size()) != T::RowsAtCompileTime) {
         throw ConfigError(context_ + "." + key + ": expected " +
                           std::to_string(T::RowsAtCompileTime) + " numbers, got " +
-                          std::to_string(list.size()));
+                          std::to_string(list.size()) + line_of(value_node));
       }
       for (int i = 0; i < T::RowsAtCompileTime; ++i) value[i] = list[i];
     } else {
       value = value_node.as<T>();
     }
   } catch (const YAML::Exception& e) {
-    throw ConfigError(context_ + "." + key + ": wrong type or value (" + e.msg + ")");
+    throw ConfigError(context_ + "." + key + ": wrong type or value (" + e.msg + ")" +
+                      line_of(value_node));
   }
 }
 
@@ -99,7 +103,9 @@ template <typename T>
 void YamlReader::require(const std::string& key, T& value) {
   read_keys_.push_back(key);
   const YAML::Node value_node = node_.IsMap() ? node_[key] : YAML::Node();
-  if (!value_node) throw ConfigError(context_ + ": missing required key '" + key + "'");
+  if (!value_node) {
+    throw ConfigError(context_ + ": missing required key '" + key + "'" + line_of(node_));
+  }
   decode(key, value_node, value);
 }
 
