@@ -190,7 +190,10 @@ bool Dispatcher::agent_up(const LiveView& live, int uav_id, double now_s) const 
 
 double Dispatcher::silence_s(const LiveView& live, int uav_id, double now_s) const {
   const auto agent = live.agents.find(uav_id);
-  return now_s - (agent == live.agents.end() ? *started_s_ : agent->second.heard_s);
+  if (agent != live.agents.end()) return now_s - agent->second.heard_s;
+  // Never heard since this start: silent only once the restart grace has passed.
+  const double grace_left_s = limits_.restart_grace_s - limits_.heartbeat_timeout_s;
+  return now_s - *started_s_ - grace_left_s;
 }
 
 void Dispatcher::dispatch_idle_uavs(const LiveView& live, double now_s, Actions& actions) {

@@ -17,6 +17,7 @@ TaskLimits TaskLimits::load(config::YamlReader& reader) {
   reader.optional("max_vmax_m_s", limits.max_vmax_m_s);
   reader.optional("max_amax_m_s2", limits.max_amax_m_s2);
   reader.optional("heartbeat_timeout_s", limits.heartbeat_timeout_s);
+  reader.optional("restart_grace_s", limits.restart_grace_s);
   reader.optional("dispatch_timeout_s", limits.dispatch_timeout_s);
   reader.reject_unknown_keys();
   limits.validate();
@@ -37,6 +38,8 @@ void TaskLimits::validate() const {
   config::check(positive(max_vmax_m_s), ctx + ".max_vmax_m_s", "must be > 0");
   config::check(positive(max_amax_m_s2), ctx + ".max_amax_m_s2", "must be > 0");
   config::check(positive(heartbeat_timeout_s), ctx + ".heartbeat_timeout_s", "must be > 0");
+  config::check(std::isfinite(restart_grace_s) && restart_grace_s >= heartbeat_timeout_s,
+                ctx + ".restart_grace_s", "must be >= heartbeat_timeout_s");
   config::check(positive(dispatch_timeout_s), ctx + ".dispatch_timeout_s", "must be > 0");
 }
 

@@ -1,5 +1,6 @@
 #include "cover/mission/task.hpp"
 
+#include <cctype>
 #include <cmath>
 
 namespace cover::mission {
@@ -71,7 +72,22 @@ Task Task::load(config::YamlReader& reader) {
   return task;
 }
 
+bool is_valid_task_id(const std::string& id) {
+  if (id.empty() || id.size() > kMaxTaskIdLength) return false;
+  for (const char c : id) {
+    const bool allowed = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ||
+                         c == '.' || c == ':' || c == '@' || c == '/' || c == '+';
+    if (!allowed) return false;
+  }
+  return true;
+}
+
 void Task::validate(int ugv_count) const {
+  // An id a person can read back, that fits every string field of every DDS vendor, and
+  // that a log or a terminal prints as it is.
+  config::check(is_valid_task_id(task_id), "task_id",
+                "must be 1.." + std::to_string(kMaxTaskIdLength) +
+                    " characters of A-Z a-z 0-9 _ - . : @ / +");
   const std::string ctx = "task '" + task_id + "'";
   config::check(!processes.empty(), ctx + ".processes", "is empty: nothing to fly");
   config::check(uav_id >= 0, ctx + ".uav_id", "must be >= 0");

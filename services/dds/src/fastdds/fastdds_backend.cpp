@@ -2,6 +2,8 @@
 // that includes Fast DDS headers.
 #include "fastdds_backend.hpp"
 
+#include <cstdio>
+
 #include <arpa/inet.h>
 #include <ifaddrs.h>
 #include <net/if.h>
@@ -173,7 +175,8 @@ class FastWriter final : public WriterBackend {
              const QosProfile& profile)
       : core_(std::move(core)),
         ops_(*type.fastdds),
-        sample_(ops_.new_vendor_sample(), ops_.delete_vendor_sample) {
+        sample_(ops_.new_vendor_sample(), ops_.delete_vendor_sample),
+        topic_name_(topic) {
     fdds::DataWriterQos qos = fdds::DATAWRITER_QOS_DEFAULT;
     apply_common(profile, qos);
     // A 100 ms heartbeat (default 3 s) stops the loss of early reliable samples.
@@ -185,7 +188,14 @@ class FastWriter final : public WriterBackend {
   bool write(const void* neutral) override {
     std::lock_guard<std::mutex> lock(mutex_);
     ops_.to_vendor(neutral, sample_.get());
-    return writer_->write(sample_.get());
+    // Fast CDR throws when a sample outgrows the type's computed maximum (a string beyond
+    // fastddsgen's default bound of 255 characters): a refused write, not a dead process.
+    try {
+      return writer_->write(sample_.get());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "Fast DDS: sample refused on '%s': %s\n", topic_name_.c_str(), e.what());
+      return false;
+    }
   }
   bool wait_for_acknowledgments(std::chrono::milliseconds timeout) override {
     return writer_->wait_for_acknowledgments(to_duration(timeout.count() * 1e-3)) ==
@@ -202,6 +212,7 @@ class FastWriter final : public WriterBackend {
   const FastDdsTypeOps& ops_;
   std::mutex mutex_;
   OwnedSample sample_;  // vendor sample reused by every write: no allocation per sample
+  std::string topic_name_;
   fdds::DataWriter* writer_ = nullptr;
 };
 
@@ -234,7 +245,16 @@ class FastReader final : public ReaderBackend, private fdds::DataReaderListener 
  private:
   void on_data_available(fdds::DataReader* reader) override {
     fdds::SampleInfo info;
-    while (reader->take_next_sample(vendor_sample_.get(), &info) == ReturnCode_t::RETCODE_OK) {
+    // A malformed sample from a foreign writer must not end the process: skip it.
+    while (true) {
+      try {
+        if (reader->take_next_sample(vendor_sample_.get(), &info) != ReturnCode_t::RETCODE_OK) {
+          return;
+        }
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "Fast DDS: undecodable sample dropped: %s\n", e.what());
+        continue;
+      }
       if (!info.valid_data) continue;
       type_.fastdds->from_vendor(vendor_sample_.get(), neutral_sample_.get());
       handler_(neutral_sample_.get());

@@ -31,6 +31,10 @@ struct TransitionProcess {
   static TransitionProcess load(config::YamlReader& reader);
 };
 
+// Task ids: 1..64 characters of A-Z a-z 0-9 _ - . : @ / + (Task::validate checks it).
+inline constexpr std::size_t kMaxTaskIdLength = 64;
+bool is_valid_task_id(const std::string& id);
+
 // A task: processes executed in order; the reference frame switches k0 -> k1 -> ... -> kn.
 struct Task {
   std::string task_id = "task";
