@@ -67,6 +67,15 @@ TEST(Task, RejectsNaNPoint) {
   - {from_ugv: 0, to_ugv: 1, initial_point_m: [0, 0, .nan], transition_point_m: [0, 0, 1],
      final_point_m: [0, 0, 0.3]})",
                "processes[0].initial_point_m");
+  // From a file the error says where: the key and its line.
+  expect_error(R"(processes:
+  - from_ugv: 0
+    to_ugv: 1
+    initial_point_m: [0, 0, 1]
+    transition_point_m: [0, 0, 1]
+    final_point_m: [0, .inf, 0.3]
+    vmax_m_s: 1.0)",
+               "processes[0].final_point_m: must be finite numbers (line 6)");
 }
 
 TEST(Task, RejectsUnknownKeyAndAction) {

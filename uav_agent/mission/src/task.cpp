@@ -26,6 +26,14 @@ void check_point(const Eigen::Vector3d& point, const std::string& context) {
                 "is more than 100 m from its UGV (unit mistake?)");
 }
 
+// A NaN or infinity read from a file is reported where it is, with its line; the later
+// validation (which also guards tasks from the wire) would only name the key.
+void check_finite_at(const config::YamlReader& reader, const std::string& key, bool finite) {
+  if (finite) return;
+  throw config::ConfigError(reader.context() + "." + key + ": must be finite numbers" +
+                            config::line_of(reader.node()[key]));
+}
+
 }  // namespace
 
 const char* to_string(FinalAction action) {
@@ -53,6 +61,11 @@ TransitionProcess TransitionProcess::load(config::YamlReader& reader) {
   reader.optional("vmax_m_s", process.vmax_m_s);
   reader.optional("amax_m_s2", process.amax_m_s2);
   reader.reject_unknown_keys();
+  check_finite_at(reader, "initial_point_m", process.initial_point_m.allFinite());
+  check_finite_at(reader, "transition_point_m", process.transition_point_m.allFinite());
+  check_finite_at(reader, "final_point_m", process.final_point_m.allFinite());
+  check_finite_at(reader, "vmax_m_s", std::isfinite(process.vmax_m_s));
+  check_finite_at(reader, "amax_m_s2", std::isfinite(process.amax_m_s2));
   return process;
 }
 
