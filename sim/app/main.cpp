@@ -19,6 +19,7 @@
 #include "cover/shm/segment_name.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
+#include "cover/sim/percentile.hpp"
 #include "fleet.hpp"
 #include "sim_node.hpp"
 
@@ -44,16 +45,10 @@ struct CommandLine {
 
 std::string scenario_file(const std::string& name_or_path) {
   if (name_or_path.find('/') != std::string::npos ||
-      name_or_path.size() > 5 && name_or_path.substr(name_or_path.size() - 5) == ".yaml") {
+      (name_or_path.size() > 5 && name_or_path.substr(name_or_path.size() - 5) == ".yaml")) {
     return name_or_path;
   }
   return cover::sim::scenario_path(name_or_path);
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
 }
 
 nlohmann::json result_json(cover::sim::Fleet& fleet, const cover::sim::SimNode& node,
@@ -83,8 +78,8 @@ nlohmann::json result_json(cover::sim::Fleet& fleet, const cover::sim::SimNode& 
   if (fleet.uav_count() > 1) out["uavs"] = uavs;
   const auto& latency = node.latency_ms();
   if (!latency.empty()) {
-    out["latency_ms"] = {{"p50", percentile(latency, 0.5)},
-                         {"p99", percentile(latency, 0.99)},
+    out["latency_ms"] = {{"p50", cover::sim::percentile(latency, 0.5)},
+                         {"p99", cover::sim::percentile(latency, 0.99)},
                          {"samples", latency.size()}};
   }
   return out;

@@ -21,10 +21,6 @@ using namespace std::chrono_literals;
 // loopback round trip: a lost tick costs at most this.
 constexpr std::chrono::milliseconds kRepublishPeriod{20};
 
-std::chrono::milliseconds to_ms(double seconds) {
-  return std::chrono::milliseconds(static_cast<long>(seconds * 1000.0));
-}
-
 }  // namespace
 
 SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>& segment,
@@ -99,7 +95,8 @@ SimExit SimNode::run() {
 // writer: a tick published before that would be lost (volatile) and the run would differ
 // from the in-process one.
 bool SimNode::wait_for_agents() {
-  const auto deadline = std::chrono::steady_clock::now() + to_ms(params_.startup_timeout_s);
+  const auto deadline =
+      std::chrono::steady_clock::now() + clock::to_milliseconds(params_.startup_timeout_s);
   for (int u = 0; u < fleet_.uav_count(); ++u) {
     while (command_readers_[u].matched_writers() == 0 || trace_readers_[u].matched_writers() == 0) {
       if (process::ShutdownSignal::requested()) return false;
@@ -112,7 +109,7 @@ bool SimNode::wait_for_agents() {
     }
   }
   const std::size_t uavs = static_cast<std::size_t>(fleet_.uav_count());
-  if (!clock_writer_.wait_for_readers(uavs, to_ms(params_.startup_timeout_s))) {
+  if (!clock_writer_.wait_for_readers(uavs, clock::to_milliseconds(params_.startup_timeout_s))) {
     spdlog::error("only {} of {} UAV agents subscribed to cover/sim/clock",
                   clock_writer_.matched_readers(), uavs);
     return false;
@@ -162,7 +159,7 @@ SimNode::TickWait SimNode::wait_for_commands(std::int64_t tick_ns) {
   // The first tick is still start-up: an agent's reader may match the clock writer a
   // while after the writer matched it (discovery is not symmetric in time).
   const double timeout_s = fleet_.tick() == 0 ? params_.startup_timeout_s : params_.stall_timeout_s;
-  const auto deadline = std::chrono::steady_clock::now() + to_ms(timeout_s);
+  const auto deadline = std::chrono::steady_clock::now() + clock::to_milliseconds(timeout_s);
   for (int u = 0; u < fleet_.uav_count(); ++u) {
     // A tick (or its relative states) can be lost: to a reader that matched just after it
     // was written, or to best-effort delivery. Publish it again until answered; the

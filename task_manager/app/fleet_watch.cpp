@@ -5,10 +5,6 @@
 namespace cover::task_manager {
 namespace {
 
-double wall_s() {
-  return clock::ns_to_s(clock::system_ns());
-}
-
 AgentReport::AgentTask agent_task(msg::TaskState state) {
   using T = AgentReport::AgentTask;
   switch (state) {
@@ -49,7 +45,7 @@ void FleetWatch::on_uav_status(const msg::UavStatus& s) {
   std::lock_guard<std::mutex> lock(mutex_);
   AgentReport& report = view_.agents[static_cast<int>(s.uav_id)];
   report.uav_id = static_cast<int>(s.uav_id);
-  report.heard_s = wall_s();
+  report.heard_s = clock::system_s();
   report.task_id = s.task_id;
   // An agent without a task reports PENDING with no id: idle.
   report.task_state = s.task_id.empty() ? AgentReport::AgentTask::None : agent_task(s.task_state);
@@ -63,7 +59,7 @@ void FleetWatch::on_task_status(const msg::TaskStatus& s) {
 }
 
 void FleetWatch::on_ugv_imu(const msg::UgvImu& imu) {
-  const double now = wall_s();
+  const double now = clock::system_s();
   std::lock_guard<std::mutex> lock(mutex_);
   view_.ugv_imu_heard_s[static_cast<int>(imu.ugv_id)] = now;
 }

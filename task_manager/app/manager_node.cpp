@@ -12,10 +12,6 @@
 namespace cover::task_manager {
 namespace {
 
-double wall_s() {
-  return clock::ns_to_s(clock::system_ns());
-}
-
 // Far more than the requests in flight from every station within a resend period.
 constexpr std::size_t kRememberedReplies = 1024;
 
@@ -39,7 +35,7 @@ ManagerNode::ManagerNode(dds::Participant& participant, TaskStore& store, TaskLi
       reply_writer_(participant.make_writer(dds::topics::manager_reply())),
       dispatch_writer_(participant.make_writer(dds::topics::task_request())),
       abort_writer_(participant.make_writer(dds::topics::task_abort())),
-      listening_since_s_(wall_s()),
+      listening_since_s_(clock::system_s()),
       listen_first_s_(limits.heartbeat_timeout_s) {
   request_reader_ = participant.make_reader(
       dds::topics::manager_request(), [this](const msg::ManagerRequest& r) { on_request(r); });
@@ -62,7 +58,7 @@ int ManagerNode::run() {
       arrived_.wait_for(lock, period, [this] { return !requests_.empty(); });
       batch.swap(requests_);
     }
-    const double now = wall_s();
+    const double now = clock::system_s();
     const bool listened = now - listening_since_s_ >= listen_first_s_;
     if (listened) {
       while (!held_.empty()) {

@@ -25,28 +25,18 @@
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "cover/wire/task.hpp"
+#include "process_support.hpp"
 
 namespace {
+
+using cover::test::bin;
+using cover::test::quiet;
+using cover::test::shm_entries;
 
 using namespace std::chrono_literals;
 using cover::process::ChildProcess;
 using cover::sim::OffboardState;
 using cover::sim::SharedWorld;
-
-std::string bin(const std::string& name) {
-  return std::string(COVER_BIN_DIR) + "/" + name;
-}
-
-std::vector<std::string> dds_env(const std::string& vendor, int domain) {
-  return {"COVER_DDS=" + vendor, "COVER_DDS_DOMAIN=" + std::to_string(domain)};
-}
-
-cover::process::SpawnOptions quiet(const std::string& vendor, int domain, const std::string& log) {
-  cover::process::SpawnOptions options;
-  options.extra_env = dds_env(vendor, domain);
-  options.log_file = ::testing::TempDir() + log;
-  return options;
-}
 
 // Polls the simulator's world (ground truth) until `condition` holds or `timeout` passes.
 bool wait_for_world(cover::shm::SeqlockReader<SharedWorld>& world,
@@ -91,14 +81,6 @@ struct System {
     return cover::shm::segment_path(cover::shm::segment_name(domain, run_id));
   }
 };
-
-std::set<std::string> shm_entries() {
-  std::set<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator("/dev/shm")) {
-    names.insert(entry.path().filename().string());
-  }
-  return names;
-}
 
 // Nothing of ours is left in /dev/shm (the tests of this binary run serially).
 void expect_no_new_shm_entries(const std::set<std::string>& before) {

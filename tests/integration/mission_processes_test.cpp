@@ -15,19 +15,14 @@
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
 #include "cover/uav/controller_config.hpp"
+#include "process_support.hpp"
 
 namespace {
 
+using cover::test::shm_entries;
+
 namespace fs = std::filesystem;
 constexpr std::chrono::seconds kRunTimeout{300};
-
-std::set<std::string> shm_entries() {
-  std::set<std::string> names;
-  for (const auto& entry : fs::directory_iterator("/dev/shm")) {
-    names.insert(entry.path().filename().string());
-  }
-  return names;
-}
 
 struct LaunchRun {
   int exit_code = -1;

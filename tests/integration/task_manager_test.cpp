@@ -25,23 +25,17 @@
 #include "cover/task_manager/task_store.hpp"
 #include "cover/wire/task.hpp"
 #include "manager_client.hpp"
+#include "process_support.hpp"
 
 namespace {
+
+using cover::test::bin;
+using cover::test::quiet;
+using cover::test::shm_entries;
 
 using namespace std::chrono_literals;
 using cover::process::ChildProcess;
 namespace fs = std::filesystem;
-
-std::string bin(const std::string& name) {
-  return std::string(COVER_BIN_DIR) + "/" + name;
-}
-
-cover::process::SpawnOptions quiet(const std::string& vendor, int domain, const std::string& log) {
-  cover::process::SpawnOptions options;
-  options.extra_env = {"COVER_DDS=" + vendor, "COVER_DDS_DOMAIN=" + std::to_string(domain)};
-  options.log_file = ::testing::TempDir() + log;
-  return options;
-}
 
 // A standing system on its own domain: world, two UGV agents, one UAV agent (realtime, so
 // that an operator's abort finds the task in flight), and a task manager on `db`.

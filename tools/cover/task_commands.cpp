@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cover/clock/clock.hpp"
 #include "cover/config/config_error.hpp"
 #include "cover/dds/json_codec.hpp"
 #include "cover/mission/task.hpp"
@@ -20,10 +21,6 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr int kMaxUgvIds = 8;  // UGV ids a task file may name (0..7); the manager checks liveness
-
-std::chrono::milliseconds to_ms(double s) {
-  return std::chrono::milliseconds(static_cast<long>(s * 1000.0));
-}
 
 bool is_final(msg::ManagedTaskState s) {
   using S = msg::ManagedTaskState;
@@ -60,7 +57,7 @@ template <typename Body>
 int with_client(const dds::ParticipantOptions& dds, const TaskCommandOptions& options, Body body) {
   try {
     dds::Participant participant(dds);
-    ManagerClient client(participant, to_ms(options.timeout_s));
+    ManagerClient client(participant, clock::to_milliseconds(options.timeout_s));
     return body(client);
   } catch (const ManagerUnreachable& e) {
     std::cerr << "cover: " << e.what() << "\n";

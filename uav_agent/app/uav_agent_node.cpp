@@ -5,6 +5,7 @@
 #include <chrono>
 #include <thread>
 
+#include "cover/clock/clock.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/wire/control.hpp"
 #include "cover/wire/eigen.hpp"
@@ -17,9 +18,6 @@ namespace cover::uav_agent {
 namespace {
 using namespace std::chrono_literals;
 
-std::chrono::milliseconds to_ms(double seconds) {
-  return std::chrono::milliseconds(static_cast<long>(seconds * 1000.0));
-}
 }  // namespace
 
 UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
@@ -56,7 +54,8 @@ void UavAgentNode::run_lockstep() {
       // The heartbeat goes on between ticks (before the first, or while the simulator
       // waits for another agent): a ground side must see this agent is up.
       publish_status(last_step_s_);
-      if (std::chrono::steady_clock::now() - last_tick > to_ms(options_.silence_warning_s)) {
+      if (std::chrono::steady_clock::now() - last_tick >
+          clock::to_milliseconds(options_.silence_warning_s)) {
         spdlog::warn("no simulator tick on cover/sim/clock for {:.1f} s",
                      options_.silence_warning_s);
         last_tick = std::chrono::steady_clock::now();
@@ -67,7 +66,7 @@ void UavAgentNode::run_lockstep() {
     // Answer the first tick only once the task's inputs are connected: samples published
     // before that are lost, and the run would start later than the in-process one.
     if (!connected && loop_.task()) {
-      connected = inputs_.wait_for_writers(to_ms(options_.connect_timeout_s));
+      connected = inputs_.wait_for_writers(clock::to_milliseconds(options_.connect_timeout_s));
       if (connected) spdlog::info("inputs connected");
     }
     wait_for_inputs(*tick);
@@ -80,7 +79,8 @@ void UavAgentNode::run_lockstep() {
 void UavAgentNode::wait_for_inputs(const msg::SimClock& tick) {
   const mission::Task* task = loop_.task();
   if (!task) return;
-  const auto deadline = std::chrono::steady_clock::now() + to_ms(options_.input_wait_s);
+  const auto deadline =
+      std::chrono::steady_clock::now() + clock::to_milliseconds(options_.input_wait_s);
   auto arrived = [&] {
     for (const auto& p : task->processes) {
       for (const int k : {p.from_ugv, p.to_ugv}) {
@@ -113,9 +113,10 @@ void UavAgentNode::run_realtime() {
       reader = inputs_.relative_reader(controller->stage_machine().reference_ugv());
     }
     if (reader) {
-      if (reader->wait_for_sample(to_ms(period_s), seen)) seen = reader->received_count();
+      if (reader->wait_for_sample(clock::to_milliseconds(period_s), seen))
+        seen = reader->received_count();
     } else {
-      process::ShutdownSignal::wait_for(to_ms(period_s));
+      process::ShutdownSignal::wait_for(clock::to_milliseconds(period_s));
     }
     const auto now = clock_.now_s();
     if (now) {

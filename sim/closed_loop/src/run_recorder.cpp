@@ -1,5 +1,7 @@
 #include "cover/sim/run_recorder.hpp"
 
+#include "cover/sim/percentile.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,14 +9,6 @@ namespace cover::sim {
 namespace {
 
 using model::Stage;
-
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  const auto index = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index),
-                   values.end());
-  return values[index];
-}
 
 bool in_transition_stage(const mission::ControllerStatus& status) {
   return status.stage.state == mission::MissionState::Running &&

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 
@@ -21,6 +22,16 @@ inline double ns_to_s(std::int64_t ns) {
 // Rounded to the nearest nanosecond (truncating would read 0.01 s as 9999999 ns).
 inline std::int64_t s_to_ns(double s) {
   return std::llround(s * 1e9);
+}
+
+// The system clock in seconds since the Unix epoch (records, heartbeats of the ground side).
+inline double system_s() {
+  return ns_to_s(system_ns());
+}
+
+// A timeout given in seconds (parameters are) as the milliseconds the std waits take.
+inline std::chrono::milliseconds to_milliseconds(double seconds) {
+  return std::chrono::milliseconds(static_cast<long>(seconds * 1000.0));
 }
 
 }  // namespace cover::clock
