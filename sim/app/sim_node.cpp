@@ -25,8 +25,7 @@ constexpr std::chrono::milliseconds kRepublishPeriod{20};
 
 SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>& segment,
                  Fleet& fleet, SimRunOptions options, const SimProcessParams& params)
-    : participant_(participant),
-      fleet_(fleet),
+    : fleet_(fleet),
       options_(std::move(options)),
       params_(params),
       segment_(segment),
@@ -56,7 +55,6 @@ SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>&
         if (s.uav_id >= mailboxes_.size()) return;
         std::lock_guard<std::mutex> lock(mutex_);
         mailboxes_[s.uav_id].task_message = s.message;
-        if (const auto state = wire::from_msg(s.state)) mailboxes_[s.uav_id].task_state = *state;
       });
   segment_.write(fleet_.shared(), 0);
 }
@@ -249,11 +247,6 @@ SimExit SimNode::run_realtime() {
 std::string SimNode::task_message(int uav) const {
   std::lock_guard<std::mutex> lock(mutex_);
   return mailboxes_[uav].task_message;
-}
-
-mission::MissionState SimNode::task_state(int uav) const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return mailboxes_[uav].task_state;
 }
 
 }  // namespace cover::sim

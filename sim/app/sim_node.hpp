@@ -44,7 +44,6 @@ class SimNode {
   double wall_time_s() const { return wall_time_s_; }
   // The last task status message per UAV (the stage machine's one-line status).
   std::string task_message(int uav) const;
-  mission::MissionState task_state(int uav) const;
 
  private:
   struct Mailbox {
@@ -52,7 +51,6 @@ class SimNode {
     std::optional<msg::ControlTrace> trace;
     std::int64_t command_received_ns = -1;  // monotonic
     std::string task_message;
-    mission::MissionState task_state = mission::MissionState::NotStarted;
   };
 
   bool wait_for_agents();
@@ -65,7 +63,6 @@ class SimNode {
   void apply_commands(bool lockstep);
   void on_command(int uav, const msg::UavCommand& command);
 
-  dds::Participant& participant_;
   Fleet& fleet_;
   SimRunOptions options_;
   SimProcessParams params_;

@@ -22,8 +22,7 @@ using namespace std::chrono_literals;
 
 UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
                            uav::ControllerConfig config)
-    : participant_(participant),
-      options_(std::move(options)),
+    : options_(std::move(options)),
       loop_(options_.uav_id, options_.ugv_count, std::move(config)),
       inputs_(participant, options_.uav_id, options_.ugv_count),
       command_(participant, options_.uav_id),

@@ -46,7 +46,6 @@ class UavAgentNode {
   void publish_task_status_on_change(double now_s);
   void log_changes();
 
-  dds::Participant& participant_;
   AgentOptions options_;
   uav::UavLoop loop_;
   DdsUavInputs inputs_;
