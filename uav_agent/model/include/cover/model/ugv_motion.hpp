@@ -2,10 +2,20 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
+#include <cstdint>
 
 #include "cover/model/state.hpp"
 
 namespace cover::model {
+
+// Where a UGV's forward speed estimate comes from. A ground vehicle moves along its body x
+// axis (no side slip), so one signed number is its whole translational velocity in G_k.
+enum class SpeedSource : std::uint8_t {
+  None = 0,           // no valid estimate (driving straight without odometry, at start-up)
+  WheelOdometry = 1,  // the vehicle's wheel encoders
+  Imu = 2,            // lateral specific force over yaw rate, valid only while turning
+};
 
 // What the UAV knows of the reference UGV's motion, all in the UGV body frame G_k.
 // Over the prediction horizon `a` and `beta` are held constant and `Omega` integrates
@@ -15,6 +25,13 @@ struct UgvMotion {
   Eigen::Vector3d specific_force_m_s2{0.0, 0.0, kGravity_m_s2};
   Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_acceleration_rad_s2 = Eigen::Vector3d::Zero();
+  // Forward speed along G_k's x axis (negative: reversing) and where it comes from; only
+  // meaningful when speed_valid(). Not part of the dynamics model (which needs no world
+  // motion): the intercept law uses it to predict where the UGV will be.
+  double speed_m_s = 0.0;
+  SpeedSource speed_source = SpeedSource::None;
+
+  bool speed_valid() const { return speed_source != SpeedSource::None && std::isfinite(speed_m_s); }
 
   // The motion `dt_s` later under the horizon's assumption (constant a and beta).
   UgvMotion advanced(double dt_s) const {
