@@ -26,6 +26,9 @@ nlohmann::json summary_json(const ClosedLoopResult& r) {
           {"Lt", r.total_path_length_m},
           {"Ls", r.total_straight_length_m},
           {"ratio", number_or_null(ratio)},
+          {"bound_ratio", number_or_null(r.bound_straight_length_m > 0.0
+                                             ? r.bound_path_length_m / r.bound_straight_length_m
+                                             : std::nan(""))},
           {"mpc_median_us", r.mpc_median_us},
           {"mpc_p99_us", r.mpc_p99_us},
           {"plan_median_ms", r.plan_median_ms},

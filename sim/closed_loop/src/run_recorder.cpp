@@ -148,6 +148,27 @@ void RunRecorder::fill_action_errors(const World& world) {
   }
 }
 
+// The shortest path within the task's limits from every completed transition's start,
+// arriving by the stage's own end (transition_bound.hpp).
+void RunRecorder::fill_transition_bounds() {
+  for (TransitionRecord& r : result_.transitions) {
+    if (!r.completed) continue;
+    const mission::TransitionProcess& process = task_.processes[r.process_index];
+    TransitionBoundParams params;
+    params.vmax_m_s = process.vmax_m_s;
+    params.amax_m_s2 = process.amax_m_s2;
+    params.reach_tolerance_m = mission_.transition_reach_tolerance_m;
+    params.speed_threshold_m_s = mission_.speed_threshold_m_s;
+    const UgvMotionPattern target(scenario_.world.ugvs[process.to_ugv].pattern);
+    r.bound = shortest_transition_bound(target, r.start_time_s, r.start_world_m.head<2>(),
+                                        r.start_world_velocity_m_s.head<2>(),
+                                        r.end_time_s - r.start_time_s, params);
+    if (!r.bound.reached) continue;
+    result_.bound_path_length_m += r.bound.path_length_m;
+    result_.bound_straight_length_m += r.bound.straight_length_m;
+  }
+}
+
 // Flies every completed transition's start again with the eq. 30 law (approach_law.hpp).
 void RunRecorder::fill_eq30_law_transitions() {
   for (TransitionRecord& r : result_.transitions) {
@@ -197,6 +218,7 @@ ClosedLoopResult RunRecorder::finish(const World& world,
   }
   fill_action_errors(world);
   fill_eq30_law_transitions();
+  if (options_.transition_bounds) fill_transition_bounds();
   result_.success = task_succeeded(world);
   result_.mpc_median_us = percentile(mpc_us_, 0.5);
   result_.mpc_p99_us = percentile(mpc_us_, 0.99);

@@ -41,6 +41,7 @@ class RunRecorder {
   void record_path(const mission::ControllerStatus& status, const WorldState& world);
   void fill_action_errors(const World& world);
   void fill_eq30_law_transitions();
+  void fill_transition_bounds();
   bool task_succeeded(const World& world) const;
 
   const Scenario& scenario_;

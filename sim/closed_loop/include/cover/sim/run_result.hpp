@@ -7,6 +7,7 @@
 
 #include "cover/mission/stage_machine.hpp"
 #include "cover/sim/approach_law.hpp"
+#include "cover/sim/transition_bound.hpp"
 
 namespace cover::sim {
 
@@ -25,6 +26,9 @@ struct TransitionRecord {
   double straight_length_m = 0.0;  // L_s of this stage: |end - start| in the world
   // The same start flown by the eq. 30 law with a perfect controller (approach_law.hpp).
   ApproachLawResult eq30_law;
+  // The shortest path from the same start within the task's limits, arriving by this
+  // stage's own end (transition_bound.hpp): no flight within the limits is shorter.
+  TransitionBoundResult bound;
   // Over switch_window_s after the frame switch, per control step:
   double peak_rate_change_rad_s = 0.0;  // max |w_k - w_(k-1)| of the body-rate command
   double rms_rate_change_rad_s = 0.0;
@@ -51,6 +55,9 @@ struct ClosedLoopResult {
   // The same sums for the eq. 30 law flown from the same starts (approach_law.hpp).
   double eq30_law_path_length_m = 0.0;
   double eq30_law_straight_length_m = 0.0;
+  // ... and for the bound, over the completed transitions whose bound was reached.
+  double bound_path_length_m = 0.0;
+  double bound_straight_length_m = 0.0;
 
   // Mean absolute error per axis of the UAV (true relative position) to the reference
   // trajectory in the final stages, in the reference frame. NaN if no final stage ran.
