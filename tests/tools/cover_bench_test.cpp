@@ -3,6 +3,7 @@
 // plots.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,9 +13,11 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cover/process/child_process.hpp"
+#include "cover/sampc/sampc_params.hpp"
 
 namespace {
 
@@ -69,20 +72,34 @@ bool starts_with(const std::string& text, const std::string& prefix) {
   return text.compare(0, prefix.size(), prefix) == 0;
 }
 
-const std::set<std::string> kMethods = {"cover", "no-ref-vxy", "coni-mpc"};
+// Every SAMPC method (cover::sampc::kModes): the benchmarks run them all by default.
+std::set<std::string> all_methods() {
+  std::set<std::string> names;
+  for (const cover::sampc::Mode mode : cover::sampc::kModes)
+    names.insert(cover::sampc::to_string(mode));
+  return names;
+}
+const std::set<std::string> kMethods = all_methods();
+
+constexpr double kTwoPi = 6.283185307179586;
 
 }  // namespace
 
 TEST(CoverBench, Table1PrintsEveryMethodAndPlotsEachRun) {
   const auto svg = temp_dir() / "t1.svg";
-  const BenchRun run = run_bench({"table1", "--v", "0.5", "--w", "0.35", "--transitions", "1",
-                                  "--phases", "2", "--json", "--plot", svg.string()});
+  const auto transitions_svg = temp_dir() / "t1_transitions.svg";
+  const BenchRun run =
+      run_bench({"table1", "--v", "0.5", "--w", "0.35", "--transitions", "1", "--runs", "2",
+                 "--json", "--plot", svg.string(), "--plot-transitions", transitions_svg.string()});
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const auto out = nlohmann::json::parse(run.out);
   EXPECT_EQ(out["transitions_per_run"], 1);
+  EXPECT_EQ(out["sampling"], "uniform");
+  EXPECT_EQ(out["sample_seed"], 1);
   EXPECT_EQ(out["runs_per_row"], 2);
   EXPECT_EQ(out["plot"], svg.string());
-  ASSERT_EQ(out["rows"].size(), 3u);
+  EXPECT_EQ(out["transitions_plot"], transitions_svg.string());
+  ASSERT_EQ(out["rows"].size(), kMethods.size());
   std::set<std::string> methods;
   for (const auto& row : out["rows"]) {
     SCOPED_TRACE(row["method"].dump());
@@ -99,6 +116,9 @@ TEST(CoverBench, Table1PrintsEveryMethodAndPlotsEachRun) {
     EXPECT_NEAR(row["ratio"].get<double>(), row["Lt"].get<double>() / row["Ls"].get<double>(),
                 1e-12);
     EXPECT_TRUE(IsNumberIn(row["eq30_law_ratio"], 1.0, 2.0));
+    // The shortest paths within the limits: straight at best, never above what was flown.
+    EXPECT_TRUE(IsNumberIn(row["bound_ratio"], 1.0, row["ratio"].get<double>()));
+    EXPECT_EQ(row["bound_unreached"], 0);
     EXPECT_TRUE(IsFiniteNumber(row["realtime_factor"]));
     EXPECT_GT(row["realtime_factor"].get<double>(), 0.0);
     ASSERT_EQ(row["statuses"].size(), 2u);  // one per phase
@@ -113,6 +133,9 @@ TEST(CoverBench, Table1PrintsEveryMethodAndPlotsEachRun) {
       EXPECT_EQ(t["to"], 1);
       EXPECT_TRUE(IsNumberIn(t["duration_s"], 0.1, 60.0));
       EXPECT_TRUE(IsNumberIn(t["Lt"], t["Ls"].get<double>(), 20.0));
+      EXPECT_EQ(t["bound_reached"], true);
+      EXPECT_TRUE(IsNumberIn(t["bound_Lt"], t["bound_Ls"].get<double>(), t["Lt"].get<double>()));
+      EXPECT_TRUE(IsNumberIn(t["bound_arrival_s"], 0.1, t["duration_s"].get<double>()));
       ls += t["Ls"].get<double>();
     }
     EXPECT_NEAR(ls, row["Ls"].get<double>(), 1e-9);  // the row sums its transitions
@@ -123,7 +146,76 @@ TEST(CoverBench, Table1PrintsEveryMethodAndPlotsEachRun) {
   EXPECT_NE(read_file(temp_dir() / "t1_coni-mpc.svg").find("rad/s: coni-mpc"), std::string::npos);
   EXPECT_NE(read_file(temp_dir() / "t1_no-ref-vxy.svg").find("rad/s: no-ref-vxy"),
             std::string::npos);
+  // One transition per method in one picture, with the bound.
+  const std::string transitions = read_file(transitions_svg);
+  for (const std::string& method : kMethods)
+    EXPECT_NE(transitions.find(method + ": UAV"), std::string::npos) << method;
+  EXPECT_NE(transitions.find("shortest path (bound)"), std::string::npos);
   std::filesystem::remove_all(temp_dir());
+}
+
+std::vector<std::pair<double, double>> run_phases(const nlohmann::json& out) {
+  std::vector<std::pair<double, double>> phases;
+  for (const auto& p : out["run_phases_rad"]) phases.emplace_back(p[0], p[1]);
+  return phases;
+}
+
+// Uniform sampling draws both UGVs' phases over the whole turn, the same draws for every
+// method, other draws for another --sample-seed; stepped keeps G0 and steps G1.
+TEST(CoverBench, Table1SamplesStartingPhases) {
+  const std::vector<std::string> base = {"table1",        "--v", "0.5",    "--w",    "0.35",
+                                         "--transitions", "1",   "--json", "--runs", "8"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    const BenchRun run = run_bench(args);
+    EXPECT_EQ(run.exit_code, 0) << run.out;
+    return nlohmann::json::parse(run.out);
+  };
+  const auto cover = with({"--method", "cover"});
+  const auto coni = with({"--method", "coni-mpc"});
+  const auto other_seed = with({"--method", "cover", "--sample-seed", "2"});
+  const auto phases = run_phases(cover);
+  ASSERT_EQ(phases.size(), 8u);
+  EXPECT_EQ(phases, run_phases(coni));
+  EXPECT_NE(phases, run_phases(other_seed));
+  double g0_lo = kTwoPi, g0_hi = 0.0, g1_lo = kTwoPi, g1_hi = 0.0;
+  for (const auto& [g0, g1] : phases) {
+    EXPECT_TRUE(g0 >= 0.0 && g0 < kTwoPi && g1 >= 0.0 && g1 < kTwoPi) << g0 << ", " << g1;
+    g0_lo = std::min(g0_lo, g0), g0_hi = std::max(g0_hi, g0);
+    g1_lo = std::min(g1_lo, g1), g1_hi = std::max(g1_hi, g1);
+  }
+  // Eight uniform draws spread over more than half a turn for each UGV.
+  EXPECT_GT(g0_hi - g0_lo, 0.5 * kTwoPi);
+  EXPECT_GT(g1_hi - g1_lo, 0.5 * kTwoPi);
+  EXPECT_EQ(cover["rows"][0]["transitions"], 8);
+
+  const auto stepped = with({"--method", "cover", "--sampling", "stepped", "--phases", "3"});
+  EXPECT_EQ(stepped["sampling"], "stepped");
+  const auto steps = run_phases(stepped);
+  ASSERT_EQ(steps.size(), 3u);
+  for (std::size_t i = 1; i < steps.size(); ++i) {
+    EXPECT_DOUBLE_EQ(steps[i].first, steps[0].first);
+    EXPECT_NEAR(steps[i].second - steps[0].second, kTwoPi * i / 3.0, 1e-12);
+  }
+}
+
+// Scenario 1 on both of the paper's patterns, each beside its Table 3 value.
+TEST(CoverBench, ScenarioOneOnCirclesAndLines) {
+  for (const auto& [pattern, paper] :
+       std::vector<std::pair<std::string, double>>{{"circle", 1.11}, {"lines", 1.07}}) {
+    SCOPED_TRACE(pattern);
+    const BenchRun run = run_bench({"scenario", "1", "--pattern", pattern, "--json"});
+    ASSERT_EQ(run.exit_code, 0) << run.out;
+    const auto out = nlohmann::json::parse(run.out);
+    EXPECT_EQ(out["pattern"], pattern);
+    EXPECT_EQ(out["paper_ratio"], paper);
+    EXPECT_EQ(out["success"], true);
+    EXPECT_EQ(out["transitions"], 8);
+    EXPECT_TRUE(IsNumberIn(out["ratio"], 1.0, 2.0));
+    EXPECT_TRUE(IsNumberIn(out["bound_ratio"], 1.0, out["ratio"].get<double>()));
+    for (const auto& axis : out["tracking_error_m"]) EXPECT_TRUE(IsNumberIn(axis, 0.0, 0.05));
+  }
 }
 
 TEST(CoverBench, ScenarioTwoReportsTheIssueKeys) {
@@ -160,7 +252,7 @@ TEST(CoverBench, StabilityRowsPerMethod) {
   const auto out = nlohmann::json::parse(run.out);
   EXPECT_TRUE(IsNumberIn(out["window_s"], 0.1, 10.0));
   const auto& rows = out["rows"];
-  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_EQ(rows.size(), kMethods.size());
   std::set<std::string> methods;
   for (const auto& row : rows) {
     SCOPED_TRACE(row["method"].dump());
@@ -183,6 +275,9 @@ TEST(CoverBench, BadArgumentsAreUsageErrors) {
   EXPECT_NE(run_bench({"table1", "--method", "pid"}).exit_code, 0);
   EXPECT_NE(run_bench({"scenario", "7"}).exit_code, 0);
   EXPECT_NE(run_bench({"scenario", "2", "--method", "pid"}).exit_code, 0);
+  EXPECT_NE(run_bench({"scenario", "2", "--pattern", "lines"}).exit_code, 0);  // scenario 1's
+  EXPECT_NE(run_bench({"scenario", "1", "--pattern", "spiral"}).exit_code, 0);
+  EXPECT_NE(run_bench({"table1", "--sampling", "random"}).exit_code, 0);
   EXPECT_NE(run_bench({"stability", "--pattern", "spiral"}).exit_code, 0);
   EXPECT_NE(run_bench({"mpc", "--mode", "pid"}).exit_code, 0);
 }

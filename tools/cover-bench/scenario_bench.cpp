@@ -1,6 +1,7 @@
 // cover-bench scenario 1|2|3|4: the paper's real-world scenarios (sec. 5.2) in closed loop
 // with the simulator: success, landing / delivery errors on the deck, final-stage tracking
 // error per axis, and how much faster than real time the whole loop runs.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,26 @@
 #include "cover/sim/closed_loop_report.hpp"
 
 namespace {
+
+// Scenario 1's two UGV patterns (paper Table 3): the scenario file and the paper's L_t/L_s.
+struct Scenario1Pattern {
+  const char* name;
+  const char* file;
+  double paper_ratio;
+};
+constexpr Scenario1Pattern kScenario1Patterns[] = {{"circle", "scenario1", 1.11},
+                                                   {"lines", "scenario1_lines", 1.07}};
+
+const Scenario1Pattern& scenario1_pattern(const std::string& name) {
+  for (const Scenario1Pattern& p : kScenario1Patterns)
+    if (name == p.name) return p;
+  return kScenario1Patterns[0];
+}
+
+double out_ratio(const cover::sim::ClosedLoopResult& r) {
+  return r.total_straight_length_m > 0.0 ? r.total_path_length_m / r.total_straight_length_m
+                                         : std::nan("");
+}
 
 int run(const std::vector<std::string>& args) {
   CLI::App app{"The paper's scenarios 1-4 in closed loop (sec. 5.2)"};
@@ -25,12 +46,23 @@ int run(const std::vector<std::string>& args) {
   app.add_option("--seed", seed, "world seed (default: the scenario file's)");
   app.add_option("--method", method, cover::bench::joined_method_names(" | "))
       ->check(CLI::IsMember(cover::bench::method_names()));
+  std::string pattern = kScenario1Patterns[0].name;
+  std::vector<std::string> pattern_names;
+  for (const Scenario1Pattern& p : kScenario1Patterns) pattern_names.emplace_back(p.name);
+  CLI::Option* pattern_opt =
+      app.add_option("--pattern", pattern, "scenario 1 only: circle (default) | lines")
+          ->check(CLI::IsMember(pattern_names));
   CLI::Option* plot =
       app.add_option("--plot", plot_file, "write a top-view SVG (default file scenario<N>.svg)");
   plot->expected(0, 1);
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
 
-  const std::string name = "scenario" + std::to_string(number);
+  if (pattern_opt->count() > 0 && number != 1) {
+    std::cerr << "--pattern applies to scenario 1 only\n";
+    return 2;
+  }
+  const Scenario1Pattern* scenario1 = number == 1 ? &scenario1_pattern(pattern) : nullptr;
+  const std::string name = scenario1 ? scenario1->file : "scenario" + std::to_string(number);
   cover::sim::Scenario scenario = cover::sim::Scenario::load_file(cover::sim::scenario_path(name));
   if (app.count("--seed") > 0) scenario.world.seed = seed;
   const auto config = cover::uav::ControllerConfig::load_default(*cover::sampc::parse_mode(method));
@@ -51,11 +83,19 @@ int run(const std::vector<std::string>& args) {
     out["scenario"] = number;
     out["method"] = method;
     out["seed"] = scenario.world.seed;
+    if (scenario1) {
+      out["pattern"] = scenario1->name;
+      out["paper_ratio"] = scenario1->paper_ratio;
+    }
     if (plot->count() > 0) out["plot"] = plot_file;
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("Scenario %d (%s), method %s\n%s", number, scenario.description.c_str(),
                 method.c_str(), cover::sim::readable_summary(result).c_str());
+    if (scenario1) {
+      std::printf("  pattern           %s: Lt/Ls %.3f, paper (Table 3) %.2f\n", scenario1->name,
+                  out_ratio(result), scenario1->paper_ratio);
+    }
     if (plot->count() > 0) std::printf("  plot              %s\n", plot_file.c_str());
   }
   return result.success ? 0 : 3;

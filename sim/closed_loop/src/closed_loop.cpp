@@ -50,6 +50,7 @@ ClosedLoopResult ClosedLoop::run() const {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   result.realtime_factor =
       result.wall_time_s > 0.0 ? world.state().time_s / result.wall_time_s : 0.0;
+  if (options_.transition_bounds) recorder.add_transition_bounds(result);
   return result;
 }
 

@@ -150,8 +150,8 @@ void RunRecorder::fill_action_errors(const World& world) {
 
 // The shortest path within the task's limits from every completed transition's start,
 // arriving by the stage's own end (transition_bound.hpp).
-void RunRecorder::fill_transition_bounds() {
-  for (TransitionRecord& r : result_.transitions) {
+void RunRecorder::add_transition_bounds(ClosedLoopResult& result) const {
+  for (TransitionRecord& r : result.transitions) {
     if (!r.completed) continue;
     const mission::TransitionProcess& process = task_.processes[r.process_index];
     TransitionBoundParams params;
@@ -164,8 +164,8 @@ void RunRecorder::fill_transition_bounds() {
                                         r.start_world_velocity_m_s.head<2>(),
                                         r.end_time_s - r.start_time_s, params);
     if (!r.bound.reached) continue;
-    result_.bound_path_length_m += r.bound.path_length_m;
-    result_.bound_straight_length_m += r.bound.straight_length_m;
+    result.bound_path_length_m += r.bound.path_length_m;
+    result.bound_straight_length_m += r.bound.straight_length_m;
   }
 }
 
@@ -218,7 +218,6 @@ ClosedLoopResult RunRecorder::finish(const World& world,
   }
   fill_action_errors(world);
   fill_eq30_law_transitions();
-  if (options_.transition_bounds) fill_transition_bounds();
   result_.success = task_succeeded(world);
   result_.mpc_median_us = percentile(mpc_us_, 0.5);
   result_.mpc_p99_us = percentile(mpc_us_, 0.99);

@@ -8,8 +8,8 @@ struct ClosedLoopOptions {
   double switch_window_s = 2.0;        // command-change statistics window after each frame switch
   bool record_paths = true;            // keep world-frame paths (for plots)
   int record_every_control_steps = 5;  // path decimation (5: 20 Hz points)
-  // Compute each completed transition's shortest-path bound at the end of the run
-  // (transition_bound.hpp, some 30 ms per transition).
+  // The in-process harness computes each completed transition's shortest-path bound after
+  // the run (transition_bound.hpp, some 30 ms per transition, not in the wall time).
   bool transition_bounds = true;
 };
 
