@@ -109,7 +109,7 @@ struct Options {
   bool json = false;
   int transitions = 2;
   std::string sampling = "uniform";
-  int runs = 100;
+  int runs = 400;
   std::uint64_t sample_seed = 1;
   int phases = 12;
   std::optional<std::uint64_t> seed;  // none: the scenario file's
@@ -137,7 +137,7 @@ int parse_options(const std::vector<std::string>& args, Options& options) {
                  "starting phases: uniform (both UGVs drawn at random, default) | stepped "
                  "(G0 fixed, G1 1/phases of a turn further each run)")
       ->check(CLI::IsMember({"uniform", "stepped"}));
-  app.add_option("--runs", options.runs, "uniform sampling: runs per cell (default 100)")
+  app.add_option("--runs", options.runs, "uniform sampling: runs per cell (default 400)")
       ->check(CLI::Range(1, 10000));
   app.add_option("--sample-seed", options.sample_seed,
                  "uniform sampling: seed of the phase draws (default 1)");
