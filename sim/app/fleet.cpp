@@ -87,7 +87,10 @@ bool Fleet::finished() const {
 
 ClosedLoopResult Fleet::result(int u, const std::string& status, mission::MissionState state) {
   Uav& uav = uavs_[u];
-  return uav.recorder->finish(*uav.world, uav.last_status, status, state);
+  ClosedLoopResult result = uav.recorder->finish(*uav.world, uav.last_status, status, state);
+  // The same metrics as the in-process harness (its JSON equals ours on the same seed).
+  if (options_.transition_bounds) uav.recorder->add_transition_bounds(result);
+  return result;
 }
 
 }  // namespace cover::sim
