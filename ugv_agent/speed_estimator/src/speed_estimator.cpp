@@ -72,6 +72,18 @@ const char* to_string(SpeedSampleStatus status) {
   return "unknown";
 }
 
+const char* to_string(model::SpeedSource source) {
+  switch (source) {
+    case model::SpeedSource::None:
+      return "none";
+    case model::SpeedSource::WheelOdometry:
+      return "wheel odometry";
+    case model::SpeedSource::Imu:
+      return "imu";
+  }
+  return "unknown";
+}
+
 SpeedEstimator::SpeedEstimator(const SpeedEstimatorParams& params)
     : params_(params),
       odometry_tau_s_(time_constant_s(params.odometry_cutoff_hz)),

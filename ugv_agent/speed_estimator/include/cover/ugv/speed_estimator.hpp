@@ -64,6 +64,8 @@ enum class SpeedSampleStatus : std::uint8_t {
   RejectedStaleStamp,  // stamp not after the previous one of the same kind: ignored
 };
 const char* to_string(SpeedSampleStatus status);
+// "none", "wheel odometry", "imu": for logs.
+const char* to_string(model::SpeedSource source);
 
 // The UGV's forward speed along its body x axis. Wheel odometry when fresh (low-passed);
 // otherwise, for a ground vehicle without side slip, the lateral specific force is
