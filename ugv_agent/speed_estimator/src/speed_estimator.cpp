@@ -2,22 +2,9 @@
 
 #include <cmath>
 
-#include "cover/model/angles.hpp"
+#include "cover/ugv/first_order_lag.hpp"
 
 namespace cover::ugv {
-
-namespace {
-
-double time_constant_s(double cutoff_hz) {
-  return 1.0 / (model::kTwoPi * cutoff_hz);
-}
-
-// Exact step response weight of a first-order lag over dt (any dt > 0).
-double blend_weight(double dt_s, double tau_s) {
-  return 1.0 - std::exp(-dt_s / tau_s);
-}
-
-}  // namespace
 
 SpeedEstimatorParams SpeedEstimatorParams::load(cover::config::YamlReader& reader) {
   SpeedEstimatorParams p;
@@ -86,8 +73,8 @@ const char* to_string(model::SpeedSource source) {
 
 SpeedEstimator::SpeedEstimator(const SpeedEstimatorParams& params)
     : params_(params),
-      odometry_tau_s_(time_constant_s(params.odometry_cutoff_hz)),
-      imu_speed_tau_s_(time_constant_s(params.imu_speed_cutoff_hz)) {}
+      odometry_tau_s_(lag_time_constant_s(params.odometry_cutoff_hz)),
+      imu_speed_tau_s_(lag_time_constant_s(params.imu_speed_cutoff_hz)) {}
 
 void SpeedEstimator::reset() {
   odometry_ = Lowpass{};
@@ -112,7 +99,8 @@ SpeedSampleStatus SpeedEstimator::update_odometry(const WheelOdometrySample& sam
   if (!odometry_.started || dt_s > params_.odometry_timeout_s) {
     odometry_.value = sample.speed_m_s;
   } else {
-    odometry_.value += blend_weight(dt_s, odometry_tau_s_) * (sample.speed_m_s - odometry_.value);
+    odometry_.value +=
+        lag_blend_weight(dt_s, odometry_tau_s_) * (sample.speed_m_s - odometry_.value);
   }
   odometry_.started = true;
   odometry_.stamp_s = sample.stamp_s;
@@ -149,7 +137,7 @@ void SpeedEstimator::update_imu_speed(double stamp_s, double ratio_m_s) {
     s = ImuSpeed{true, stamp_s, stamp_s, ratio_m_s, 0.0};
     return;
   }
-  const double w = blend_weight(stamp_s - s.stamp_s, imu_speed_tau_s_);
+  const double w = lag_blend_weight(stamp_s - s.stamp_s, imu_speed_tau_s_);
   const double deviation = ratio_m_s - s.mean_m_s;
   s.mean_m_s += w * deviation;
   // Exponentially weighted variance (West's incremental form).
