@@ -17,7 +17,13 @@ const char* to_string(OffboardState state) {
 }
 
 RawImuSample to_raw(const ugv::ImuSample& sample) {
-  return {sample.stamp_s, Vec3(sample.specific_force_m_s2), Vec3(sample.angular_velocity_rad_s)};
+  RawImuSample raw;
+  raw.stamp_s = sample.stamp_s;
+  raw.specific_force_m_s2 = Vec3(sample.specific_force_m_s2);
+  raw.angular_velocity_rad_s = Vec3(sample.angular_velocity_rad_s);
+  raw.has_wheel_speed = sample.wheel_speed_m_s ? 1 : 0;
+  raw.wheel_speed_m_s = sample.wheel_speed_m_s.value_or(0.0);
+  return raw;
 }
 
 ugv::ImuSample from_raw(const RawImuSample& sample) {
@@ -25,6 +31,7 @@ ugv::ImuSample from_raw(const RawImuSample& sample) {
   s.stamp_s = sample.stamp_s;
   s.specific_force_m_s2 = sample.specific_force_m_s2.eigen();
   s.angular_velocity_rad_s = sample.angular_velocity_rad_s.eigen();
+  if (sample.has_wheel_speed != 0) s.wheel_speed_m_s = sample.wheel_speed_m_s;
   return s;
 }
 

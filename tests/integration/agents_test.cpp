@@ -23,6 +23,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/shm/segment_name.hpp"
 #include "cover/shm/seqlock_reader.hpp"
+#include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "cover/wire/task.hpp"
 #include "process_support.hpp"
@@ -173,6 +174,10 @@ void fly_task_over_dds_validate_and_abort() {
   auto aborts = station.make_writer(cover::dds::topics::task_abort());
   auto uav_status = station.make_reader(cover::dds::topics::uav_status(0));
   auto reference = station.make_reader(cover::dds::topics::uav_reference(0));
+  std::vector<cover::dds::Reader<cover::msg::UgvImu>> ugv_imu;
+  for (std::uint32_t k = 0; k < 2; ++k) {
+    ugv_imu.push_back(station.make_reader(cover::dds::topics::ugv_imu(k)));
+  }
   ASSERT_TRUE(requests.wait_for_readers(1, 20s));
   ASSERT_TRUE(aborts.wait_for_readers(1, 20s));
 
@@ -208,6 +213,17 @@ void fly_task_over_dds_validate_and_abort() {
   EXPECT_GT(status.solve_time_us, 0.0);
   EXPECT_TRUE(std::isfinite(status.distance_to_stage_point_m));
   EXPECT_GT(reference.latest()->sample.positions_m.size(), 2u);
+  // Each UGV agent publishes its wheel odometry speed (scenario 2's UGVs have it) beside
+  // the IMU: close to the simulator's true forward speed (1 % scale error, 0.02 m/s noise,
+  // a 32 ms low-pass, and a few ms between the sample and the world read here).
+  auto truth = std::make_unique<SharedWorld>();
+  for (std::uint32_t k = 0; k < 2; ++k) {
+    ASSERT_TRUE(ugv_imu[k].wait_for_sample(5s));
+    const cover::msg::UgvImu imu = ugv_imu[k].latest()->sample;
+    ASSERT_TRUE(world.read(*truth));
+    EXPECT_EQ(imu.speed_source, cover::msg::SpeedSource::SPEED_SOURCE_WHEEL_ODOMETRY) << k;
+    EXPECT_NEAR(imu.speed_m_s, cover::sim::true_forward_speed_m_s(truth->ugvs[k]), 0.1) << k;
+  }
   const auto before = uav_status.received_count();
   EXPECT_TRUE(uav_status.wait_for_sample(1s, before + 5));  // ~10 Hz: 5 more within 1 s
   cover::mission::Task second = task;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "cover/ugv/csv_replay_imu_source.hpp"
@@ -45,6 +46,30 @@ TEST(CsvReplayImuSource, ParsesAGoodFileWithCommentsAndPassesNanThrough) {
   EXPECT_EQ(samples[1].specific_force_m_s2.x(), -1e-3);
   EXPECT_EQ(samples[1].angular_velocity_rad_s.z(), -0.5);
   EXPECT_TRUE(std::isnan(samples[2].specific_force_m_s2.x()));
+}
+
+TEST(CsvReplayImuSource, ReadsTheOptionalWheelSpeedColumn) {
+  const std::string header =
+      "stamp_s,fx_m_s2,fy_m_s2,fz_m_s2,wx_rad_s,wy_rad_s,wz_rad_s,wheel_speed_m_s\n";
+  const std::vector<ImuSample> samples =
+      parse_imu_csv(write_temp_file("wheel.csv", header + "0.000,0,0.4,9.81,0,0,0.5,0.8\n"
+                                                          "0.005,0,0.4,9.81,0,0,0.5,\n"
+                                                          "0.010,0,0.4,9.81,0,0,0.5, -0.25 \n"
+                                                          "0.015,0,0.4,9.81,0,0,0.5,nan\n"));
+  ASSERT_EQ(samples.size(), 4u);
+  EXPECT_EQ(samples[0].wheel_speed_m_s, std::optional<double>(0.8));
+  EXPECT_FALSE(samples[1].wheel_speed_m_s.has_value());  // no reading with this sample
+  EXPECT_EQ(samples[2].wheel_speed_m_s, std::optional<double>(-0.25));
+  ASSERT_TRUE(samples[3].wheel_speed_m_s.has_value());  // the estimator rejects it
+  EXPECT_TRUE(std::isnan(*samples[3].wheel_speed_m_s));
+  // Without the column: no wheel speed at all; with it, 8 fields are required.
+  EXPECT_FALSE(parse_imu_csv(write_temp_file("nowheel.csv", kHeader + "0,0,0,9.8,0,0,0\n"))[0]
+                   .wheel_speed_m_s.has_value());
+  const std::string short_line = parse_error("short.csv", header + "0.0,0,0,9.8,0,0,0\n");
+  EXPECT_NE(short_line.find("short.csv:2: expected 8 columns, got 7"), std::string::npos)
+      << short_line;
+  const std::string bad = parse_error("badwheel.csv", header + "0.0,0,0,9.8,0,0,0,fast\n");
+  EXPECT_NE(bad.find("badwheel.csv:2: 'fast' is not a number"), std::string::npos) << bad;
 }
 
 TEST(CsvReplayImuSource, NamesTheLineOfAMalformedFile) {

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "cover/shm/segment.hpp"
@@ -62,6 +63,18 @@ class SimShmImuSourceTest : public ::testing::Test {
   std::string name_;
   std::unique_ptr<SeqlockWriter<SharedWorld>> writer_;
 };
+
+TEST_F(SimShmImuSourceTest, CarriesTheWheelSpeedReadWithASample) {
+  SimShmImuSource source(name_, kUgv, 1s);
+  ImuSample with = trace_sample(0);
+  with.wheel_speed_m_s = -0.375;  // reversing: passed as is
+  append_sample(*writer_, kUgv, with);
+  append_sample(*writer_, kUgv, trace_sample(1));
+  const std::vector<ImuSample> samples = read_samples(source, 2);
+  ASSERT_EQ(samples.size(), 2u);
+  EXPECT_EQ(samples[0].wheel_speed_m_s, std::optional<double>(-0.375));
+  EXPECT_FALSE(samples[1].wheel_speed_m_s.has_value());
+}
 
 TEST_F(SimShmImuSourceTest, DeliversExactlyTheWrittenSamplesInOrderNoneTwice) {
   SimShmImuSource source(name_, kUgv, 1s);

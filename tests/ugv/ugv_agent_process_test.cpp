@@ -16,6 +16,7 @@
 #include "cover/shm/segment.hpp"
 #include "cover/shm/segment_name.hpp"
 #include "cover/ugv/imu_filter.hpp"
+#include "cover/ugv/ugv_sensor_pipeline.hpp"
 #include "cover/wire/sensors.hpp"
 #include "ugv_test_support.hpp"
 
@@ -39,18 +40,21 @@ int private_domain() {
   return 100 + static_cast<int>(getpid() % 100);
 }
 
-// What the test expects on cover/ugv/k/imu: its own ImuFilter run on the same samples.
+// What the test expects on cover/ugv/k/imu: its own pipeline (filter and speed estimate)
+// run on the same samples.
 class ExpectedImu {
  public:
   void add(const cover::ugv::ImuSample& sample) {
-    if (!cover::ugv::accepted(filter_.update(sample))) return;
-    by_seq_.push_back(cover::wire::to_msg(filter_.output(), kUgv, seq_++));
+    if (!cover::ugv::accepted(pipeline_.update(sample).imu_status)) return;
+    by_seq_.push_back(cover::wire::to_msg(pipeline_.filter().output(), pipeline_.speed().estimate(),
+                                          kUgv, seq_++));
   }
   std::size_t size() const { return by_seq_.size(); }
   const UgvImu& at(std::uint32_t seq) const { return by_seq_.at(seq); }
 
  private:
-  cover::ugv::ImuFilter filter_{cover::ugv::ImuFilterParams::load_default()};
+  cover::ugv::UgvSensorPipeline pipeline_{cover::ugv::ImuFilterParams::load_default(),
+                                          cover::ugv::SpeedEstimatorParams::load_default()};
   std::uint32_t seq_ = 0;
   std::vector<UgvImu> by_seq_;
 };
@@ -150,12 +154,17 @@ class UgvAgentProcess : public ::testing::TestWithParam<Vendor> {
   void feed(int i, ExpectedImu& expected) {
     cover::ugv::ImuSample sample = trace_sample(i);
     if (i == kFaultySample) sample.specific_force_m_s2.x() = std::nan("");
+    if (i % 4 == 0) sample.wheel_speed_m_s = wheel_speed(i);  // 50 Hz odometry
+    if (i == kFaultyOdometry) sample.wheel_speed_m_s = std::nan("");
     cover::test::append_sample(*writer_, kUgv, sample);
     cover::test::append_sample(*writer_, kUgv + 1, trace_sample(1000 + i));
     expected.add(sample);
   }
 
-  static constexpr int kFaultySample = 40;  // NaN: the agent's filter must reject it too
+  static double wheel_speed(int i) { return 0.6 + 0.02 * std::sin(0.3 * i); }
+
+  static constexpr int kFaultySample = 40;    // NaN: the agent's filter must reject it too
+  static constexpr int kFaultyOdometry = 60;  // NaN wheel speed: the estimator rejects it
   std::string run_id_;
   std::string segment_;
   std::unique_ptr<SeqlockWriter<SharedWorld>> writer_;
@@ -191,6 +200,11 @@ TEST_P(UgvAgentProcess, PublishesExactlyWhatTheFilterComputesAndStopsOnSigint) {
   expect_equal_to_expected(received, expected);
   EXPECT_LE(missed, 2) << "best-effort samples lost in lockstep";
   EXPECT_GE(received.size(), expected.size() * 9 / 10);
+  // The published speed is the wheel odometry's, low-passed: sane, not just equal.
+  const UgvImu& last = received.at(last_seq);
+  EXPECT_EQ(last.speed_source, cover::msg::SpeedSource::SPEED_SOURCE_WHEEL_ODOMETRY);
+  EXPECT_NEAR(last.speed_m_s, 0.6, 0.03);
+  for (const auto& [seq, m] : received) EXPECT_TRUE(std::isfinite(m.speed_m_s)) << seq;
 
   EXPECT_TRUE(observer.wait_for_status(
       [&](const UgvStatus& s) {
@@ -216,18 +230,25 @@ INSTANTIATE_TEST_SUITE_P(BothVendors, UgvAgentProcess,
                          [](const auto& info) { return std::string(vendor_name(info.param)); });
 
 TEST(UgvAgentProcessCsv, ReplayPublishesItsSamplesAndExitsZero) {
-  std::string text = "# replay test\nstamp_s,fx_m_s2,fy_m_s2,fz_m_s2,wx_rad_s,wy_rad_s,wz_rad_s\n";
+  // With the optional wheel speed column, filled on the first 100 samples only.
+  std::string text =
+      "# replay test\nstamp_s,fx_m_s2,fy_m_s2,fz_m_s2,wx_rad_s,wy_rad_s,wz_rad_s,wheel_speed_m_s\n";
   ExpectedImu expected;
   constexpr int kSamples = 200;
   for (int i = 0; i < kSamples; ++i) {
     // Write with full precision and parse back: the agent sees exactly these doubles.
-    const cover::ugv::ImuSample s = trace_sample(i);
+    cover::ugv::ImuSample s = trace_sample(i);
     char line[256];
-    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.stamp_s,
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,", s.stamp_s,
                   s.specific_force_m_s2.x(), s.specific_force_m_s2.y(), s.specific_force_m_s2.z(),
                   s.angular_velocity_rad_s.x(), s.angular_velocity_rad_s.y(),
                   s.angular_velocity_rad_s.z());
     text += line;
+    if (i < kSamples / 2) {
+      s.wheel_speed_m_s = 0.5;
+      text += "0.5";
+    }
+    text += "\n";
     expected.add(s);
   }
   const std::string path = cover::test::write_temp_file("agent_replay.csv", text);
@@ -239,6 +260,13 @@ TEST(UgvAgentProcessCsv, ReplayPublishesItsSamplesAndExitsZero) {
   const auto received = observer.imu();
   expect_equal_to_expected(received, expected);
   EXPECT_EQ(received.count(kSamples - 1), 1u) << "the last sample never arrived";
+  ASSERT_TRUE(received.count(kSamples / 2 - 1)) << "the last sample with odometry never arrived";
+  EXPECT_EQ(received.at(kSamples / 2 - 1).speed_source,
+            cover::msg::SpeedSource::SPEED_SOURCE_WHEEL_ODOMETRY);
+  EXPECT_EQ(received.at(kSamples / 2 - 1).speed_m_s, 0.5);
+  // 0.5 s after the odometry stopped: the IMU's a_y / yaw_rate (about 0.1 / 0.35) or none.
+  EXPECT_NE(received.at(kSamples - 1).speed_source,
+            cover::msg::SpeedSource::SPEED_SOURCE_WHEEL_ODOMETRY);
   EXPECT_GE(received.size(), static_cast<std::size_t>(kSamples / 2));
 }
 

@@ -69,18 +69,49 @@ TEST(Wire, UgvImuFieldByField) {
   imu.specific_force_m_s2 = {0.25, -0.5, 9.75};
   imu.angular_velocity_rad_s = {0.01, -0.02, 0.3};
   imu.angular_acceleration_rad_s2 = {0.0, 0.5, -0.125};
-  const msg::UgvImu m = wire::to_msg(imu, 2, 77);
+  cover::ugv::SpeedEstimate speed;
+  speed.speed_m_s = -0.625;
+  speed.source = cover::model::SpeedSource::Imu;
+  const msg::UgvImu m = wire::to_msg(imu, speed, 2, 77);
   EXPECT_EQ(m.ugv_id, 2u);
   EXPECT_EQ(m.seq, 77u);
   EXPECT_EQ(m.stamp_ns, 1'005'000'000);
   expect_vec(m.specific_force_m_s2, imu.specific_force_m_s2);
   expect_vec(m.angular_velocity_rad_s, imu.angular_velocity_rad_s);
   expect_vec(m.angular_acceleration_rad_s2, imu.angular_acceleration_rad_s2);
+  EXPECT_EQ(m.speed_m_s, -0.625);
+  EXPECT_EQ(m.speed_source, msg::SpeedSource::SPEED_SOURCE_IMU);
   const mission::UgvImuMeasurement back = wire::from_msg(m);
   EXPECT_DOUBLE_EQ(back.stamp_s, imu.stamp_s);
   EXPECT_EQ(back.motion.specific_force_m_s2, imu.specific_force_m_s2);
   EXPECT_EQ(back.motion.angular_velocity_rad_s, imu.angular_velocity_rad_s);
   EXPECT_EQ(back.motion.angular_acceleration_rad_s2, imu.angular_acceleration_rad_s2);
+  EXPECT_EQ(back.motion.speed_m_s, -0.625);  // reversing passes as is
+  EXPECT_EQ(back.motion.speed_source, cover::model::SpeedSource::Imu);
+  EXPECT_TRUE(back.motion.speed_valid());
+
+  speed.source = cover::model::SpeedSource::WheelOdometry;
+  speed.speed_m_s = 0.75;
+  const mission::UgvImuMeasurement wheels = wire::from_msg(wire::to_msg(imu, speed, 2, 78));
+  EXPECT_EQ(wheels.motion.speed_source, cover::model::SpeedSource::WheelOdometry);
+  EXPECT_EQ(wheels.motion.speed_m_s, 0.75);
+}
+
+TEST(Wire, UgvImuHostileSpeedReadsAsNoEstimate) {
+  msg::UgvImu m = wire::to_msg(cover::ugv::FilteredImu{}, cover::ugv::SpeedEstimate{}, 0, 1);
+  EXPECT_EQ(m.speed_source, msg::SpeedSource::SPEED_SOURCE_NONE);
+  EXPECT_FALSE(wire::from_msg(m).motion.speed_valid());
+  for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    m.speed_m_s = bad;
+    m.speed_source = msg::SpeedSource::SPEED_SOURCE_WHEEL_ODOMETRY;
+    const mission::UgvImuMeasurement back = wire::from_msg(m);
+    EXPECT_EQ(back.motion.speed_source, cover::model::SpeedSource::None);
+    EXPECT_TRUE(std::isfinite(back.motion.speed_m_s));
+  }
+  m.speed_m_s = 0.5;
+  m.speed_source = static_cast<msg::SpeedSource>(99);  // a foreign writer's value
+  EXPECT_EQ(wire::from_msg(m).motion.speed_source, cover::model::SpeedSource::None);
+  EXPECT_FALSE(wire::from_msg(m).motion.speed_valid());
 }
 
 TEST(Wire, CommandFieldByField) {
@@ -217,6 +248,10 @@ TEST(Wire, EnumsMapOneToOne) {
   EXPECT_FALSE(wire::from_msg(msg::SolverStatus::SOLVER_NOT_RUNNING));
   expect_bijective<mission::FinalAction, msg::FinalAction>(
       {mission::FinalAction::None, mission::FinalAction::Land, mission::FinalAction::Deliver});
+  using cover::model::SpeedSource;
+  expect_bijective<SpeedSource, msg::SpeedSource>(
+      {SpeedSource::None, SpeedSource::WheelOdometry, SpeedSource::Imu});
+  EXPECT_EQ(msg::EnumCount<msg::SpeedSource>::value, 3u);  // no wire value left unmapped
   for (const auto stage : {cover::model::Stage::Initial, cover::model::Stage::Transition,
                            cover::model::Stage::Final}) {
     const msg::Stage w = wire::to_msg(stage, MissionState::Running);

@@ -11,8 +11,8 @@ ImuPublisher::ImuPublisher(cover::dds::Participant& participant, std::uint32_t u
       imu_writer_(participant.make_writer(cover::dds::topics::ugv_imu(ugv_id))),
       status_writer_(participant.make_writer(cover::dds::topics::ugv_status(ugv_id))) {}
 
-void ImuPublisher::publish_imu(const FilteredImu& imu) {
-  last_ = cover::wire::to_msg(imu, ugv_id_, seq_++);
+void ImuPublisher::publish_imu(const FilteredImu& imu, const SpeedEstimate& speed) {
+  last_ = cover::wire::to_msg(imu, speed, ugv_id_, seq_++);
   imu_writer_.write(*last_);
 }
 

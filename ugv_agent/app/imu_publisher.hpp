@@ -8,6 +8,7 @@
 #include "cover/dds/participant.hpp"
 #include "cover/msg/types.hpp"
 #include "cover/ugv/imu_filter.hpp"
+#include "cover/ugv/speed_estimator.hpp"
 
 namespace cover::ugv {
 
@@ -27,7 +28,7 @@ class ImuPublisher {
   ImuPublisher(cover::dds::Participant& participant, std::uint32_t ugv_id);
 
   // seq counts the published samples from 0, so a reader sees what it missed.
-  void publish_imu(const FilteredImu& imu);
+  void publish_imu(const FilteredImu& imu, const SpeedEstimate& speed);
   // The last sample again, same seq and stamp (nothing new from the device): the IMU
   // topic is best-effort, and a reader that matched just after a sample was sent, or
   // lost it, would otherwise wait for the next one. Readers judge age by the stamp.

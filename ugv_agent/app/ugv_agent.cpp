@@ -36,7 +36,7 @@ UgvAgent::UgvAgent(const UgvAgentParams& params, std::unique_ptr<ImuSource> sour
     : params_(params),
       source_(std::move(source)),
       publisher_(publisher),
-      filter_(params.imu_filter),
+      pipeline_(params.imu_filter, params.speed_estimator),
       health_monitor_(params.nominal_imu_rate_hz),
       source_name_(source_->describe()) {}
 
@@ -64,7 +64,12 @@ int UgvAgent::run() {
 }
 
 void UgvAgent::handle(const ImuSample& sample, std::int64_t now_ns) {
-  const ImuFilterStatus status = filter_.update(sample);
+  const UgvSensorResult result = pipeline_.update(sample);
+  if (sample.wheel_speed_m_s && result.odometry_status != SpeedSampleStatus::Accepted) {
+    ++odometry_rejected_;
+    log_odometry_rejection(result.odometry_status, now_ns);
+  }
+  const ImuFilterStatus status = result.imu_status;
   const bool ok = accepted(status);
   health_monitor_.on_sample(now_ns, ok);
   if (!ok) {
@@ -80,7 +85,23 @@ void UgvAgent::handle(const ImuSample& sample, std::int64_t now_ns) {
   }
   ++accepted_;
   last_stamp_s_ = sample.stamp_s;
-  publisher_.publish_imu(filter_.output());
+  log_speed_source(pipeline_.speed().estimate());
+  publisher_.publish_imu(pipeline_.filter().output(), pipeline_.speed().estimate());
+}
+
+void UgvAgent::log_odometry_rejection(SpeedSampleStatus status, std::int64_t now_ns) {
+  if (!due(odometry_log_, 1, now_ns)) return;
+  spdlog::warn(
+      "{} wheel odometry sample(s) rejected since the last report (latest: {}); {} in total",
+      odometry_log_.pending, to_string(status), odometry_rejected_);
+  odometry_log_.pending = 0;
+}
+
+// The source changes at most a few times a run (a UGV that starts or stops turning).
+void UgvAgent::log_speed_source(const SpeedEstimate& speed) {
+  if (speed.source == logged_speed_source_) return;
+  logged_speed_source_ = speed.source;
+  spdlog::info("speed estimate: {} ({:.3f} m/s)", to_string(speed.source), speed.speed_m_s);
 }
 
 void UgvAgent::log_rejection(ImuFilterStatus status, std::int64_t now_ns) {

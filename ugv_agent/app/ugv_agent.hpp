@@ -8,6 +8,7 @@
 #include "cover/ugv/imu_filter.hpp"
 #include "cover/ugv/imu_health.hpp"
 #include "cover/ugv/imu_source.hpp"
+#include "cover/ugv/ugv_sensor_pipeline.hpp"
 #include "imu_publisher.hpp"
 #include "ugv_agent_params.hpp"
 
@@ -18,8 +19,9 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitSourceFailed = 3;
 
-// The agent's loop: read the source, filter every sample, publish the accepted ones, keep
-// the health and the heartbeat. Runs until shutdown is requested or the source ends.
+// The agent's loop: read the source, run every sample through the UGV pipeline (filter,
+// speed estimate), publish the accepted ones, keep the health and the heartbeat. Runs until
+// shutdown is requested or the source ends.
 class UgvAgent {
  public:
   UgvAgent(const UgvAgentParams& params, std::unique_ptr<ImuSource> source,
@@ -37,6 +39,8 @@ class UgvAgent {
 
   void handle(const ImuSample& sample, std::int64_t now_ns);
   void log_rejection(ImuFilterStatus status, std::int64_t now_ns);
+  void log_odometry_rejection(SpeedSampleStatus status, std::int64_t now_ns);
+  void log_speed_source(const SpeedEstimate& speed);
   void log_lost_samples(std::uint64_t lost_total, std::int64_t now_ns);
   void update_health(std::int64_t now_ns);
   void publish_status();
@@ -45,7 +49,7 @@ class UgvAgent {
   UgvAgentParams params_;
   std::unique_ptr<ImuSource> source_;
   ImuPublisher& publisher_;
-  ImuFilter filter_;
+  UgvSensorPipeline pipeline_;
   ImuHealthMonitor health_monitor_;
   ImuHealth health_;
   std::string source_name_;
@@ -57,6 +61,9 @@ class UgvAgent {
   std::int64_t next_status_ns_ = 0;
   std::int64_t last_publish_ns_ = 0;  // when an IMU sample last went out (monotonic)
   RateLimitedLog rejections_log_;
+  RateLimitedLog odometry_log_;
+  std::uint32_t odometry_rejected_ = 0;
+  model::SpeedSource logged_speed_source_ = model::SpeedSource::None;
   RateLimitedLog lost_log_;
 };
 

@@ -66,6 +66,12 @@ constexpr std::array<std::pair<mission::FinalAction, msg::FinalAction>, 3> kFina
     {mission::FinalAction::Deliver, msg::FinalAction::FINAL_ACTION_DELIVER},
 }};
 
+constexpr std::array<std::pair<model::SpeedSource, msg::SpeedSource>, 3> kSpeedSources{{
+    {model::SpeedSource::None, msg::SpeedSource::SPEED_SOURCE_NONE},
+    {model::SpeedSource::WheelOdometry, msg::SpeedSource::SPEED_SOURCE_WHEEL_ODOMETRY},
+    {model::SpeedSource::Imu, msg::SpeedSource::SPEED_SOURCE_IMU},
+}};
+
 }  // namespace
 
 msg::Stage to_msg(Stage stage, MissionState state) {
@@ -102,6 +108,13 @@ msg::FinalAction to_msg(mission::FinalAction action) {
 }
 std::optional<mission::FinalAction> from_msg(msg::FinalAction action) {
   return wire_to_lib(kFinalActions, action);
+}
+
+msg::SpeedSource to_msg(model::SpeedSource source) {
+  return lib_to_wire(kSpeedSources, source, msg::SpeedSource::SPEED_SOURCE_NONE);
+}
+std::optional<model::SpeedSource> from_msg(msg::SpeedSource source) {
+  return wire_to_lib(kSpeedSources, source);
 }
 
 }  // namespace cover::wire

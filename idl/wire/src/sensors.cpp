@@ -1,6 +1,9 @@
 #include "cover/wire/sensors.hpp"
 
+#include <cmath>
+
 #include "cover/wire/eigen.hpp"
+#include "cover/wire/enums.hpp"
 
 namespace cover::wire {
 
@@ -28,7 +31,8 @@ std::optional<model::RelativeState> from_msg(const msg::RelativeState& m) {
   return state;
 }
 
-msg::UgvImu to_msg(const ugv::FilteredImu& imu, std::uint32_t ugv_id, std::uint32_t seq) {
+msg::UgvImu to_msg(const ugv::FilteredImu& imu, const ugv::SpeedEstimate& speed,
+                   std::uint32_t ugv_id, std::uint32_t seq) {
   msg::UgvImu m;
   m.ugv_id = ugv_id;
   m.stamp_ns = to_stamp_ns(imu.stamp_s);
@@ -36,6 +40,8 @@ msg::UgvImu to_msg(const ugv::FilteredImu& imu, std::uint32_t ugv_id, std::uint3
   m.specific_force_m_s2 = to_msg(imu.specific_force_m_s2);
   m.angular_velocity_rad_s = to_msg(imu.angular_velocity_rad_s);
   m.angular_acceleration_rad_s2 = to_msg(imu.angular_acceleration_rad_s2);
+  m.speed_m_s = speed.speed_m_s;
+  m.speed_source = to_msg(speed.source);
   return m;
 }
 
@@ -45,6 +51,11 @@ mission::UgvImuMeasurement from_msg(const msg::UgvImu& m) {
   imu.motion.specific_force_m_s2 = to_eigen(m.specific_force_m_s2);
   imu.motion.angular_velocity_rad_s = to_eigen(m.angular_velocity_rad_s);
   imu.motion.angular_acceleration_rad_s2 = to_eigen(m.angular_acceleration_rad_s2);
+  const std::optional<model::SpeedSource> source = from_msg(m.speed_source);
+  if (source && std::isfinite(m.speed_m_s)) {
+    imu.motion.speed_m_s = m.speed_m_s;
+    imu.motion.speed_source = *source;
+  }
   return imu;
 }
 

@@ -2,22 +2,9 @@
 
 #include <cmath>
 
-#include "cover/model/angles.hpp"
+#include "cover/ugv/first_order_lag.hpp"
 
 namespace cover::ugv {
-
-namespace {
-
-double time_constant_s(double cutoff_hz) {
-  return 1.0 / (model::kTwoPi * cutoff_hz);
-}
-
-// Exact step response weight of a first-order lag over dt: correct for any dt > 0.
-double blend_weight(double dt_s, double tau_s) {
-  return 1.0 - std::exp(-dt_s / tau_s);
-}
-
-}  // namespace
 
 ImuFilterParams ImuFilterParams::load(cover::config::YamlReader& reader) {
   ImuFilterParams p;
@@ -75,9 +62,9 @@ const char* to_string(ImuFilterStatus status) {
 
 ImuFilter::ImuFilter(const ImuFilterParams& params)
     : params_(params),
-      specific_force_tau_s_(time_constant_s(params.specific_force_cutoff_hz)),
-      angular_velocity_tau_s_(time_constant_s(params.angular_velocity_cutoff_hz)),
-      angular_acceleration_tau_s_(time_constant_s(params.angular_acceleration_cutoff_hz)) {}
+      specific_force_tau_s_(lag_time_constant_s(params.specific_force_cutoff_hz)),
+      angular_velocity_tau_s_(lag_time_constant_s(params.angular_velocity_cutoff_hz)),
+      angular_acceleration_tau_s_(lag_time_constant_s(params.angular_acceleration_cutoff_hz)) {}
 
 void ImuFilter::reset() {
   started_ = false;
@@ -114,16 +101,16 @@ ImuFilterStatus ImuFilter::update(const ImuSample& sample) {
     return ImuFilterStatus::RestartedAfterGap;
   }
 
-  output_.specific_force_m_s2 += blend_weight(dt_s, specific_force_tau_s_) *
+  output_.specific_force_m_s2 += lag_blend_weight(dt_s, specific_force_tau_s_) *
                                  (sample.specific_force_m_s2 - output_.specific_force_m_s2);
 
   // Differentiate the *filtered* gyro (noise already attenuated), then low-pass the
   // derivative: a "dirty derivative" whose cut-off bounds the noise gain.
   const Eigen::Vector3d previous_rate = output_.angular_velocity_rad_s;
-  output_.angular_velocity_rad_s +=
-      blend_weight(dt_s, angular_velocity_tau_s_) * (sample.angular_velocity_rad_s - previous_rate);
+  output_.angular_velocity_rad_s += lag_blend_weight(dt_s, angular_velocity_tau_s_) *
+                                    (sample.angular_velocity_rad_s - previous_rate);
   const Eigen::Vector3d raw_derivative = (output_.angular_velocity_rad_s - previous_rate) / dt_s;
-  output_.angular_acceleration_rad_s2 += blend_weight(dt_s, angular_acceleration_tau_s_) *
+  output_.angular_acceleration_rad_s2 += lag_blend_weight(dt_s, angular_acceleration_tau_s_) *
                                          (raw_derivative - output_.angular_acceleration_rad_s2);
 
   output_.stamp_s = sample.stamp_s;

@@ -13,7 +13,9 @@ namespace cover::ugv {
 namespace {
 
 constexpr const char* kHeader = "stamp_s,fx_m_s2,fy_m_s2,fz_m_s2,wx_rad_s,wy_rad_s,wz_rad_s";
-constexpr std::size_t kColumns = 7;
+// The optional eighth column: wheel odometry, empty on lines without a reading.
+constexpr const char* kWheelSpeedColumn = ",wheel_speed_m_s";
+constexpr std::size_t kImuColumns = 7;
 
 std::string trim(const std::string& text) {
   const auto first = text.find_first_not_of(" \t\r");
@@ -44,18 +46,21 @@ double parse_number(const std::string& field, const std::string& where) {
   return value;
 }
 
-ImuSample parse_line(const std::string& line, const std::string& where) {
+ImuSample parse_line(const std::string& line, const std::string& where, std::size_t columns) {
   const std::vector<std::string> fields = split_fields(line);
-  if (fields.size() != kColumns) {
-    throw CsvFormatError(where + ": expected " + std::to_string(kColumns) + " columns, got " +
+  if (fields.size() != columns) {
+    throw CsvFormatError(where + ": expected " + std::to_string(columns) + " columns, got " +
                          std::to_string(fields.size()));
   }
-  double v[kColumns];
-  for (std::size_t i = 0; i < kColumns; ++i) v[i] = parse_number(fields[i], where);
+  double v[kImuColumns];
+  for (std::size_t i = 0; i < kImuColumns; ++i) v[i] = parse_number(fields[i], where);
   ImuSample sample;
   sample.stamp_s = v[0];
   sample.specific_force_m_s2 = {v[1], v[2], v[3]};
   sample.angular_velocity_rad_s = {v[4], v[5], v[6]};
+  if (columns > kImuColumns && !fields[kImuColumns].empty()) {
+    sample.wheel_speed_m_s = parse_number(fields[kImuColumns], where);
+  }
   return sample;
 }
 
@@ -66,19 +71,24 @@ std::vector<ImuSample> parse_imu_csv(const std::string& path) {
   if (!file) throw CsvFormatError(path + ": cannot open the file");
   std::vector<ImuSample> samples;
   bool header_seen = false;
+  std::size_t columns = kImuColumns;
+  const std::string header_with_speed = std::string(kHeader) + kWheelSpeedColumn;
   std::string raw;
   for (int line_number = 1; std::getline(file, raw); ++line_number) {
     const std::string line = trim(raw);
     if (line.empty() || line.front() == '#') continue;
     const std::string where = path + ":" + std::to_string(line_number);
     if (!header_seen) {
-      if (line != kHeader) {
-        throw CsvFormatError(where + ": expected the header line '" + std::string(kHeader) + "'");
+      if (line == header_with_speed) {
+        columns = kImuColumns + 1;
+      } else if (line != kHeader) {
+        throw CsvFormatError(where + ": expected the header line '" + std::string(kHeader) +
+                             "' (optionally followed by '" + kWheelSpeedColumn + "')");
       }
       header_seen = true;
       continue;
     }
-    ImuSample sample = parse_line(line, where);
+    ImuSample sample = parse_line(line, where, columns);
     // Pacing needs the stamps; a bad stamp is a broken file, not a sensor fault.
     if (!std::isfinite(sample.stamp_s)) throw CsvFormatError(where + ": stamp_s is not finite");
     if (!samples.empty() && sample.stamp_s <= samples.back().stamp_s) {

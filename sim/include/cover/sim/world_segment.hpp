@@ -13,16 +13,19 @@ namespace cover::sim {
 // ground truth for tests and viewers, and each UGV's raw IMU, which the UGV agents read
 // as they would read their device. Fixed capacity, no pointers: memcpy-able. Bump the
 // layout version whenever a field changes.
-inline constexpr std::uint32_t kWorldSegmentLayoutVersion = 1;
+inline constexpr std::uint32_t kWorldSegmentLayoutVersion = 2;
 inline constexpr int kMaxUavs = 4;
 // Raw IMU samples kept per UGV: 64 at 200 Hz is 320 ms, far more than a reader lags.
 inline constexpr int kImuRingCapacity = 64;
 
-// One raw IMU sample (what the chip outputs), in G_k.
+// One raw IMU sample (what the chip outputs), in G_k, and the wheel odometry's forward
+// speed when it was read with this sample (UGVs with odometry, at the odometry rate).
 struct RawImuSample {
   double stamp_s = 0.0;
   Vec3 specific_force_m_s2;
   Vec3 angular_velocity_rad_s;
+  std::uint8_t has_wheel_speed = 0;  // 1: wheel_speed_m_s was read with this sample
+  double wheel_speed_m_s = 0.0;
 };
 
 // Sample n (0-based, counted since the start) lives in slots[n % kImuRingCapacity].

@@ -6,6 +6,7 @@
 #include "cover/mission/stage_machine.hpp"
 #include "cover/mission/task.hpp"
 #include "cover/model/stage.hpp"
+#include "cover/model/ugv_motion.hpp"
 #include "cover/msg/types.hpp"
 #include "cover/sampc/solve_status.hpp"
 
@@ -28,5 +29,8 @@ std::optional<sampc::SolveStatus> from_msg(msg::SolverStatus status);
 
 msg::FinalAction to_msg(mission::FinalAction action);
 std::optional<mission::FinalAction> from_msg(msg::FinalAction action);
+
+msg::SpeedSource to_msg(model::SpeedSource source);
+std::optional<model::SpeedSource> from_msg(msg::SpeedSource source);
 
 }  // namespace cover::wire

@@ -7,6 +7,7 @@
 #include "cover/model/relative_state.hpp"
 #include "cover/msg/types.hpp"
 #include "cover/ugv/imu_filter.hpp"
+#include "cover/ugv/speed_estimator.hpp"
 
 namespace cover::wire {
 
@@ -16,8 +17,11 @@ msg::RelativeState to_msg(const model::RelativeState& state, std::uint32_t uav_i
 // nullopt when the sender marked the state invalid (its estimator lost the UGV).
 std::optional<model::RelativeState> from_msg(const msg::RelativeState& state);
 
-// The UGV agent's filtered IMU (a, Omega, beta in G_k).
-msg::UgvImu to_msg(const ugv::FilteredImu& imu, std::uint32_t ugv_id, std::uint32_t seq);
+// The UGV agent's filtered IMU (a, Omega, beta in G_k) and its forward speed estimate.
+msg::UgvImu to_msg(const ugv::FilteredImu& imu, const ugv::SpeedEstimate& speed,
+                   std::uint32_t ugv_id, std::uint32_t seq);
+// A speed source the library does not know, or a non-finite speed, reads as no estimate
+// (SpeedSource::None, speed 0): the controller then falls back to what needs no speed.
 mission::UgvImuMeasurement from_msg(const msg::UgvImu& imu);
 
 }  // namespace cover::wire
