@@ -161,6 +161,7 @@ TEST(HorizonCost, YawIsHeldOnTheUgvAxis) {
 TEST(HorizonCost, CustomisedVelocityIsOnTheFirstFreeNodes) {
   SampcParams params;
   params.custom_velocity_nodes = 3;
+  params.eq30_acceleration_limit_m_s2 = 0.0;  // eq. 30 itself at every node
   const SampcInput in = example_input(Stage::Transition);
   const HorizonCost cost = build(params, in);
   for (int k = 1; k <= 3; ++k) {
@@ -175,6 +176,7 @@ TEST(HorizonCost, CustomisedVelocityIsOnTheFirstFreeNodes) {
 TEST(HorizonCost, FreeNodesTakeEq30AtTheirPredictedPosition) {
   SampcParams params;
   params.custom_velocity_nodes = 2;
+  params.eq30_acceleration_limit_m_s2 = 0.0;  // eq. 30 itself at every node
   const SampcInput in = example_input(Stage::Transition);
   std::array<model::UavState, kMaxHorizon + 1> predicted;
   for (int k = 0; k <= kMaxHorizon; ++k) {
@@ -194,6 +196,36 @@ TEST(HorizonCost, FreeNodesTakeEq30AtTheirPredictedPosition) {
   const HorizonCost without = build(params, in);
   EXPECT_EQ(cost.nodes[0].velocity_ref_m_s, without.nodes[0].velocity_ref_m_s);
   EXPECT_NE(cost.nodes[1].velocity_ref_m_s, without.nodes[1].velocity_ref_m_s);
+}
+
+// The UAV at rest, eq. 30 asking for ~1.5 m/s: node k's reference is at most limit * k dt
+// from the UAV's velocity relative to the UGV's translation, and eq. 30 once that reaches it.
+TEST(HorizonCost, Eq30ReferenceAsksOnlyForAReachableChange) {
+  SampcParams params;
+  params.custom_velocity_nodes = 20;
+  params.eq30_acceleration_limit_m_s2 = 2.0;
+  const SampcInput in = example_input(Stage::Transition);
+  SampcParams unlimited = params;
+  unlimited.eq30_acceleration_limit_m_s2 = 0.0;
+  const HorizonCost cost = build(params, in);
+  const HorizonCost law = build(unlimited, in);
+  const Vector3d omega = in.ugv.angular_velocity_rad_s;
+  const Vector3d p = in.uav_state.head<3>();
+  const Eigen::Vector2d now = (in.uav_state.segment<3>(3) + omega.cross(p)).head<2>();
+  EXPECT_EQ(cost.nodes[0].velocity_ref_m_s, law.nodes[0].velocity_ref_m_s);
+  bool limited_somewhere = false;
+  bool reached_somewhere = false;
+  for (int k = 1; k <= params.custom_velocity_nodes; ++k) {
+    const Eigen::Vector2d relative =
+        cost.nodes[k].velocity_ref_m_s.head<2>() + omega.cross(p).head<2>();
+    const double change = (relative - now).norm();
+    EXPECT_LE(change, 2.0 * k * params.step_s + 1e-12) << k;
+    const double to_law = (cost.nodes[k].velocity_ref_m_s - law.nodes[k].velocity_ref_m_s).norm();
+    limited_somewhere |= to_law > 1e-3;
+    reached_somewhere |= to_law < 1e-12;
+  }
+  EXPECT_TRUE(limited_somewhere);
+  EXPECT_TRUE(reached_somewhere);
 }
 
 // After a frame switch the target yaw can be 180 deg from the UAV's: the reference must
@@ -244,6 +276,8 @@ TEST(SampcParams, ShippedConfigLoadsAndEqualsTheDefaults) {
   EXPECT_EQ(loaded.yaw_rate_max_rad_s, defaults.yaw_rate_max_rad_s);
   EXPECT_EQ(loaded.yaw_reference_rate_rad_s, defaults.yaw_reference_rate_rad_s);
   EXPECT_EQ(loaded.custom_velocity_nodes, defaults.custom_velocity_nodes);
+  EXPECT_EQ(loaded.eq30_acceleration_limit_m_s2, defaults.eq30_acceleration_limit_m_s2);
+  EXPECT_EQ(loaded.frame_switch_iterations, defaults.frame_switch_iterations);
   EXPECT_EQ(loaded.switch_smoothing_s, defaults.switch_smoothing_s);
   EXPECT_EQ(loaded.switch_input_rate_weight, defaults.switch_input_rate_weight);
 }
@@ -266,6 +300,8 @@ TEST(SampcParams, RejectsBadValuesNamingTheKey) {
   EXPECT_THROW(load("thrust_max_m_s2: 9.0"), config::ConfigError);
   EXPECT_THROW(load("yaw_reference_rate_rad_s: 2.0"), config::ConfigError);  // > yaw rate bound
   EXPECT_THROW(load("custom_velocity_nodes: 0"), config::ConfigError);
+  EXPECT_THROW(load("eq30_acceleration_limit_m_s2: -1"), config::ConfigError);
+  EXPECT_THROW(load("frame_switch_iterations: 0"), config::ConfigError);
   EXPECT_THROW(load("switch_smoothing_s: -0.1"), config::ConfigError);
   EXPECT_THROW(load("switch_input_rate_weight: [0, -1, 0, 0]"), config::ConfigError);
 }

@@ -267,8 +267,18 @@ model::UavState in_switched_frame(const model::UavState& state) {
   return switched;
 }
 
+// The frame-switch tests below hold the transition stage on a still reference (v0d = 0):
+// eq. 30 then asks the UAV to keep its distance, on every node that carries it, against
+// the distance term pulling it in. With one such node the distance term wins, as these
+// tests (about the switch, not eq. 30) need; the mission always gives an approach speed.
+SampcParams switch_test_params() {
+  SampcParams params;
+  params.custom_velocity_nodes = 1;
+  return params;
+}
+
 TEST(Sampc, ResetAfterAFrameSwitchFliesOnWithoutErrors) {
-  const SampcParams params;
+  const SampcParams params = switch_test_params();
   Sampc mpc(params);
   SampcInput in;
   in.stage = Stage::Initial;
@@ -335,7 +345,7 @@ double peak_rate_step_after_switch(const SampcParams& params, SampcInput& in,
 // reset_frame() keeps the body-frame inputs and walks the body rates to the new stage's
 // optimum: a smaller step than a full reset, and the same destination.
 TEST(Sampc, FrameSwitchSmoothingLowersTheBodyRateStep) {
-  const SampcParams params;
+  const SampcParams params = switch_test_params();
   SampcInput reset_run, smoothed_run;
   const double reset_step =
       peak_rate_step_after_switch(params, reset_run, [](Sampc& mpc) { mpc.reset(); });
@@ -352,6 +362,40 @@ TEST(Sampc, FrameSwitchSmoothingLowersTheBodyRateStep) {
   const double unsmoothed_step = peak_rate_step_after_switch(unsmoothed, unsmoothed_run,
                                                              [](Sampc& mpc) { mpc.reset_frame(); });
   EXPECT_GT(unsmoothed_step, smoothed_step);
+}
+
+// After a frame switch the first solve spends frame_switch_iterations, a cold start
+// cold_start_iterations; one real-time iteration walks the command toward the new optimum
+// instead of jumping there.
+TEST(Sampc, FrameSwitchSpendsItsOwnIterationCount) {
+  SampcParams params;
+  params.sqp_step_tolerance = 1e-300;  // never converged: the counts are spent in full
+  params.cold_start_iterations = 4;
+  params.frame_switch_iterations = 2;
+  Sampc mpc(params);
+  SampcInput in;
+  in.stage = Stage::Initial;
+  in.uav_state = model::uav_state_at_rest(Vector3d(0.5, 0.5, 1.2));
+  in.reference = HorizonReference::hold(Vector3d(1.0, 0.0, 1.5));
+  EXPECT_EQ(mpc.solve(in).iterations, 4);
+  EXPECT_EQ(mpc.solve(in).iterations, 1);
+  mpc.reset_frame();
+  EXPECT_EQ(mpc.solve(in).iterations, 2);
+  EXPECT_EQ(mpc.solve(in).iterations, 1);
+}
+
+TEST(Sampc, OneIterationAtTheSwitchStepsTheBodyRatesLessThanConverging) {
+  SampcParams one = switch_test_params();
+  one.frame_switch_iterations = 1;
+  SampcParams five = one;
+  five.frame_switch_iterations = 5;
+  SampcInput one_run, five_run;
+  const double one_step =
+      peak_rate_step_after_switch(one, one_run, [](Sampc& mpc) { mpc.reset_frame(); });
+  const double five_step =
+      peak_rate_step_after_switch(five, five_run, [](Sampc& mpc) { mpc.reset_frame(); });
+  EXPECT_LT(one_step, five_step);
+  EXPECT_LT(one_run.uav_state.head<2>().norm(), 0.1);  // and it still gets there
 }
 
 // A sensor may hand over -q for q (e.g. as the yaw passes 180 deg). SAMPC aligns the

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <utility>
 
+#include "cover/mission/radial_approach.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 
 namespace cover::mission {
@@ -243,6 +244,28 @@ void MissionController::fill_reference(double t_s, sampc::HorizonReference& refe
   }
 }
 
+bool MissionController::flies_radial_approach() const {
+  return !holding_ && machine_.decision().stage == Stage::Transition &&
+         params_.transition_reference == TransitionReference::RadialApproach &&
+         sampc_.params().mode != sampc::Mode::ConiMpc;
+}
+
+void MissionController::fill_approach(const UgvInputs& inputs) {
+  const TransitionProcess& process = machine_.task().processes[machine_.decision().process_index];
+  const Eigen::Vector3d& p = inputs.state.position_m;
+  // The UAV's velocity relative to the UGV's translation (eq. 23's v + Omega x p).
+  const Eigen::Vector3d relative =
+      inputs.state.velocity_m_s + inputs.imu.motion.angular_velocity_rad_s.cross(p);
+  const double radius = p.head<2>().norm();
+  const double closing = radius > 1e-9 ? -relative.head<2>().dot(p.head<2>()) / radius : 0.0;
+  RadialApproachLimits limits;
+  limits.vmax_m_s = process.vmax_m_s;
+  limits.amax_m_s2 = process.amax_m_s2;
+  limits.brake_m_s2 = params_.approach_brake_fraction * process.amax_m_s2;
+  const sampc::SampcParams& sp = sampc_.params();
+  fill_radial_approach(p, closing, limits, sp.horizon_steps, sp.step_s, sampc_input_.reference);
+}
+
 void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s) {
   const double t_s = now_s - stage_start_s_;
   // Holding after a failure tracks a point: the x-y-z-ref weights of the final stage.
@@ -252,6 +275,7 @@ void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s
   const Eigen::Quaterniond q = inputs.state.attitude.normalized();
   sampc_input_.uav_state.segment<4>(model::idx::kQuaternion) << q.w(), q.x(), q.y(), q.z();
   fill_reference(t_s, sampc_input_.reference);
+  if (flies_radial_approach()) fill_approach(inputs);
   output_.status.reference_position_m = sampc_input_.reference.position_m[0];
   integrate_disturbance(inputs.state.position_m, sampc_input_.reference.position_m[0]);
   sampc_input_.ugv = inputs.imu.motion;

@@ -14,6 +14,16 @@ AbortAction parse_abort_action(const std::string& text, const std::string& conte
   }
   throw config::ConfigError(context + ".abort_action: '" + text + "' is not hover | land");
 }
+
+TransitionReference parse_transition_reference(const std::string& text,
+                                               const std::string& context) {
+  for (const TransitionReference reference :
+       {TransitionReference::Planned, TransitionReference::RadialApproach}) {
+    if (text == to_string(reference)) return reference;
+  }
+  throw config::ConfigError(context + ".transition_reference: '" + text +
+                            "' is not planned | radial-approach");
+}
 }  // namespace
 
 const char* to_string(AbortAction action) {
@@ -22,6 +32,16 @@ const char* to_string(AbortAction action) {
       return "hover";
     case AbortAction::Land:
       return "land";
+  }
+  return "unknown";
+}
+
+const char* to_string(TransitionReference reference) {
+  switch (reference) {
+    case TransitionReference::Planned:
+      return "planned";
+    case TransitionReference::RadialApproach:
+      return "radial-approach";
   }
   return "unknown";
 }
@@ -53,6 +73,10 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
   reader.optional("land_detect_gap_m", params.land_detect_gap_m);
   reader.optional("land_detect_speed_m_s", params.land_detect_speed_m_s);
   reader.optional("land_detect_time_s", params.land_detect_time_s);
+  std::string transition_reference = to_string(params.transition_reference);
+  reader.optional("transition_reference", transition_reference);
+  params.transition_reference = parse_transition_reference(transition_reference, reader.context());
+  reader.optional("approach_brake_fraction", params.approach_brake_fraction);
   reader.optional("control_period_s", params.control_period_s);
   reader.reject_unknown_keys();
   params.validate();
@@ -100,6 +124,8 @@ void MissionParams::validate() const {
   config::check(positive(land_detect_gap_m), ctx + ".land_detect_gap_m", "must be > 0");
   config::check(positive(land_detect_speed_m_s), ctx + ".land_detect_speed_m_s", "must be > 0");
   config::check(positive(land_detect_time_s), ctx + ".land_detect_time_s", "must be > 0");
+  config::check(positive(approach_brake_fraction) && approach_brake_fraction <= 1.0,
+                ctx + ".approach_brake_fraction", "must be in (0, 1]");
   config::check(positive(control_period_s) && control_period_s <= 0.1, ctx + ".control_period_s",
                 "must be in (0, 0.1]");
 }

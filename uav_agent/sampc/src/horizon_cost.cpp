@@ -161,6 +161,27 @@ Eigen::Vector2d eq30_velocity(const SampcParams& params, const Eigen::Vector3d& 
   return velocity;
 }
 
+// Eq. 30 at node k as far as the UAV can get there: eq. 30 asks for its velocity at once,
+// and at a frame switch it can be 2 m/s from the UAV's (the velocity of the UGV it left).
+// The UAV's velocity relative to the UGV's translation (v + Omega x p) moves toward eq. 30's
+// by at most eq30_acceleration_limit_m_s2 * k * dt at node k, so the horizon asks for a
+// change the UAV can make instead of an attitude step at the first node. Node 0 (the
+// measurement, which the cost cannot move) keeps eq. 30 itself, as the paper writes it.
+Eigen::Vector2d reachable_eq30_velocity(const SampcParams& params, const SampcInput& input,
+                                        const Eigen::Vector3d& at, double speed_xy, int k) {
+  const Eigen::Vector3d& omega = input.ugv.angular_velocity_rad_s;
+  const Eigen::Vector2d wanted = eq30_velocity(params, omega, at, speed_xy);
+  if (k == 0 || !(params.eq30_acceleration_limit_m_s2 > 0.0)) return wanted;
+  const Eigen::Vector3d p0 = input.uav_state.segment<3>(kPosition);
+  const Eigen::Vector3d v0 = input.uav_state.segment<3>(kVelocity);
+  const Eigen::Vector2d rotation_at = omega.cross(at).head<2>();
+  const Eigen::Vector2d translation_relative_now = (v0 + omega.cross(p0)).head<2>();
+  Eigen::Vector2d change = wanted + rotation_at - translation_relative_now;
+  const double reachable = params.eq30_acceleration_limit_m_s2 * k * params.step_s;
+  if (change.norm() > reachable) change *= reachable / change.norm();
+  return translation_relative_now + change - rotation_at;
+}
+
 // xy-z-ref (eqs. 28-35): track height and the squared horizontal distance to the UGV's
 // axis; the eq. 30 velocity reference; nose turning toward the UGV.
 void build_transition_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
@@ -196,7 +217,7 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
                                      ? Eigen::Vector3d(predicted_states[k].segment<3>(kPosition))
                                      : p;
       node.velocity_ref_m_s.head<2>() =
-          eq30_velocity(params, input.ugv.angular_velocity_rad_s, at, reference_speed_xy);
+          reachable_eq30_velocity(params, input, at, reference_speed_xy, k);
       node.velocity_weight = state_decay * w.velocity;
     } else {
       node.velocity_weight = Eigen::Vector3d(0.0, 0.0, state_decay * w.velocity.z());

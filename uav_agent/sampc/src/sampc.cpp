@@ -313,10 +313,12 @@ SampcOutput Sampc::feedback(const SampcInput& input) {
 
 SampcOutput Sampc::solve(const SampcInput& input) {
   Workspace& ws = *ws_;
-  const bool cold = !ws.has_guess || ws.reroll_states;
-  const int max_iterations =
-      cold ? std::max(ws.params.cold_start_iterations, ws.params.max_sqp_iterations)
-           : ws.params.max_sqp_iterations;
+  int max_iterations = ws.params.max_sqp_iterations;
+  if (!ws.has_guess) {
+    max_iterations = std::max(ws.params.cold_start_iterations, max_iterations);
+  } else if (ws.reroll_states) {
+    max_iterations = std::max(ws.params.frame_switch_iterations, max_iterations);
+  }
   ws.prepare(input, true);
   SampcOutput out = ws.feedback(input);
   double prepare_total = out.prepare_us;

@@ -94,12 +94,14 @@ SampcParams SampcParams::load(config::YamlReader& reader) {
   reader.optional("yaw_hold_radius_m", p.yaw_hold_radius_m);
   reader.optional("yaw_reference_rate_rad_s", p.yaw_reference_rate_rad_s);
   reader.optional("custom_velocity_nodes", p.custom_velocity_nodes);
+  reader.optional("eq30_acceleration_limit_m_s2", p.eq30_acceleration_limit_m_s2);
   reader.optional("switch_smoothing_s", p.switch_smoothing_s);
   reader.optional("switch_input_rate_weight", p.switch_input_rate_weight);
   reader.optional("yaw_flip_hysteresis_rad", p.yaw_flip_hysteresis_rad);
   reader.optional("yaw_reference_max_lag_rad", p.yaw_reference_max_lag_rad);
   reader.optional("max_sqp_iterations", p.max_sqp_iterations);
   reader.optional("cold_start_iterations", p.cold_start_iterations);
+  reader.optional("frame_switch_iterations", p.frame_switch_iterations);
   reader.optional("sqp_step_tolerance", p.sqp_step_tolerance);
   reader.optional("max_qp_iterations", p.max_qp_iterations);
   reader.optional("max_abs_position_m", p.max_abs_position_m);
@@ -150,6 +152,8 @@ void SampcParams::validate() const {
                 c + ".yaw_reference_max_lag_rad", "must be in (0, 1.5)");
   config::check(custom_velocity_nodes >= 1 && custom_velocity_nodes <= horizon_steps,
                 c + ".custom_velocity_nodes", "must be in [1, horizon_steps]");
+  config::check(std::isfinite(eq30_acceleration_limit_m_s2) && eq30_acceleration_limit_m_s2 >= 0.0,
+                c + ".eq30_acceleration_limit_m_s2", "must be >= 0 (0 disables)");
   config::check(
       std::isfinite(switch_smoothing_s) && switch_smoothing_s >= 0.0 && switch_smoothing_s <= 10.0,
       c + ".switch_smoothing_s", "must be in [0, 10]");
@@ -158,6 +162,7 @@ void SampcParams::validate() const {
       c + ".switch_input_rate_weight", "must be finite and >= 0");
   config::check(max_sqp_iterations >= 1, c + ".max_sqp_iterations", "must be >= 1");
   config::check(cold_start_iterations >= 1, c + ".cold_start_iterations", "must be >= 1");
+  config::check(frame_switch_iterations >= 1, c + ".frame_switch_iterations", "must be >= 1");
   config::check(positive(sqp_step_tolerance), c + ".sqp_step_tolerance", "must be > 0");
   config::check(max_qp_iterations >= 1, c + ".max_qp_iterations", "must be >= 1");
   config::check(positive(max_abs_position_m), c + ".max_abs_position_m", "must be > 0");

@@ -112,6 +112,8 @@ class MissionController {
   bool plan_stage(double now_s);
   void fill_reference(double t_s, sampc::HorizonReference& reference) const;
   void command_from_sampc(const UgvInputs& inputs, double now_s);
+  bool flies_radial_approach() const;
+  void fill_approach(const UgvInputs& inputs);
   void integrate_disturbance(const Eigen::Vector3d& position_m, const Eigen::Vector3d& reference_m);
   void update_observer(const model::Input& applied, double now_s);
   void hold_current_point(double now_s);

@@ -14,6 +14,14 @@ enum class AbortAction : std::uint8_t {
 };
 const char* to_string(AbortAction action);
 
+// Where the transition stage's horizontal reference (the squared distance SAMPC tracks and
+// eq. 30's approach speed) comes from.
+enum class TransitionReference : std::uint8_t {
+  Planned = 0,         // the stage's MINCO plan, as the paper does
+  RadialApproach = 1,  // a straight approach re-derived each step (radial_approach.hpp)
+};
+const char* to_string(TransitionReference reference);
+
 // Stage-machine and mission-controller parameters (config/mission.yaml). The paper gives
 // no numbers for the stage-end test; NOTES.md suggests 0.15 m / 0.3 m/s.
 struct MissionParams {
@@ -66,6 +74,11 @@ struct MissionParams {
   double land_detect_speed_m_s = 0.1;
   // ... for this long (s): the motors are disarmed.
   double land_detect_time_s = 0.5;
+  // The transition stage's horizontal reference, and the deceleration its radial approach
+  // plans to stop with, as a fraction of the process's amax (the rest is the margin SAMPC
+  // has to follow it).
+  TransitionReference transition_reference = TransitionReference::RadialApproach;
+  double approach_brake_fraction = 0.5;
   // Control period (the controller runs at 100 Hz).
   double control_period_s = 0.01;
 

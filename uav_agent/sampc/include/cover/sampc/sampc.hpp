@@ -40,7 +40,8 @@ struct SampcOutput {
 // quantities, so the previous input sequence stays the initial guess and only the states
 // are re-rolled from the new frame's measurement; for switch_smoothing_s node 0 also pays
 // for moving away from the previous command. reset() forgets everything: the next call
-// starts from a hover roll-out. Both spend cold_start_iterations SQP iterations next. No heap
+// starts from a hover roll-out and spends cold_start_iterations SQP iterations on it;
+// after reset_frame() the next call spends frame_switch_iterations. No heap
 // allocation after construction; no exceptions thrown by prepare/feedback/solve.
 class Sampc {
  public:

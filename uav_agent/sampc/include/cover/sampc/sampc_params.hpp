@@ -96,7 +96,11 @@ struct SampcParams {
   // nodes k = 1..n (x0 is fixed to the measurement in multiple shooting, so at k = 0 it
   // would cost nothing and steer nothing), each at its own predicted position. Must be in
   // [1, horizon_steps].
-  int custom_velocity_nodes = 1;
+  int custom_velocity_nodes = 10;
+  // Node k's eq. 30 reference is at most this * k * step_s (m/s) from the UAV's velocity
+  // relative to the UGV's translation now: eq. 30 asks for its velocity at once, which after
+  // a frame switch is an attitude step. 0 disables the limit.
+  double eq30_acceleration_limit_m_s2 = 2.0;
   // Frame switch (Sampc::reset_frame()): for `switch_smoothing_s` after it, node 0 also pays
   // switch_input_rate_weight * (u0 - previous command)^2, the weight ramping linearly from
   // full to 0. The new stage's optimum can differ sharply from the old plan (e.g. a pitch
@@ -110,6 +114,11 @@ struct SampcParams {
   // until the largest step component is below `sqp_step_tolerance`.
   int max_sqp_iterations = 1;
   int cold_start_iterations = 5;
+  // After a frame switch (reset_frame()) the previous inputs are a good guess and one
+  // iteration per control period moves the command toward the new stage's optimum over a
+  // few periods; converging at once steps the body rates (1.1 rad/s in one period on the
+  // circle with 5 iterations, 0.6 with 1).
+  int frame_switch_iterations = 1;
   double sqp_step_tolerance = 1e-6;
   int max_qp_iterations = 25;  // active-set changes per QP
 

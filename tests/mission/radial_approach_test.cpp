@@ -1,0 +1,89 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cover/mission/mission_params.hpp"
+#include "cover/mission/radial_approach.hpp"
+
+namespace cover::mission {
+namespace {
+
+using Eigen::Vector3d;
+
+constexpr int kNodes = 20;
+constexpr double kStep_s = 0.1;
+
+sampc::HorizonReference approach(const Vector3d& p, double closing_m_s,
+                                 const RadialApproachLimits& limits) {
+  sampc::HorizonReference reference = sampc::HorizonReference::hold(Vector3d(9.0, 9.0, 1.5));
+  fill_radial_approach(p, closing_m_s, limits, kNodes, kStep_s, reference);
+  return reference;
+}
+
+TEST(RadialApproach, ClosesOnTheAxisAlongTheLineWithinTheLimits) {
+  RadialApproachLimits limits;
+  limits.vmax_m_s = 1.0;
+  limits.amax_m_s2 = 2.0;
+  limits.brake_m_s2 = 1.0;
+  const Vector3d p(3.0, -4.0, 1.2);  // 5 m out
+  const sampc::HorizonReference r = approach(p, 0.2, limits);
+  const Eigen::Vector2d outward = p.head<2>().normalized();
+  double previous_radius = 5.0;
+  for (int k = 0; k <= kNodes; ++k) {
+    const Eigen::Vector2d at = r.position_m[k].head<2>();
+    EXPECT_NEAR(at.x() * outward.y() - at.y() * outward.x(), 0.0, 1e-12) << k;  // on the line
+    EXPECT_LE(at.norm(), previous_radius + 1e-12);
+    previous_radius = at.norm();
+    const double speed = r.velocity_m_s[k].head<2>().norm();
+    EXPECT_LE(speed, limits.vmax_m_s + 1e-12);
+    EXPECT_LE(speed, 0.2 + limits.amax_m_s2 * k * kStep_s + 1e-12);  // speeding up at amax
+    EXPECT_LT(r.velocity_m_s[k].head<2>().dot(outward), 1e-12);      // toward the axis
+    EXPECT_EQ(r.position_m[k].z(), 1.5);                             // heights are the plan's
+  }
+  EXPECT_NEAR(r.velocity_m_s[0].head<2>().norm(), 0.2, 1e-12);  // from the closing speed now
+  EXPECT_NEAR(r.velocity_m_s[kNodes].head<2>().norm(), 1.0, 1e-12);
+  // 2 s: 0.4 s speeding up from 0.2 to 1 m/s (0.24 m), then 1.6 s at 1 m/s.
+  EXPECT_NEAR(r.position_m[kNodes].head<2>().norm(), 5.0 - 0.24 - 1.6, 0.02);
+}
+
+TEST(RadialApproach, BrakesToAStopOnTheAxis) {
+  RadialApproachLimits limits;
+  limits.vmax_m_s = 1.5;
+  limits.brake_m_s2 = 1.0;
+  const sampc::HorizonReference r = approach(Vector3d(0.5, 0.0, 1.0), 1.0, limits);
+  for (int k = 0; k <= kNodes; ++k) {
+    const double radius = r.position_m[k].head<2>().norm();
+    EXPECT_LE(r.velocity_m_s[k].head<2>().norm(), std::sqrt(2.0 * radius) + 1e-12) << k;
+  }
+  EXPECT_LT(r.position_m[kNodes].head<2>().norm(), 1e-3);
+  EXPECT_LT(r.velocity_m_s[kNodes].head<2>().norm(), 0.05);
+}
+
+TEST(RadialApproach, MovingAwayStartsFromRestAndOnTheAxisStaysThere) {
+  const RadialApproachLimits limits;
+  const sampc::HorizonReference away = approach(Vector3d(2.0, 0.0, 1.0), -0.7, limits);
+  EXPECT_EQ(away.velocity_m_s[0].head<2>().norm(), 0.0);
+  EXPECT_GT(away.velocity_m_s[5].head<2>().norm(), 0.0);
+  const sampc::HorizonReference on_axis = approach(Vector3d(0.0, 0.0, 1.0), 0.0, limits);
+  for (int k = 0; k <= kNodes; ++k) {
+    EXPECT_TRUE(on_axis.position_m[k].allFinite());
+    EXPECT_EQ(on_axis.position_m[k].head<2>().norm(), 0.0);
+    EXPECT_EQ(on_axis.velocity_m_s[k].head<2>().norm(), 0.0);
+  }
+}
+
+TEST(MissionParams, TransitionReferenceIsParsedAndChecked) {
+  const auto load = [](const std::string& text) {
+    config::YamlReader reader(YAML::Load(text), "test:mission");
+    return MissionParams::load(reader);
+  };
+  EXPECT_EQ(load("transition_reference: planned").transition_reference,
+            TransitionReference::Planned);
+  EXPECT_EQ(load("{}").transition_reference, TransitionReference::RadialApproach);
+  EXPECT_THROW(load("transition_reference: curved"), config::ConfigError);
+  EXPECT_THROW(load("approach_brake_fraction: 0"), config::ConfigError);
+  EXPECT_THROW(load("approach_brake_fraction: 1.5"), config::ConfigError);
+}
+
+}  // namespace
+}  // namespace cover::mission

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <Eigen/Core>
+
+#include "cover/sampc/horizon_reference.hpp"
+
+namespace cover::mission {
+
+// The transition stage's horizontal reference as a straight approach to the target UGV's
+// axis, seen from where the UAV is now. At the transition stage SAMPC tracks only the
+// squared horizontal distance of the reference (xy-z-ref) and eq. 30's approach speed v0d.
+// Taking both from the stage's MINCO plan ties the approach to a path planned once, at the
+// frame switch, as if the frame did not turn: its radius shrinks at the plan's radial
+// speed, well below its speed when the start velocity points off the UGV, and the heavy
+// distance term holds the UAV to it (a Scenario 2 start closed at 0.95 m/s with vmax 1.5).
+// This reference closes the distance as eq. 30 intends, at the approach speed
+// min(vmax, sqrt(2 a_brake r)), reached from the current closing speed at most amax faster
+// per second, and is re-derived every control step from the measured distance.
+struct RadialApproachLimits {
+  double vmax_m_s = 1.0;    // the process's speed limit relative to the UGV
+  double amax_m_s2 = 2.0;   // the process's acceleration limit, for speeding up
+  double brake_m_s2 = 1.0;  // the deceleration the approach plans to stop with
+};
+
+// The approach speed at radius `radius_m`, `elapsed_s` after the closing speed was
+// `closing_speed_m_s`.
+double approach_speed_m_s(double radius_m, double closing_speed_m_s, double elapsed_s,
+                          const RadialApproachLimits& limits);
+
+// Overwrites the horizontal parts of nodes 0..horizon_steps of `reference` (spaced step_s):
+// positions on the line from the UAV's horizontal position `position_m` to the axis at the
+// approach's predicted radius, velocities along it at the approach speed (node 0's is eq.
+// 30's v0d). `closing_speed_m_s` is the UAV's speed toward the axis relative to the UGV's
+// translation now (negative: moving away). Heights are left as they are.
+void fill_radial_approach(const Eigen::Vector3d& position_m, double closing_speed_m_s,
+                          const RadialApproachLimits& limits, int horizon_steps, double step_s,
+                          sampc::HorizonReference& reference);
+
+}  // namespace cover::mission

@@ -1,0 +1,43 @@
+#include "cover/mission/radial_approach.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cover::mission {
+
+double approach_speed_m_s(double radius_m, double closing_speed_m_s, double elapsed_s,
+                          const RadialApproachLimits& limits) {
+  const double braking = std::sqrt(2.0 * limits.brake_m_s2 * std::max(radius_m, 0.0));
+  const double wanted = std::min(limits.vmax_m_s, braking);
+  // Speeding up is limited by amax; slowing down to the braking curve is not (the curve
+  // itself brakes at a_brake).
+  const double reachable = std::max(closing_speed_m_s, 0.0) + limits.amax_m_s2 * elapsed_s;
+  return std::min(wanted, reachable);
+}
+
+void fill_radial_approach(const Eigen::Vector3d& position_m, double closing_speed_m_s,
+                          const RadialApproachLimits& limits, int horizon_steps, double step_s,
+                          sampc::HorizonReference& reference) {
+  const Eigen::Vector2d horizontal = position_m.head<2>();
+  const double radius0 = horizontal.norm();
+  // On the axis the direction is undefined; any will do, the radius is zero there.
+  const Eigen::Vector2d outward =
+      radius0 > 1e-9 ? Eigen::Vector2d(horizontal / radius0) : Eigen::Vector2d::UnitX();
+  // Sub-steps of the horizon's step: the braking curve bends within one 0.1 s step.
+  constexpr int kSubsteps = 10;
+  const double h = step_s / kSubsteps;
+  double radius = radius0;
+  double elapsed = 0.0;
+  for (int k = 0; k <= horizon_steps; ++k) {
+    reference.position_m[k].head<2>() = outward * radius;
+    reference.velocity_m_s[k].head<2>() =
+        -outward * approach_speed_m_s(radius, closing_speed_m_s, elapsed, limits);
+    for (int i = 0; i < kSubsteps; ++i) {
+      radius -= h * approach_speed_m_s(radius, closing_speed_m_s, elapsed, limits);
+      radius = std::max(radius, 0.0);
+      elapsed += h;
+    }
+  }
+}
+
+}  // namespace cover::mission
