@@ -26,6 +26,10 @@ nlohmann::json summary_json(const ClosedLoopResult& r) {
           {"Lt", r.total_path_length_m},
           {"Ls", r.total_straight_length_m},
           {"ratio", number_or_null(ratio)},
+          {"eq30_law_ratio", number_or_null(r.eq30_law_straight_length_m > 0.0
+                                                ? r.eq30_law_path_length_m /
+                                                      r.eq30_law_straight_length_m
+                                                : std::nan(""))},
           {"bound_ratio", number_or_null(r.bound_straight_length_m > 0.0
                                              ? r.bound_path_length_m / r.bound_straight_length_m
                                              : std::nan(""))},
