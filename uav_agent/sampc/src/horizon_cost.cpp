@@ -195,8 +195,15 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
       const Eigen::Vector3d at = k > 0 && predicted_states != nullptr
                                      ? Eigen::Vector3d(predicted_states[k].segment<3>(kPosition))
                                      : p;
-      node.velocity_ref_m_s.head<2>() =
+      const Eigen::Vector2d eq30 =
           eq30_velocity(params, input.ugv.angular_velocity_rad_s, at, reference_speed_xy);
+      node.velocity_ref_m_s.head<2>() = eq30;
+      if (params.mode == Mode::Intercept) {
+        const InterceptVelocity law = intercept_velocity(
+            params.intercept, input.ugv, at, reference_speed_xy, eq30, input.speed_limit_m_s);
+        node.velocity_ref_m_s.head<2>() = law.velocity_m_s;
+        if (k == 0) cost.intercept = law;
+      }
       node.velocity_weight = state_decay * w.velocity;
     } else {
       node.velocity_weight = Eigen::Vector3d(0.0, 0.0, state_decay * w.velocity.z());
@@ -218,6 +225,7 @@ void build_horizon_cost(const SampcParams& params, const SampcInput& input, doub
                         HorizonCost& cost, const YawTrack& previous_yaw, double elapsed_s,
                         const model::UavState* predicted_states) {
   cost.horizon_steps = params.horizon_steps;
+  cost.intercept = InterceptVelocity{};
   cost.reference_mode = reference_mode_for(params.mode, input.stage);
   if (cost.reference_mode == ReferenceMode::XyzRef) {
     build_tracking_cost(params, input, previous_yaw, elapsed_s, cost);
