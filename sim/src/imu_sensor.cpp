@@ -48,7 +48,8 @@ ugv::ImuSample true_imu_sample(const UgvState& ugv, double gravity_m_s2, double 
 }
 
 ImuSensor::ImuSensor(const ImuSensorParams& params, const ugv::ImuFilterParams& filter_params,
-                     double physics_rate_hz, int ugv_count, double gravity_m_s2, std::uint64_t seed)
+                     const ugv::SpeedEstimatorParams& speed_params, double physics_rate_hz,
+                     int ugv_count, double gravity_m_s2, std::uint64_t seed)
     : params_(params),
       sample_period_steps_(
           static_cast<std::uint64_t>(std::llround(physics_rate_hz / params.rate_hz))),
@@ -60,7 +61,7 @@ ImuSensor::ImuSensor(const ImuSensorParams& params, const ugv::ImuFilterParams& 
     imu.rng.seed(derive_seed(seed, static_cast<std::uint64_t>(k)));
     imu.specific_force_bias_m_s2 = white_noise(imu, params_.specific_force_bias_sigma_m_s2);
     imu.angular_velocity_bias_rad_s = white_noise(imu, params_.angular_velocity_bias_sigma_rad_s);
-    imu.filter = ugv::ImuFilter(filter_params);
+    imu.pipeline = ugv::UgvSensorPipeline(filter_params, speed_params);
   }
 }
 
@@ -69,7 +70,7 @@ Eigen::Vector3d ImuSensor::white_noise(UgvImu& imu, double sigma) {
                                  imu.unit_normal(imu.rng));
 }
 
-void ImuSensor::update(const WorldState& world) {
+void ImuSensor::update(const WorldState& world, const OdometrySensor& odometry) {
   if (world.step_index % sample_period_steps_ != 0) return;
   for (int k = 0; k < ugv_count_; ++k) {
     UgvImu& imu = imus_[k];
@@ -81,10 +82,12 @@ void ImuSensor::update(const WorldState& world) {
     if (params_.fault_probability > 0.0 && imu.unit_uniform(imu.rng) < params_.fault_probability) {
       sample.angular_velocity_rad_s.x() = std::numeric_limits<double>::quiet_NaN();
     }
+    sample.wheel_speed_m_s = odometry.sampled_now(k);
     ImuReading& reading = latest_[k];
     reading.raw = sample;
-    reading.status = imu.filter.update(sample);
-    reading.filtered = imu.filter.output();
+    reading.status = imu.pipeline.update(sample).imu_status;
+    reading.filtered = imu.pipeline.filter().output();
+    reading.speed = imu.pipeline.speed().estimate();
   }
   has_reading_ = true;
 }

@@ -13,6 +13,7 @@ namespace {
 // Seed streams of the world's random sources (IMU streams use 0..kMaxUgvs-1 internally).
 constexpr std::uint64_t kRelativeSensorStream = 100;
 constexpr std::uint64_t kImuStream = 200;
+constexpr std::uint64_t kOdometryStream = 300;
 
 const WorldParams& validated(const WorldParams& params) {
   params.validate();
@@ -48,7 +49,9 @@ World::World(const WorldParams& params)
       relative_sensor_(params.relative_sensor, params.physics_rate_hz,
                        static_cast<int>(params.ugvs.size()),
                        derive_seed(params.seed, kRelativeSensorStream)),
-      imu_sensor_(params.imu, params.imu_filter, params.physics_rate_hz,
+      odometry_sensor_(params.odometry, params.physics_rate_hz, params.ugvs_with_odometry(),
+                       derive_seed(params.seed, kOdometryStream)),
+      imu_sensor_(params.imu, params.imu_filter, params.speed_estimator, params.physics_rate_hz,
                   static_cast<int>(params.ugvs.size()), params.gravity_m_s2,
                   derive_seed(params.seed, kImuStream)) {
   for (const auto& ugv : params_.ugvs) patterns_.emplace_back(ugv.pattern);
@@ -276,7 +279,8 @@ void World::update_payload() {
 
 void World::update_sensors() {
   relative_sensor_.update(state_);
-  imu_sensor_.update(state_);
+  odometry_sensor_.update(state_);
+  imu_sensor_.update(state_, odometry_sensor_);
 }
 
 }  // namespace cover::sim

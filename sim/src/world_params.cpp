@@ -11,10 +11,11 @@ namespace {
 using cover::config::check;
 
 // Sensors sample on physics steps, so their period must be a whole number of steps.
-void check_divides(double physics_rate_hz, double sensor_rate_hz, const std::string& key) {
-  const double ratio = physics_rate_hz / sensor_rate_hz;
+void check_divides(double base_rate_hz, double sensor_rate_hz, const std::string& key,
+                   const char* base_key = "physics_rate_hz") {
+  const double ratio = base_rate_hz / sensor_rate_hz;
   check(ratio >= 1.0 && std::abs(ratio - std::round(ratio)) < 1e-9, key,
-        "must divide physics_rate_hz (" + std::to_string(physics_rate_hz) + ")");
+        std::string("must divide ") + base_key + " (" + std::to_string(base_rate_hz) + ")");
 }
 
 }  // namespace
@@ -25,6 +26,7 @@ UgvParams UgvParams::load(cover::config::YamlReader& reader) {
   reader.optional("deck_height_m", p.deck_height_m);
   reader.optional("deck_half_length_m", p.deck_half_length_m);
   reader.optional("deck_half_width_m", p.deck_half_width_m);
+  reader.optional("has_wheel_odometry", p.has_wheel_odometry);
   auto pattern_reader = reader.child("pattern");
   p.pattern = UgvMotionPatternParams::load(pattern_reader);
   reader.reject_unknown_keys();
@@ -91,14 +93,25 @@ WorldParams WorldParams::load(cover::config::YamlReader& reader) {
   p.relative_sensor = RelativeSensorParams::load(relative);
   auto imu = reader.child("imu");
   p.imu = ImuSensorParams::load(imu);
+  auto odometry = reader.child("odometry");
+  p.odometry = OdometrySensorParams::load(odometry);
   // The agent's configuration owns the filter, so the in-process harness filters exactly
   // as cover-ugv-agent does.
   check(!reader.has("imu_filter"), reader.context() + ".imu_filter",
         "moved to config/ugv_agent.yaml (section ugv_agent.imu_filter)");
   p.imu_filter = ugv::ImuFilterParams::load_default();
+  check(!reader.has("speed_estimator"), reader.context() + ".speed_estimator",
+        "belongs to config/ugv_agent.yaml (section ugv_agent.speed_estimator)");
+  p.speed_estimator = ugv::SpeedEstimatorParams::load_default();
   reader.reject_unknown_keys();
   p.validate(reader.context());
   return p;
+}
+
+std::vector<bool> WorldParams::ugvs_with_odometry() const {
+  std::vector<bool> has;
+  for (const UgvParams& ugv : ugvs) has.push_back(ugv.has_wheel_odometry);
+  return has;
 }
 
 WorldParams WorldParams::load_file(const std::string& path) {
@@ -132,9 +145,13 @@ void WorldParams::validate(const std::string& context) const {
         context + ".payload.mass_kg", "must be in [0, uav mass_true_kg)");
   relative_sensor.validate(context + ".relative_sensor");
   imu.validate(context + ".imu");
+  odometry.validate(context + ".odometry");
   imu_filter.validate(context + ".imu_filter");
+  speed_estimator.validate(context + ".speed_estimator");
   check_divides(physics_rate_hz, relative_sensor.rate_hz, context + ".relative_sensor.rate_hz");
   check_divides(physics_rate_hz, imu.rate_hz, context + ".imu.rate_hz");
+  // Odometry rides on IMU samples, so each of its samples must fall on one.
+  check_divides(imu.rate_hz, odometry.rate_hz, context + ".odometry.rate_hz", "imu.rate_hz");
 }
 
 }  // namespace cover::sim

@@ -20,6 +20,8 @@ inline WorldParams noiseless_world(std::vector<UgvMotionPatternParams> patterns)
   params.imu.angular_velocity_noise_rad_s = 0.0;
   params.imu.specific_force_bias_sigma_m_s2 = 0.0;
   params.imu.angular_velocity_bias_sigma_rad_s = 0.0;
+  params.odometry.speed_noise_m_s = 0.0;
+  params.odometry.scale_error_sigma = 0.0;
   return params;
 }
 

@@ -8,6 +8,8 @@ UgvAgentParams UgvAgentParams::load(cover::config::YamlReader& reader) {
   UgvAgentParams p;
   auto filter = reader.child("imu_filter");
   p.imu_filter = ImuFilterParams::load(filter);
+  auto speed = reader.child("speed_estimator");
+  p.speed_estimator = SpeedEstimatorParams::load(speed);
   reader.optional("nominal_imu_rate_hz", p.nominal_imu_rate_hz);
   reader.optional("status_rate_hz", p.status_rate_hz);
   reader.optional("segment_wait_s", p.segment_wait_s);
@@ -31,6 +33,7 @@ void UgvAgentParams::validate(const std::string& context) const {
   check(std::isfinite(segment_wait_s) && segment_wait_s >= 0.0 && segment_wait_s <= 3600.0,
         context + ".segment_wait_s", "must be in [0, 3600] s");
   imu_filter.validate(context + ".imu_filter");
+  speed_estimator.validate(context + ".speed_estimator");
 }
 
 }  // namespace cover::ugv

@@ -4,12 +4,14 @@
 
 #include "cover/config/yaml_reader.hpp"
 #include "cover/ugv/imu_filter.hpp"
+#include "cover/ugv/speed_estimator.hpp"
 
 namespace cover::ugv {
 
 // The agent's parameters: section `ugv_agent` of config/ugv_agent.yaml (documents each key).
 struct UgvAgentParams {
   ImuFilterParams imu_filter;
+  SpeedEstimatorParams speed_estimator;
   double nominal_imu_rate_hz = 200.0;  // the simulator's IMU rate (config/sim world imu.rate_hz)
   double status_rate_hz = 1.0;         // heartbeat of cover/ugv/<k>/status
   double segment_wait_s = 10.0;        // sim source: how long the simulator may take to start

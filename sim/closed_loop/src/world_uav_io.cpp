@@ -12,7 +12,8 @@ bool WorldUavInputs::relative_state(int ugv, mission::RelativeMeasurement& out) 
 
 bool WorldUavInputs::ugv_imu(int ugv, mission::UgvImuMeasurement& out) {
   if (!world_.imu_sensor().has_reading() || ugv < 0 || ugv >= world_.ugv_count()) return false;
-  out = to_imu_measurement(world_.imu_sensor().latest(ugv).filtered);
+  const ImuReading& reading = world_.imu_sensor().latest(ugv);
+  out = to_imu_measurement(reading.filtered, reading.speed);
   return true;
 }
 
@@ -27,12 +28,15 @@ QuadrotorCommand to_plant_command(const mission::ControlCommand& command) {
   return plant;
 }
 
-mission::UgvImuMeasurement to_imu_measurement(const ugv::FilteredImu& imu) {
+mission::UgvImuMeasurement to_imu_measurement(const ugv::FilteredImu& imu,
+                                              const ugv::SpeedEstimate& speed) {
   mission::UgvImuMeasurement m;
   m.stamp_s = imu.stamp_s;
   m.motion.specific_force_m_s2 = imu.specific_force_m_s2;
   m.motion.angular_velocity_rad_s = imu.angular_velocity_rad_s;
   m.motion.angular_acceleration_rad_s2 = imu.angular_acceleration_rad_s2;
+  m.motion.speed_m_s = speed.speed_m_s;
+  m.motion.speed_source = speed.source;
   return m;
 }
 

@@ -6,8 +6,11 @@
 #include <random>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/world_state.hpp"
 #include "cover/ugv/imu_filter.hpp"
+#include "cover/ugv/speed_estimator.hpp"
+#include "cover/ugv/ugv_sensor_pipeline.hpp"
 
 namespace cover::sim {
 
@@ -31,18 +34,22 @@ struct ImuSensorParams {
 ugv::ImuSample true_imu_sample(const UgvState& ugv, double gravity_m_s2, double stamp_s);
 
 struct ImuReading {
-  ugv::ImuSample raw;         // what the IMU chip outputs
+  ugv::ImuSample raw;         // what the IMU chip outputs (with the wheel speed when sampled)
   ugv::FilteredImu filtered;  // what the UGV agent publishes (a, Omega, beta)
+  ugv::SpeedEstimate speed;   // and the forward speed estimate it publishes beside them
   ugv::ImuFilterStatus status = ugv::ImuFilterStatus::Started;
 };
 
 class ImuSensor {
  public:
   ImuSensor(const ImuSensorParams& params, const ugv::ImuFilterParams& filter_params,
-            double physics_rate_hz, int ugv_count, double gravity_m_s2, std::uint64_t seed);
+            const ugv::SpeedEstimatorParams& speed_params, double physics_rate_hz, int ugv_count,
+            double gravity_m_s2, std::uint64_t seed);
 
-  // Call after every physics step; samples every UGV's IMU at the sensor rate.
-  void update(const WorldState& world);
+  // Call after every physics step, after `odometry.update`: samples every UGV's IMU at
+  // the sensor rate, attaches the wheel speed sampled on the same step, and runs the UGV
+  // agent's pipeline (filter, speed estimate) on it.
+  void update(const WorldState& world, const OdometrySensor& odometry);
 
   bool has_reading() const { return has_reading_; }
   // 0 <= ugv_index < ugv count; meaningful once has_reading().
@@ -55,7 +62,7 @@ class ImuSensor {
     std::uniform_real_distribution<double> unit_uniform{0.0, 1.0};
     Eigen::Vector3d specific_force_bias_m_s2 = Eigen::Vector3d::Zero();
     Eigen::Vector3d angular_velocity_bias_rad_s = Eigen::Vector3d::Zero();
-    ugv::ImuFilter filter;
+    ugv::UgvSensorPipeline pipeline;
   };
   static Eigen::Vector3d white_noise(UgvImu& imu, double sigma);
 

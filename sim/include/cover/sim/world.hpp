@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "cover/sim/imu_sensor.hpp"
+#include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/quadrotor.hpp"
 #include "cover/sim/relative_sensor.hpp"
 #include "cover/sim/ugv_motion_pattern.hpp"
@@ -54,6 +55,7 @@ class World {
 
   const RelativeSensor& relative_sensor() const { return relative_sensor_; }
   const ImuSensor& imu_sensor() const { return imu_sensor_; }
+  const OdometrySensor& odometry_sensor() const { return odometry_sensor_; }
   const Quadrotor& quadrotor() const { return quadrotor_; }
 
  private:
@@ -84,6 +86,7 @@ class World {
   Quadrotor quadrotor_;
   std::vector<UgvMotionPattern> patterns_;
   RelativeSensor relative_sensor_;
+  OdometrySensor odometry_sensor_;
   ImuSensor imu_sensor_;
   WorldState state_;
 };

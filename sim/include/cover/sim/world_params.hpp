@@ -7,10 +7,12 @@
 
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sim/imu_sensor.hpp"
+#include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/quadrotor.hpp"
 #include "cover/sim/relative_sensor.hpp"
 #include "cover/sim/ugv_motion_pattern.hpp"
 #include "cover/ugv/imu_filter.hpp"
+#include "cover/ugv/speed_estimator.hpp"
 
 namespace cover::sim {
 
@@ -20,6 +22,7 @@ struct UgvParams {
   double deck_height_m = 0.3;       // height of the deck centre (G_k origin) above ground
   double deck_half_length_m = 0.3;  // deck footprint along the UGV's x (contact area)
   double deck_half_width_m = 0.25;  // deck footprint along the UGV's y
+  bool has_wheel_odometry = true;   // wheel encoders give the speed estimate its best source
 
   static UgvParams load(cover::config::YamlReader& reader);
   void validate(const std::string& context) const;
@@ -54,9 +57,14 @@ struct WorldParams {
   PayloadParams payload;
   RelativeSensorParams relative_sensor;
   ImuSensorParams imu;
-  // Not read from the world file: load() takes it from config/ugv_agent.yaml, the agent's
-  // configuration, so that in-process and multi-process runs filter alike.
+  OdometrySensorParams odometry;
+  // Not read from the world file: load() takes them from config/ugv_agent.yaml, the
+  // agent's configuration, so that in-process and multi-process runs filter alike.
   ugv::ImuFilterParams imu_filter;
+  ugv::SpeedEstimatorParams speed_estimator;
+
+  // has_wheel_odometry of each listed UGV, in order.
+  std::vector<bool> ugvs_with_odometry() const;
 
   static WorldParams load(cover::config::YamlReader& reader);
   static WorldParams load_file(const std::string& path);

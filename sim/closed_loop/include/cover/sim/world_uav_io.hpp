@@ -32,7 +32,8 @@ class PlantCommandOutput : public uav::CommandOutput {
 // The plant's command for a controller command: zero thrust and rates when disarmed.
 QuadrotorCommand to_plant_command(const mission::ControlCommand& command);
 
-// The controller's view of one filtered UGV IMU reading.
-mission::UgvImuMeasurement to_imu_measurement(const ugv::FilteredImu& imu);
+// The controller's view of one filtered UGV IMU reading and the speed estimated with it.
+mission::UgvImuMeasurement to_imu_measurement(const ugv::FilteredImu& imu,
+                                              const ugv::SpeedEstimate& speed);
 
 }  // namespace cover::sim

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 
 #include "cover/config/yaml_reader.hpp"
 
@@ -44,6 +45,9 @@ struct ImuSample {
   double stamp_s = 0.0;
   Eigen::Vector3d specific_force_m_s2 = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();
+  // The wheel odometry's forward speed read with this sample, on vehicles that have it
+  // (not part of the IMU, which ignores it: the device read delivers both, in order).
+  std::optional<double> wheel_speed_m_s;
 };
 
 // What the controller consumes: the filtered a, Omega and the estimated beta (all in G_k).
