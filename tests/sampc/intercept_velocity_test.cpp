@@ -244,6 +244,12 @@ TEST(InterceptVelocity, InterceptModeIsCoverWhereverThePredictionIsNotTrusted) {
   for (int k = 0; k <= cover_params.custom_velocity_nodes; ++k) {
     EXPECT_GT((a.nodes[k].velocity_ref_m_s - b.nodes[k].velocity_ref_m_s).norm(), 0.05) << k;
   }
+  // ... on its own number of nodes.
+  const int last = intercept_params.intercept.velocity_nodes;
+  ASSERT_GT(last, cover_params.custom_velocity_nodes);
+  EXPECT_GT(b.nodes[last].velocity_weight.x(), 0.0);
+  EXPECT_EQ(b.nodes[last + 1].velocity_weight.x(), 0.0);
+  EXPECT_EQ(a.nodes[last].velocity_weight.x(), 0.0);
   for (const model::Stage stage : {model::Stage::Initial, model::Stage::Final}) {
     SampcInput tracking = valid;
     tracking.stage = stage;
@@ -266,7 +272,8 @@ TEST(InterceptVelocity, ParamsLoadAndRejectBadValuesNamingTheKey) {
   EXPECT_THROW(load("intercept: {max_time_to_go: 2.5}"), config::ConfigError);
   for (const char* bad :
        {"intercept: {min_ugv_speed_m_s: -1}", "intercept: {max_ugv_yaw_rate_rad_s: 0}",
-        "intercept: {max_time_to_go_s: .nan}", "intercept: {max_predicted_turn_rad: 7}"}) {
+        "intercept: {max_time_to_go_s: .nan}", "intercept: {max_predicted_turn_rad: 7}",
+        "intercept: {velocity_nodes: 21}", "intercept: {velocity_nodes: 0}"}) {
     try {
       load(bad);
       ADD_FAILURE() << bad;
@@ -281,6 +288,7 @@ TEST(InterceptVelocity, ParamsLoadAndRejectBadValuesNamingTheKey) {
   EXPECT_EQ(shipped.intercept.max_ugv_yaw_rate_rad_s, defaults.max_ugv_yaw_rate_rad_s);
   EXPECT_EQ(shipped.intercept.max_time_to_go_s, defaults.max_time_to_go_s);
   EXPECT_EQ(shipped.intercept.max_predicted_turn_rad, defaults.max_predicted_turn_rad);
+  EXPECT_EQ(shipped.intercept.velocity_nodes, defaults.velocity_nodes);
   EXPECT_EQ(parse_mode("intercept"), Mode::Intercept);
   EXPECT_EQ(mode_names(" | "), "cover | no-ref-vxy | coni-mpc | intercept");
 }

@@ -178,6 +178,15 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
   const double reference_speed_xy = input.reference.velocity_m_s[0].head<2>().norm();
   const double distance_weight0 =
       w.distance_gain * std::exp(params.e2_per_m2 * d0) + w.distance_offset;
+  // Intercept: where its prediction holds, the law on its own node count; otherwise exactly
+  // cover (eq. 30), with the reason kept for the logs.
+  if (params.mode == Mode::Intercept) {
+    cost.intercept.fallback = prediction_fallback(params.intercept, input.ugv);
+  }
+  const bool intercepting =
+      params.mode == Mode::Intercept && cost.intercept.fallback == InterceptFallback::None;
+  const int velocity_nodes =
+      intercepting ? params.intercept.velocity_nodes : params.custom_velocity_nodes;
 
   for (int k = 0; k <= params.horizon_steps; ++k) {
     NodeCost& node = cost.nodes[k];
@@ -191,14 +200,14 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
     // a position, so a free node takes it at its own predicted position (the frame turns
     // and the UAV moves by then); v0d stays the plan's speed now, as in the paper.
     node.velocity_ref_m_s = Eigen::Vector3d(0.0, 0.0, input.reference.velocity_m_s[k].z());
-    if (k <= params.custom_velocity_nodes) {
+    if (k <= velocity_nodes) {
       const Eigen::Vector3d at = k > 0 && predicted_states != nullptr
                                      ? Eigen::Vector3d(predicted_states[k].segment<3>(kPosition))
                                      : p;
       const Eigen::Vector2d eq30 =
           eq30_velocity(params, input.ugv.angular_velocity_rad_s, at, reference_speed_xy);
       node.velocity_ref_m_s.head<2>() = eq30;
-      if (params.mode == Mode::Intercept) {
+      if (intercepting) {
         const InterceptVelocity law = intercept_velocity(
             params.intercept, input.ugv, at, reference_speed_xy, eq30, input.speed_limit_m_s);
         node.velocity_ref_m_s.head<2>() = law.velocity_m_s;

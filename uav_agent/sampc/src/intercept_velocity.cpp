@@ -11,6 +11,7 @@ InterceptParams InterceptParams::load(config::YamlReader reader) {
   reader.optional("max_ugv_yaw_rate_rad_s", p.max_ugv_yaw_rate_rad_s);
   reader.optional("max_time_to_go_s", p.max_time_to_go_s);
   reader.optional("max_predicted_turn_rad", p.max_predicted_turn_rad);
+  reader.optional("velocity_nodes", p.velocity_nodes);
   reader.reject_unknown_keys();
   return p;
 }
@@ -56,6 +57,17 @@ Eigen::Vector2d ugv_mean_velocity(double speed_m_s, double yaw_rate_rad_s, doubl
   return speed_m_s * Eigen::Vector2d(std::sin(turn) / turn, (1.0 - std::cos(turn)) / turn);
 }
 
+InterceptFallback prediction_fallback(const InterceptParams& params, const model::UgvMotion& ugv) {
+  if (!ugv.speed_valid()) return InterceptFallback::NoSpeed;
+  if (ugv.speed_m_s < 0.0) return InterceptFallback::Reversing;
+  if (ugv.speed_m_s < params.min_ugv_speed_m_s) return InterceptFallback::SlowUgv;
+  const double w = ugv.angular_velocity_rad_s.z();
+  if (!(std::abs(w) <= params.max_ugv_yaw_rate_rad_s) || !ugv.angular_velocity_rad_s.allFinite()) {
+    return InterceptFallback::FastTurn;
+  }
+  return InterceptFallback::None;
+}
+
 namespace {
 
 InterceptFallback why_not(const InterceptParams& params, const model::UgvMotion& ugv,
@@ -65,14 +77,7 @@ InterceptFallback why_not(const InterceptParams& params, const model::UgvMotion&
       !(speed_limit_m_s >= 0.0)) {
     return InterceptFallback::BadInput;
   }
-  if (!ugv.speed_valid()) return InterceptFallback::NoSpeed;
-  if (ugv.speed_m_s < 0.0) return InterceptFallback::Reversing;
-  if (ugv.speed_m_s < params.min_ugv_speed_m_s) return InterceptFallback::SlowUgv;
-  const double w = ugv.angular_velocity_rad_s.z();
-  if (!(std::abs(w) <= params.max_ugv_yaw_rate_rad_s) || !ugv.angular_velocity_rad_s.allFinite()) {
-    return InterceptFallback::FastTurn;
-  }
-  return InterceptFallback::None;
+  return prediction_fallback(params, ugv);
 }
 
 }  // namespace

@@ -168,6 +168,8 @@ void SampcParams::validate() const {
       switch_input_rate_weight.allFinite() && (switch_input_rate_weight.array() >= 0.0).all(),
       c + ".switch_input_rate_weight", "must be finite and >= 0");
   intercept.validate(c + ".intercept");
+  config::check(intercept.velocity_nodes >= 1 && intercept.velocity_nodes <= horizon_steps,
+                c + ".intercept.velocity_nodes", "must be in [1, horizon_steps]");
   config::check(max_sqp_iterations >= 1, c + ".max_sqp_iterations", "must be >= 1");
   config::check(cold_start_iterations >= 1, c + ".cold_start_iterations", "must be >= 1");
   config::check(positive(sqp_step_tolerance), c + ".sqp_step_tolerance", "must be > 0");

@@ -35,6 +35,12 @@ struct InterceptParams {
   // ... and so that the UGV turns at most this much over tau (rad): near a full circle the
   // mean velocity shrinks to nothing and the prediction means little. Default 2.5.
   double max_predicted_turn_rad = 2.5;
+  // The law sits on the first `velocity_nodes` free nodes (cover's custom_velocity_nodes,
+  // for this method), each at its own predicted position. A lead that steers only node 1 is
+  // mostly undone by the rest of the horizon; 5 measured Table 1 1.064 / 1.084 / 1.220
+  // against 1.079 / 1.099 / 1.255 with 1 (docs/benchmarks.md). In [1, horizon_steps].
+  // Default 5.
+  int velocity_nodes = 5;
 
   static InterceptParams load(config::YamlReader reader);
   // Throws config::ConfigError naming `context`.<key>.
@@ -62,6 +68,10 @@ struct InterceptVelocity {
 // The UGV's mean velocity over the next tau seconds at forward speed u and yaw rate w, in
 // G's axes now: D(tau) / tau (tau = 0: [u, 0]). Finite for finite inputs.
 Eigen::Vector2d ugv_mean_velocity(double speed_m_s, double yaw_rate_rad_s, double tau_s);
+
+// Whether the UGV's motion allows the prediction at all (speed estimate, direction, yaw
+// rate): None, or why not. intercept_velocity() also checks its other inputs.
+InterceptFallback prediction_fallback(const InterceptParams& params, const model::UgvMotion& ugv);
 
 // The intercept velocity reference at position `p_m` (in G), from eq. 30's value there
 // (`eq30_m_s`, computed by the caller for the same p, Omega and s) and the reference
