@@ -219,6 +219,7 @@ TEST(InterceptVelocity, InterceptModeIsCoverWhereverThePredictionIsNotTrusted) {
   cover_params.custom_velocity_nodes = 3;
   SampcParams intercept_params = cover_params;
   intercept_params.mode = Mode::Intercept;
+  intercept_params.intercept.velocity_nodes = 4;
   model::UgvMotion unknown_speed = driving(0.8, 0.4);
   unknown_speed.speed_source = model::SpeedSource::None;
   const SampcInput in = transition_input(unknown_speed);

@@ -36,11 +36,11 @@ struct InterceptParams {
   // mean velocity shrinks to nothing and the prediction means little. Default 2.5.
   double max_predicted_turn_rad = 2.5;
   // The law sits on the first `velocity_nodes` free nodes (cover's custom_velocity_nodes,
-  // for this method), each at its own predicted position. A lead that steers only node 1 is
-  // mostly undone by the rest of the horizon; 5 measured Table 1 1.064 / 1.084 / 1.220
-  // against 1.079 / 1.099 / 1.255 with 1 (docs/benchmarks.md). In [1, horizon_steps].
-  // Default 5.
-  int velocity_nodes = 5;
+  // for this method), each at its own predicted position: a lead on node 1 alone is mostly
+  // undone by the rest of the horizon, more nodes make the frame switch abrupter (5: Table 1
+  // 1.064 / 1.084 / 1.220 but a 0.93 rad/s body-rate step on the star, above coni-mpc's).
+  // In [1, horizon_steps]. Default 2 (docs/benchmarks.md).
+  int velocity_nodes = 2;
 
   static InterceptParams load(config::YamlReader reader);
   // Throws config::ConfigError naming `context`.<key>.
