@@ -145,3 +145,27 @@ TEST(ClosedLoop, CoverDetoursLessThanConiMpcBetweenCirclingUgvs) {
   EXPECT_LT(cover, 1.3);
   EXPECT_GT(coni, cover + 0.15);
 }
+
+// The intercept method, with the harness's UGV speed estimates (wheel odometry with noise),
+// detours less than cover between circling UGVs, and every transition completes. Four
+// transitions at (0.8, 0.35), where cover copies most of the UGV's curve.
+TEST(ClosedLoop, InterceptDetoursLessThanCoverBetweenCirclingUgvs) {
+  auto ratio = [](cover::sampc::Mode mode) {
+    Scenario scenario = Scenario::load_file(cover::sim::scenario_path("table1"));
+    for (auto& ugv : scenario.world.ugvs) {
+      ugv.pattern.speed_m_s = 0.8;
+      ugv.pattern.yaw_rate_rad_s = 0.35;
+    }
+    scenario.task = cover::mission::repeat_processes(scenario.task, 4);
+    scenario.max_duration_s = 240.0;
+    ClosedLoopOptions options;
+    options.record_paths = false;
+    const auto result = ClosedLoop(scenario, ControllerConfig::load_default(mode), options).run();
+    EXPECT_TRUE(result.success) << result.status;
+    EXPECT_EQ(result.transitions.size(), 4u);
+    return result.total_path_length_m / result.total_straight_length_m;
+  };
+  const double cover = ratio(cover::sampc::Mode::Cover);
+  const double intercept = ratio(cover::sampc::Mode::Intercept);
+  EXPECT_LT(intercept, cover - 0.05) << "cover " << cover << ", intercept " << intercept;
+}

@@ -115,3 +115,20 @@ TEST(MissionController, RejectsAnInvalidTaskAtConstruction) {
   EXPECT_THROW(MissionController(task, 2, config.mission, config.planner, config.sampc),
                cover::config::ConfigError);
 }
+
+// A process's own method replaces the configured one while it is flown, allocation-free
+// (SAMPC's set_mode); a process without one flies the configured method.
+TEST(MissionController, FliesEachProcessWithItsOwnMethod) {
+  const auto config = cover::uav::ControllerConfig::load_default(cover::sampc::Mode::Cover);
+  cover::mission::Task task = cover::mission::load_task_file(
+      cover::config::default_config_dir() + "/tasks/scenario2.yaml", 2);
+  for (const char* method : {"intercept", "coni-mpc", ""}) {
+    task.processes[0].method = method;
+    MissionController controller(task, 2, config.mission, config.planner, config.sampc);
+    EXPECT_EQ(controller.method(), cover::sampc::Mode::Cover);  // before the task starts
+    feed_at_rest(controller, 0.0);
+    controller.step(0.0);
+    const auto expected = cover::sampc::parse_mode(method).value_or(cover::sampc::Mode::Cover);
+    EXPECT_EQ(controller.method(), expected) << method;
+  }
+}

@@ -120,3 +120,38 @@ TEST(Task, RepeatsProcessesCyclically) {
   EXPECT_EQ(five.processes[3].from_ugv, 1);
   EXPECT_NO_THROW(five.validate(2));
 }
+
+TEST(Task, MethodPerTaskAndPerProcess) {
+  const Task task = load_task(YAML::Load(R"(
+task_id: m
+method: intercept
+processes:
+  - {from_ugv: 0, to_ugv: 1, initial_point_m: [0, 0, 1], transition_point_m: [0, 0, 1],
+     final_point_m: [0, 0, 0.3]}
+  - {from_ugv: 1, to_ugv: 0, initial_point_m: [0, 0, 1], transition_point_m: [0, 0, 1],
+     final_point_m: [0, 0, 0.3], method: no-ref-vxy}
+)"),
+                              "task.yaml", 2);
+  EXPECT_EQ(task.processes[0].method, "intercept");   // the task's
+  EXPECT_EQ(task.processes[1].method, "no-ref-vxy");  // its own
+  // Without the key: the UAV's configured method.
+  EXPECT_EQ(load_task(YAML::Load(kLanding), "task.yaml", 2).processes[0].method, "");
+}
+
+TEST(Task, RejectsAnUnknownMethodNamingItsLine) {
+  expect_error(R"(task_id: m
+processes:
+  - from_ugv: 0
+    to_ugv: 1
+    initial_point_m: [0, 0, 1]
+    transition_point_m: [0, 0, 1]
+    final_point_m: [0, 0, 0.3]
+    method: warp)",
+               "processes[0].method: 'warp' is not one of cover | no-ref-vxy | coni-mpc | "
+               "intercept (line 8)");
+  expect_error("{task_id: m, method: Cover, processes: []}", "task.yaml.method: 'Cover'");
+  // From the wire (no YAML): validation names the process.
+  Task task = load_task(YAML::Load(kLanding), "task.yaml", 2);
+  task.processes[0].method = "fast";
+  EXPECT_THROW(task.validate(2), ConfigError);
+}

@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <iterator>
 #include <new>
 
 #include "cover/sampc/sampc.hpp"
@@ -33,6 +34,8 @@ TEST(SampcAllocation, TheControlLoopDoesNotAllocate) {
   in.stage = model::Stage::Transition;
   in.uav_state = model::uav_state_at_rest(Eigen::Vector3d(2.0, -1.0, 1.2));
   in.ugv.angular_velocity_rad_s = Eigen::Vector3d(0.0, 0.0, 0.4);
+  in.ugv.speed_m_s = 0.8;  // the intercept method's prediction is in use
+  in.ugv.speed_source = model::SpeedSource::WheelOdometry;
   in.reference = HorizonReference::hold(Eigen::Vector3d(0.0, 0.0, 1.5));
   mpc.solve(in);  // cold start outside the count
 
@@ -40,6 +43,8 @@ TEST(SampcAllocation, TheControlLoopDoesNotAllocate) {
   for (int i = 0; i < 50; ++i) {
     in.stage = static_cast<model::Stage>(i / 20);
     in.uav_state(0) -= 0.01;
+    // A task's process may switch the method at run time.
+    mpc.set_mode(kModes[(i / 5) % std::size(kModes)]);
     mpc.prepare(in);
     const SampcOutput out = mpc.feedback(in);
     ASSERT_FALSE(is_error(out.status));

@@ -37,6 +37,7 @@ TEST(TaskManagerJson, EveryFieldRoundTripsIncludingNonFiniteNumbers) {
   second.final_action = mission::FinalAction::Deliver;
   second.vmax_m_s = 2.75;
   second.amax_m_s2 = 4.5;
+  second.method = "intercept";
   task.processes[0].final_action = mission::FinalAction::None;
   task.processes.push_back(second);
 
@@ -52,6 +53,7 @@ TEST(TaskManagerJson, EveryFieldRoundTripsIncludingNonFiniteNumbers) {
     EXPECT_EQ(a.final_action, b.final_action);
     EXPECT_EQ(a.vmax_m_s, b.vmax_m_s);
     EXPECT_EQ(a.amax_m_s2, b.amax_m_s2);
+    EXPECT_EQ(a.method, b.method);
     for (int k = 0; k < 3; ++k) {
       for (const auto& [x, y] : {std::pair{a.initial_point_m[k], b.initial_point_m[k]},
                                  std::pair{a.transition_point_m[k], b.transition_point_m[k]},
@@ -65,6 +67,19 @@ TEST(TaskManagerJson, EveryFieldRoundTripsIncludingNonFiniteNumbers) {
     }
   }
   EXPECT_NE(task_to_json(task).find("\"deliver\""), std::string::npos);
+}
+
+// Tasks stored before processes carried a method read as the UAV's own method.
+TEST(TaskManagerJson, AProcessWithoutAMethodReadsAsTheUavsOwn) {
+  mission::Task task = testing::make_task("old-format");
+  task.processes[0].method = "coni-mpc";
+  std::string json = task_to_json(task);
+  const std::string key = ",\"method\":\"coni-mpc\"";
+  const auto at = json.find(key);
+  ASSERT_NE(at, std::string::npos) << json;
+  EXPECT_EQ(task_from_json(json).processes[0].method, "coni-mpc");
+  json.erase(at, key.size());
+  EXPECT_EQ(task_from_json(json).processes[0].method, "");
 }
 
 TEST(TaskManagerJson, MalformedTextThrowsStoreError) {

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "cover/model/angles.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/sampc/sampc_params.hpp"
 
@@ -81,7 +82,6 @@ std::set<std::string> all_methods() {
 }
 const std::set<std::string> kMethods = all_methods();
 
-constexpr double kTwoPi = 6.283185307179586;
 
 }  // namespace
 
@@ -179,15 +179,15 @@ TEST(CoverBench, Table1SamplesStartingPhases) {
   ASSERT_EQ(phases.size(), 8u);
   EXPECT_EQ(phases, run_phases(coni));
   EXPECT_NE(phases, run_phases(other_seed));
-  double g0_lo = kTwoPi, g0_hi = 0.0, g1_lo = kTwoPi, g1_hi = 0.0;
+  double g0_lo = cover::model::kTwoPi, g0_hi = 0.0, g1_lo = cover::model::kTwoPi, g1_hi = 0.0;
   for (const auto& [g0, g1] : phases) {
-    EXPECT_TRUE(g0 >= 0.0 && g0 < kTwoPi && g1 >= 0.0 && g1 < kTwoPi) << g0 << ", " << g1;
+    EXPECT_TRUE(g0 >= 0.0 && g0 < cover::model::kTwoPi && g1 >= 0.0 && g1 < cover::model::kTwoPi) << g0 << ", " << g1;
     g0_lo = std::min(g0_lo, g0), g0_hi = std::max(g0_hi, g0);
     g1_lo = std::min(g1_lo, g1), g1_hi = std::max(g1_hi, g1);
   }
   // Eight uniform draws spread over more than half a turn for each UGV.
-  EXPECT_GT(g0_hi - g0_lo, 0.5 * kTwoPi);
-  EXPECT_GT(g1_hi - g1_lo, 0.5 * kTwoPi);
+  EXPECT_GT(g0_hi - g0_lo, 0.5 * cover::model::kTwoPi);
+  EXPECT_GT(g1_hi - g1_lo, 0.5 * cover::model::kTwoPi);
   EXPECT_EQ(cover["rows"][0]["transitions"], 8);
 
   const auto stepped = with({"--method", "cover", "--sampling", "stepped", "--phases", "3"});
@@ -196,7 +196,7 @@ TEST(CoverBench, Table1SamplesStartingPhases) {
   ASSERT_EQ(steps.size(), 3u);
   for (std::size_t i = 1; i < steps.size(); ++i) {
     EXPECT_DOUBLE_EQ(steps[i].first, steps[0].first);
-    EXPECT_NEAR(steps[i].second - steps[0].second, kTwoPi * i / 3.0, 1e-12);
+    EXPECT_NEAR(steps[i].second - steps[0].second, cover::model::kTwoPi * i / 3.0, 1e-12);
   }
 }
 

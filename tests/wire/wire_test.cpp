@@ -184,7 +184,10 @@ TEST(Wire, TaskFieldByField) {
   p.amax_m_s2 = 2.5;
   task.processes = {p, p};
   task.processes[1].final_action = mission::FinalAction::Land;
+  task.processes[1].method = "intercept";
   const msg::TransitionTask m = wire::to_msg(task, 1.0);
+  EXPECT_EQ(m.processes[0].method, "");
+  EXPECT_EQ(m.processes[1].method, "intercept");
   ASSERT_EQ(m.processes.size(), 2u);
   EXPECT_EQ(m.task_id, "deliver-7");
   EXPECT_EQ(m.uav_id, 2u);
@@ -205,6 +208,7 @@ TEST(Wire, TaskFieldByField) {
     EXPECT_EQ(a.final_action, b.final_action);
     EXPECT_EQ(a.vmax_m_s, b.vmax_m_s);
     EXPECT_EQ(a.amax_m_s2, b.amax_m_s2);
+    EXPECT_EQ(a.method, b.method);
   }
   // Hostile ids and actions do not wrap into valid ones: validation rejects them.
   msg::TransitionTask hostile = m;
@@ -214,6 +218,17 @@ TEST(Wire, TaskFieldByField) {
   EXPECT_EQ(parsed.processes[0].to_ugv, -1);
   EXPECT_FALSE(parsed.processes[1].final_point_m.allFinite());
   EXPECT_THROW(parsed.validate(8), cover::config::ConfigError);
+  // An unknown method is passed on as it is, and validation names it.
+  msg::TransitionTask unknown_method = m;
+  unknown_method.processes[1].final_action = msg::FinalAction::FINAL_ACTION_NONE;
+  unknown_method.processes[0].method = "warp";
+  try {
+    wire::from_msg(unknown_method).validate(8);
+    ADD_FAILURE() << "an unknown method was accepted";
+  } catch (const cover::config::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("processes[0].method: 'warp'"), std::string::npos)
+        << e.what();
+  }
 }
 
 // Every library value maps to a distinct wire value and back; every wire value either maps

@@ -81,12 +81,22 @@ int run(const std::vector<std::string>& args) {
   app.add_flag("--json", json, "print JSON instead of a table");
   app.add_option("--domain", domain, "first DDS domain to use (one per run)")
       ->capture_default_str();
+  std::string method;
+  app.add_option("--method", method,
+                 "the UAV agents' method: " + cover::bench::joined_method_names(" | ") +
+                     " (default: sampc.yaml's mode)")
+      ->check(CLI::IsMember(cover::bench::method_names()));
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
+  // The launch files pass {method} to every UAV agent as --method.
+  const std::vector<std::string> method_flags =
+      method.empty() ? std::vector<std::string>{}
+                     : std::vector<std::string>{"--var", "method=" + method};
 
   nlohmann::json out{{"latency", nlohmann::json::array()}, {"lockstep", nlohmann::json::array()}};
   for (const DdsMix& mix : kMixes) {
     std::vector<std::string> flags = mix.flags;
     flags.insert(flags.end(), {"--clock", "realtime"});
+    flags.insert(flags.end(), method_flags.begin(), method_flags.end());
     const nlohmann::json r = run_launch("scenario2", flags, domain++);
     const nlohmann::json latency =
         r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();
@@ -97,7 +107,9 @@ int run(const std::vector<std::string>& args) {
                               {"samples", latency.value("samples", 0)}});
   }
   for (const char* scenario : {"scenario2", "scenario4"}) {
-    const nlohmann::json r = run_launch(scenario, {"--dds", "ugv*=cyclone"}, domain++);
+    std::vector<std::string> flags = {"--dds", "ugv*=cyclone"};
+    flags.insert(flags.end(), method_flags.begin(), method_flags.end());
+    const nlohmann::json r = run_launch(scenario, flags, domain++);
     out["lockstep"].push_back({{"scenario", scenario},
                                {"success", r.is_object() && r.value("success", false)},
                                {"speed_factor", number(r, "speed_factor")}});

@@ -45,7 +45,7 @@ void add_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--config-dir", cli.config_dir, "folder of mission.yaml, planner.yaml, sampc.yaml")
       ->capture_default_str();
   app.add_option("--method", cli.method,
-                 "override sampc.yaml's mode: cover | no-ref-vxy | coni-mpc");
+                 "override sampc.yaml's mode: " + cover::sampc::mode_names(" | "));
   app.add_option("--ugv-count", cli.ugv_count, "UGV ids accepted in tasks are 0..N-1")
       ->check(CLI::Range(1, 8))
       ->capture_default_str();

@@ -23,6 +23,7 @@ msg::TransitionTask to_msg(const mission::Task& task, double stamp_s) {
     w.final_action = to_msg(p.final_action);
     w.vmax_m_s = p.vmax_m_s;
     w.amax_m_s2 = p.amax_m_s2;
+    w.method = p.method;
     m.processes.push_back(w);
   }
   return m;
@@ -52,6 +53,7 @@ mission::Task from_msg(const msg::TransitionTask& m) {
     if (!action) p.final_point_m.setConstant(std::numeric_limits<double>::quiet_NaN());
     p.vmax_m_s = w.vmax_m_s;
     p.amax_m_s2 = w.amax_m_s2;
+    p.method = w.method;  // an unknown name is rejected by Task::validate
     task.processes.push_back(p);
   }
   return task;

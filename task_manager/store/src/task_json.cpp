@@ -54,7 +54,8 @@ json process_to_json(const mission::TransitionProcess& p) {
               {"final_point_m", point_to_json(p.final_point_m)},
               {"final_action", mission::to_string(p.final_action)},
               {"vmax_m_s", number_to_json(p.vmax_m_s)},
-              {"amax_m_s2", number_to_json(p.amax_m_s2)}};
+              {"amax_m_s2", number_to_json(p.amax_m_s2)},
+              {"method", p.method}};
 }
 
 mission::TransitionProcess process_from_json(const json& j) {
@@ -67,6 +68,8 @@ mission::TransitionProcess process_from_json(const json& j) {
   p.final_action = action_from_json(j.at("final_action"));
   p.vmax_m_s = number_from_json(j.at("vmax_m_s"));
   p.amax_m_s2 = number_from_json(j.at("amax_m_s2"));
+  // Absent in tasks stored before processes carried a method: the UAV's own.
+  p.method = j.value("method", std::string());
   return p;
 }
 }  // namespace

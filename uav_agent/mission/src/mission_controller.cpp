@@ -37,6 +37,14 @@ Task validated(Task task, int ugv_count) {
   return task;
 }
 
+std::vector<sampc::Mode> process_modes(const Task& task, sampc::Mode configured) {
+  std::vector<sampc::Mode> modes;
+  for (const TransitionProcess& process : task.processes) {
+    modes.push_back(sampc::parse_mode(process.method).value_or(configured));
+  }
+  return modes;
+}
+
 bool is_finite(const RelativeMeasurement& m) {
   return std::isfinite(m.stamp_s) && m.position_m.allFinite() && m.velocity_m_s.allFinite() &&
          m.attitude.coeffs().allFinite() && m.attitude.norm() > 0.5;
@@ -51,6 +59,7 @@ MissionController::MissionController(Task task, int ugv_count, MissionParams mis
       machine_(validated(std::move(task), ugv_count), mission),
       planner_(std::move(planner)),
       sampc_((sampc.validate(), sampc)),
+      process_modes_(process_modes(machine_.task(), sampc.mode)),
       inputs_(static_cast<std::size_t>(ugv_count)),
       observer_(static_cast<int>(std::lround(mission.observer_window_s / mission.control_period_s)),
                 mission.control_period_s, mission.observer_time_constant_s) {
@@ -115,6 +124,7 @@ const ControllerOutput& MissionController::step(double now_s) {
   const StageDecision& decision = machine_.update(now_s, state.position_m, state.velocity_m_s);
   output_.status.stage = decision;
   output_.command.release_payload = decision.release_payload;
+  use_process_method(decision.process_index);
   if (decision.stage_started) {
     plan_pending_ = true;
     plan_attempts_ = 0;
@@ -171,6 +181,10 @@ bool MissionController::abort(double now_s) {
   abort_time_s_ = now_s;
   output_.status.stage = machine_.decision();
   return true;
+}
+
+void MissionController::use_process_method(std::size_t process_index) {
+  if (process_index < process_modes_.size()) sampc_.set_mode(process_modes_[process_index]);
 }
 
 void MissionController::hold_current_point(double now_s) {
@@ -279,6 +293,8 @@ void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s
   output_.status.reference_position_m = sampc_input_.reference.position_m[0];
   integrate_disturbance(inputs.state.position_m, sampc_input_.reference.position_m[0]);
   sampc_input_.ugv = inputs.imu.motion;
+  sampc_input_.speed_limit_m_s =
+      machine_.task().processes[machine_.decision().process_index].vmax_m_s;
   const Eigen::Vector3d disturbance = disturbance_m_s2_ + observer_.estimate_m_s2();
   sampc_input_.ugv.specific_force_m_s2 -= disturbance;
   output_.status.disturbance_m_s2 = disturbance;

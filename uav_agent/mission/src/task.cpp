@@ -3,6 +3,8 @@
 #include <cctype>
 #include <cmath>
 
+#include "cover/sampc/sampc_params.hpp"
+
 namespace cover::mission {
 namespace {
 
@@ -18,6 +20,25 @@ FinalAction parse_final_action(const std::string& text, const std::string& conte
   if (text == "deliver") return FinalAction::Deliver;
   throw config::ConfigError(context + ".final_action: '" + text +
                             "' is not one of none | land | deliver");
+}
+
+bool is_known_method(const std::string& method) {
+  return method.empty() || sampc::parse_mode(method).has_value();
+}
+
+std::string unknown_method_message(const std::string& method) {
+  return "'" + method + "' is not one of " + sampc::mode_names(" | ");
+}
+
+// The task's or the process's `method:` key, checked where it is written.
+std::string read_method(config::YamlReader& reader, const std::string& default_method) {
+  std::string method = default_method;
+  reader.optional("method", method);
+  if (!is_known_method(method)) {
+    throw config::ConfigError(reader.context() + ".method: " + unknown_method_message(method) +
+                              config::line_of(reader.node()["method"]));
+  }
+  return method;
 }
 
 void check_point(const Eigen::Vector3d& point, const std::string& context) {
@@ -48,7 +69,8 @@ const char* to_string(FinalAction action) {
   return "unknown";
 }
 
-TransitionProcess TransitionProcess::load(config::YamlReader& reader) {
+TransitionProcess TransitionProcess::load(config::YamlReader& reader,
+                                          const std::string& default_method) {
   TransitionProcess process;
   reader.require("from_ugv", process.from_ugv);
   reader.require("to_ugv", process.to_ugv);
@@ -60,6 +82,7 @@ TransitionProcess TransitionProcess::load(config::YamlReader& reader) {
   process.final_action = parse_final_action(action, reader.context());
   reader.optional("vmax_m_s", process.vmax_m_s);
   reader.optional("amax_m_s2", process.amax_m_s2);
+  process.method = read_method(reader, default_method);
   reader.reject_unknown_keys();
   check_finite_at(reader, "initial_point_m", process.initial_point_m.allFinite());
   check_finite_at(reader, "transition_point_m", process.transition_point_m.allFinite());
@@ -73,13 +96,14 @@ Task Task::load(config::YamlReader& reader) {
   Task task;
   reader.optional("task_id", task.task_id);
   reader.optional("uav_id", task.uav_id);
+  const std::string method = read_method(reader, "");
   YAML::Node list;
   reader.require("processes", list);
   config::check(list.IsSequence(), reader.context() + ".processes", "must be a list");
   for (std::size_t i = 0; i < list.size(); ++i) {
     config::YamlReader process_reader(list[i],
                                       reader.context() + ".processes[" + std::to_string(i) + "]");
-    task.processes.push_back(TransitionProcess::load(process_reader));
+    task.processes.push_back(TransitionProcess::load(process_reader, method));
   }
   reader.reject_unknown_keys();
   return task;
@@ -126,6 +150,7 @@ void Task::validate(int ugv_count) const {
     config::check(
         std::isfinite(p.amax_m_s2) && p.amax_m_s2 > 0.0 && p.amax_m_s2 <= kMaxAcceleration_m_s2,
         pctx + ".amax_m_s2", "must be in (0, 30]");
+    config::check(is_known_method(p.method), pctx + ".method", unknown_method_message(p.method));
     config::check(p.final_action != FinalAction::Land || i + 1 == processes.size(),
                   pctx + ".final_action", "land must be the last process (the UAV disarms)");
   }

@@ -161,17 +161,18 @@ Eigen::Vector2d eq30_velocity(const SampcParams& params, const Eigen::Vector3d& 
   return velocity;
 }
 
-// Eq. 30 at node k as far as the UAV can get there: eq. 30 asks for its velocity at once,
+// A transition velocity reference (eq. 30's, or intercept's) at node k as far as the UAV
+// can get there: eq. 30 asks for its velocity at once,
 // and at a frame switch it can be 2 m/s from the UAV's (the velocity of the UGV it left).
 // The UAV's velocity relative to the UGV's translation (v + Omega x p) moves toward eq. 30's
 // by at most eq30_acceleration_limit_m_s2 * k * dt at node k, so the horizon asks for a
 // change the UAV can make instead of an attitude step at the first node. Node 0 (the
 // measurement, which the cost cannot move) keeps eq. 30 itself, as the paper writes it.
-Eigen::Vector2d reachable_eq30_velocity(const SampcParams& params, const SampcInput& input,
-                                        const Eigen::Vector3d& at, double speed_xy, int k) {
-  const Eigen::Vector3d& omega = input.ugv.angular_velocity_rad_s;
-  const Eigen::Vector2d wanted = eq30_velocity(params, omega, at, speed_xy);
+Eigen::Vector2d reachable_velocity(const SampcParams& params, const SampcInput& input,
+                                   const Eigen::Vector3d& at, const Eigen::Vector2d& wanted,
+                                   int k) {
   if (k == 0 || !(params.eq30_acceleration_limit_m_s2 > 0.0)) return wanted;
+  const Eigen::Vector3d& omega = input.ugv.angular_velocity_rad_s;
   const Eigen::Vector3d p0 = input.uav_state.segment<3>(kPosition);
   const Eigen::Vector3d v0 = input.uav_state.segment<3>(kVelocity);
   const Eigen::Vector2d rotation_at = omega.cross(at).head<2>();
@@ -199,6 +200,15 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
   const double reference_speed_xy = input.reference.velocity_m_s[0].head<2>().norm();
   const double distance_weight0 =
       w.distance_gain * std::exp(params.e2_per_m2 * d0) + w.distance_offset;
+  // Intercept: where its prediction holds, the law on its own node count; otherwise exactly
+  // cover (eq. 30), with the reason kept for the logs.
+  if (params.mode == Mode::Intercept) {
+    cost.intercept.fallback = prediction_fallback(params.intercept, input.ugv);
+  }
+  const bool intercepting =
+      params.mode == Mode::Intercept && cost.intercept.fallback == InterceptFallback::None;
+  const int velocity_nodes =
+      intercepting ? params.intercept.velocity_nodes : params.custom_velocity_nodes;
 
   for (int k = 0; k <= params.horizon_steps; ++k) {
     NodeCost& node = cost.nodes[k];
@@ -212,12 +222,19 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
     // a position, so a free node takes it at its own predicted position (the frame turns
     // and the UAV moves by then); v0d stays the plan's speed now, as in the paper.
     node.velocity_ref_m_s = Eigen::Vector3d(0.0, 0.0, input.reference.velocity_m_s[k].z());
-    if (k <= params.custom_velocity_nodes) {
+    if (k <= velocity_nodes) {
       const Eigen::Vector3d at = k > 0 && predicted_states != nullptr
                                      ? Eigen::Vector3d(predicted_states[k].segment<3>(kPosition))
                                      : p;
-      node.velocity_ref_m_s.head<2>() =
-          reachable_eq30_velocity(params, input, at, reference_speed_xy, k);
+      Eigen::Vector2d wanted =
+          eq30_velocity(params, input.ugv.angular_velocity_rad_s, at, reference_speed_xy);
+      if (intercepting) {
+        const InterceptVelocity law = intercept_velocity(
+            params.intercept, input.ugv, at, reference_speed_xy, wanted, input.speed_limit_m_s);
+        wanted = law.velocity_m_s;
+        if (k == 0) cost.intercept = law;
+      }
+      node.velocity_ref_m_s.head<2>() = reachable_velocity(params, input, at, wanted, k);
       node.velocity_weight = state_decay * w.velocity;
     } else {
       node.velocity_weight = Eigen::Vector3d(0.0, 0.0, state_decay * w.velocity.z());
@@ -239,6 +256,7 @@ void build_horizon_cost(const SampcParams& params, const SampcInput& input, doub
                         HorizonCost& cost, const YawTrack& previous_yaw, double elapsed_s,
                         const model::UavState* predicted_states) {
   cost.horizon_steps = params.horizon_steps;
+  cost.intercept = InterceptVelocity{};
   cost.reference_mode = reference_mode_for(params.mode, input.stage);
   if (cost.reference_mode == ReferenceMode::XyzRef) {
     build_tracking_cost(params, input, previous_yaw, elapsed_s, cost);

@@ -357,6 +357,13 @@ void Sampc::reset_frame() {
   ws.held_yaw_rad = 0.0;
 }
 
+void Sampc::set_mode(Mode mode) {
+  Workspace& ws = *ws_;
+  if (ws.params.mode == mode) return;
+  ws.params.mode = mode;
+  ws.prepared = false;  // the waiting factorisation was built with the other method's cost
+}
+
 const SampcParams& Sampc::params() const {
   return ws_->params;
 }

@@ -9,8 +9,7 @@ namespace {
 
 Mode parse_mode_or_throw(const std::string& text, const std::string& context) {
   if (const auto mode = parse_mode(text)) return *mode;
-  throw config::ConfigError(context + ".mode: '" + text +
-                            "' is not one of cover, no-ref-vxy, coni-mpc");
+  throw config::ConfigError(context + ".mode: '" + text + "' is not one of " + mode_names(", "));
 }
 
 void load_weights(config::YamlReader reader, WeightSet& set, bool with_distance) {
@@ -50,6 +49,15 @@ std::optional<Mode> parse_mode(std::string_view name) {
   return std::nullopt;
 }
 
+std::string mode_names(std::string_view separator) {
+  std::string text;
+  for (const Mode mode : kModes) {
+    if (!text.empty()) text += separator;
+    text += to_string(mode);
+  }
+  return text;
+}
+
 const char* to_string(Mode mode) {
   switch (mode) {
     case Mode::Cover:
@@ -58,6 +66,8 @@ const char* to_string(Mode mode) {
       return "no-ref-vxy";
     case Mode::ConiMpc:
       return "coni-mpc";
+    case Mode::Intercept:
+      return "intercept";
   }
   return "unknown";
 }
@@ -104,6 +114,7 @@ SampcParams SampcParams::load(config::YamlReader& reader) {
   reader.optional("frame_switch_iterations", p.frame_switch_iterations);
   reader.optional("sqp_step_tolerance", p.sqp_step_tolerance);
   reader.optional("max_qp_iterations", p.max_qp_iterations);
+  p.intercept = InterceptParams::load(reader.child("intercept"));
   reader.optional("max_abs_position_m", p.max_abs_position_m);
   reader.optional("max_abs_speed_m_s", p.max_abs_speed_m_s);
   reader.optional("max_abs_angular_rate_rad_s", p.max_abs_angular_rate_rad_s);
@@ -160,6 +171,9 @@ void SampcParams::validate() const {
   config::check(
       switch_input_rate_weight.allFinite() && (switch_input_rate_weight.array() >= 0.0).all(),
       c + ".switch_input_rate_weight", "must be finite and >= 0");
+  intercept.validate(c + ".intercept");
+  config::check(intercept.velocity_nodes >= 1 && intercept.velocity_nodes <= horizon_steps,
+                c + ".intercept.velocity_nodes", "must be in [1, horizon_steps]");
   config::check(max_sqp_iterations >= 1, c + ".max_sqp_iterations", "must be >= 1");
   config::check(cold_start_iterations >= 1, c + ".cold_start_iterations", "must be >= 1");
   config::check(frame_switch_iterations >= 1, c + ".frame_switch_iterations", "must be >= 1");

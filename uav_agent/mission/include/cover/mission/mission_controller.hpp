@@ -74,7 +74,8 @@ struct ControllerOutput {
 // reference at its start (eq. 23 at the transition stage, except for coni-mpc), feeds
 // SAMPC the horizon reference and returns the command with a status. Never throws after
 // construction and never outputs NaN: stale or invalid inputs give a hover command.
-// The method (cover / no-ref-vxy / coni-mpc) is SAMPC's `mode`.
+// The method (a sampc::kModes name) is SAMPC's `mode`, or the process's own `method` while
+// that process is flown.
 class MissionController {
  public:
   // Throws config::ConfigError when the task or a parameter set is invalid.
@@ -99,6 +100,10 @@ class MissionController {
   // When reference_trajectory()'s t = 0 was (same clock as step's now_s).
   double reference_start_s() const { return stage_start_s_; }
   int ignored_inputs() const { return ignored_inputs_; }
+  // The method of the process being flown (its own, else SAMPC's configured mode).
+  sampc::Mode method() const { return sampc_.params().mode; }
+  // SAMPC's last cost: the intercept law's fallback reason and time to go are in it.
+  const sampc::HorizonCost& horizon_cost() const { return sampc_.horizon_cost(); }
 
  private:
   struct UgvInputs {
@@ -116,6 +121,7 @@ class MissionController {
   void fill_approach(const UgvInputs& inputs);
   void integrate_disturbance(const Eigen::Vector3d& position_m, const Eigen::Vector3d& reference_m);
   void update_observer(const model::Input& applied, double now_s);
+  void use_process_method(std::size_t process_index);
   void hold_current_point(double now_s);
   void run_abort_action(const RelativeMeasurement& state, double now_s);
   void hover(Failsafe reason);
@@ -126,6 +132,8 @@ class MissionController {
   StageMachine machine_;
   planner::StagePlanner planner_;
   sampc::Sampc sampc_;
+  // The method of each process: its own, else SAMPC's configured mode.
+  std::vector<sampc::Mode> process_modes_;
   std::vector<UgvInputs> inputs_;
   planner::Trajectory trajectory_;
   double stage_start_s_ = 0.0;

@@ -27,8 +27,12 @@ struct TransitionProcess {
   FinalAction final_action = FinalAction::None;
   double vmax_m_s = 1.0;   // UAV speed limit relative to the reference frame
   double amax_m_s2 = 2.0;  // UAV acceleration limit relative to the reference frame
+  // The method flying this process (a sampc::kModes name: cover, no-ref-vxy, intercept, ...);
+  // empty: the UAV's configured one (sampc.yaml's mode, or its --method).
+  std::string method;
 
-  static TransitionProcess load(config::YamlReader& reader);
+  // `default_method`: the task's `method:` key, for a process without its own.
+  static TransitionProcess load(config::YamlReader& reader, const std::string& default_method = "");
 };
 
 // Task ids: 1..64 characters of A-Z a-z 0-9 _ - . : @ / + (Task::validate checks it).
@@ -46,7 +50,8 @@ struct Task {
   // Throws config::ConfigError naming the process and key when the task cannot be flown:
   // no process, a UGV id outside [0, ugv_count), Gi == Gj, a chain break (process k+1 must
   // start where process k ended), a non-finite or absurd point, non-positive limits, or a
-  // landing before the last process (the UAV would be disarmed for the rest of the task).
+  // landing before the last process (the UAV would be disarmed for the rest of the task),
+  // an unknown method.
   void validate(int ugv_count) const;
 };
 

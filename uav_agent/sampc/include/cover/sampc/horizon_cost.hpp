@@ -5,6 +5,7 @@
 
 #include "cover/model/state.hpp"
 #include "cover/sampc/horizon_reference.hpp"
+#include "cover/sampc/intercept_velocity.hpp"
 #include "cover/sampc/sampc_params.hpp"
 
 namespace cover::sampc {
@@ -61,6 +62,9 @@ struct HorizonCost {
   double yaw_ref_rad = 0.0;
   // The yaw reference's start and turn direction, for the next control step's build.
   YawTrack yaw_track;
+  // Mode intercept at the transition stage: the law at the measured position (node 0),
+  // with its fallback reason; default (no fallback, tau 0) otherwise.
+  InterceptVelocity intercept;
   std::array<NodeCost, kMaxHorizon + 1> nodes;
 };
 

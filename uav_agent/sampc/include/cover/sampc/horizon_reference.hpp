@@ -32,6 +32,9 @@ struct SampcInput {
   model::UavState uav_state = model::uav_state_at_rest(Eigen::Vector3d::Zero());  // p v q
   model::UgvMotion ugv;
   HorizonReference reference = HorizonReference::hold(Eigen::Vector3d::Zero());
+  // The task's UAV speed limit relative to the reference frame (m/s): the intercept law
+  // keeps its velocity relative to the UGV's translation within it.
+  double speed_limit_m_s = 1.0;
 };
 
 }  // namespace cover::sampc

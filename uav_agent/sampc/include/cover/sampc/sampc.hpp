@@ -57,6 +57,9 @@ class Sampc {
   SampcOutput solve(const SampcInput& input);
   void reset();
   void reset_frame();
+  // Switches the method (a task's process may ask for its own) without touching the plan:
+  // the next prepare builds that method's cost. Allocation-free, for the control loop.
+  void set_mode(Mode mode);
 
   const SampcParams& params() const;
   // The cost (references, weights) of the last preparation: for logging and tests.

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/sampc/intercept_velocity.hpp"
 
 namespace cover::sampc {
 
@@ -17,12 +18,17 @@ inline constexpr int kMaxHorizon = 40;
 //  - Cover:    stage-adaptive: xy-z-ref at the transition stage, x-y-z-ref otherwise.
 //  - NoRefVxy: as Cover with Q0v_x = Q0v_y = 0 ("w.o. Ref. Vxy").
 //  - ConiMpc:  x-y-z-ref at every stage (the prior method).
-enum class Mode { Cover, NoRefVxy, ConiMpc };
+// Beyond the paper:
+//  - Intercept: as Cover, but the transition stage's velocity reference aims at where the
+//    target UGV will be (intercept_velocity.hpp), eq. 30 when that is not predictable.
+enum class Mode { Cover, NoRefVxy, ConiMpc, Intercept };
 
 const char* to_string(Mode mode);
-// "cover" | "no-ref-vxy" | "coni-mpc" (to_string's names); nullopt otherwise.
+// "cover" | "no-ref-vxy" | "coni-mpc" | "intercept" (to_string's names); nullopt otherwise.
 std::optional<Mode> parse_mode(std::string_view name);
-inline constexpr Mode kModes[] = {Mode::Cover, Mode::NoRefVxy, Mode::ConiMpc};
+inline constexpr Mode kModes[] = {Mode::Cover, Mode::NoRefVxy, Mode::ConiMpc, Mode::Intercept};
+// kModes' names joined by `separator` ("cover | no-ref-vxy | ..."): for errors and help.
+std::string mode_names(std::string_view separator);
 
 // Whether the transition stage's planned start velocity drops the frame-rotation part
 // (eq. 23, v0 = v + Omega x p): COVER and its ablation do, the CoNi-MPC baseline does not.
@@ -121,6 +127,9 @@ struct SampcParams {
   int frame_switch_iterations = 1;
   double sqp_step_tolerance = 1e-6;
   int max_qp_iterations = 25;  // active-set changes per QP
+
+  // The intercept method's law and when it falls back to eq. 30 (mode intercept only).
+  InterceptParams intercept;
 
   // Input sanity: beyond these the solve is refused with status invalid_input.
   double max_abs_position_m = 1000.0;

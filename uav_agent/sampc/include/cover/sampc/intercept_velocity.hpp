@@ -1,0 +1,85 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+
+#include "cover/config/yaml_reader.hpp"
+#include "cover/model/ugv_motion.hpp"
+
+namespace cover::sampc {
+
+// The `intercept` method's transition-stage velocity law (beyond the paper). Everything is
+// in the target UGV's frame G (UGV at the origin, x forward, rotating at w = Omega_z), the
+// UGV driving forward at u. The model's velocity v is a rate in G, so the UAV's inertial
+// velocity in G's axes is v + Omega x p + [u, 0, 0].
+//
+// Eq. 30 asks for v + Omega x p = -p_hat s: approach at s relative to the UGV's translation,
+// which makes the UAV copy the UGV's curve. Intercept aims where the UGV will be instead:
+// with u and w held, after tau the UGV is at D(tau) = u [sin(w tau), 1 - cos(w tau)] / w;
+// flying straight from p to D(tau) in tau is the inertial velocity vbar(tau) - p / tau, with
+// vbar = D / tau the UGV's mean velocity over the time to go. With tau = |p_xy| / s:
+//     v_ref = eq. 30 + vbar(tau) - [u, 0, 0]   (the "lead")
+// As tau -> 0 the lead vanishes: the end of the stage (match the UGV) is eq. 30's.
+struct InterceptParams {
+  // Below this forward speed (m/s) the UGV's future position is not worth predicting (and an
+  // IMU estimate, lateral force over yaw rate, is at its noisiest): eq. 30. Reversing
+  // (u < 0) always falls back. Default 0.1.
+  double min_ugv_speed_m_s = 0.1;
+  // Above this |yaw rate| (rad/s) a constant-turn prediction over seconds is not trusted
+  // (the UGV is manoeuvring, not cruising): eq. 30. Default 1.0.
+  double max_ugv_yaw_rate_rad_s = 1.0;
+  // The time to go tau = |p_xy| / s is capped at this (s): a far target (or a slow
+  // reference) does not extrapolate a circle for a minute. Default 6.0.
+  double max_time_to_go_s = 6.0;
+  // ... and so that the UGV turns at most this much over tau (rad): near a full circle the
+  // mean velocity shrinks to nothing and the prediction means little. Default 2.5.
+  double max_predicted_turn_rad = 2.5;
+  // The law sits on the first `velocity_nodes` free nodes (cover's custom_velocity_nodes,
+  // for this method), each at its own predicted position: a lead on node 1 alone is mostly
+  // undone by the rest of the horizon, more nodes make the frame switch abrupter (5: Table 1
+  // 1.064 / 1.084 / 1.220 but a 0.93 rad/s body-rate step on the star, above coni-mpc's).
+  // In [1, horizon_steps]. Default 2 (docs/benchmarks.md).
+  int velocity_nodes = 2;
+
+  static InterceptParams load(config::YamlReader reader);
+  // Throws config::ConfigError naming `context`.<key>.
+  void validate(const std::string& context) const;
+};
+
+// Why the law fell back to eq. 30 (none: it did not).
+enum class InterceptFallback : std::uint8_t {
+  None = 0,
+  NoSpeed = 1,    // the UGV's speed estimate is not valid (unknown source or not finite)
+  Reversing = 2,  // u < 0
+  SlowUgv = 3,    // 0 <= u < min_ugv_speed_m_s
+  FastTurn = 4,   // |w| > max_ugv_yaw_rate_rad_s (or not finite)
+  BadInput = 5,   // a non-finite position, eq. 30 velocity, reference speed or limit
+};
+
+const char* to_string(InterceptFallback fallback);
+
+struct InterceptVelocity {
+  Eigen::Vector2d velocity_m_s = Eigen::Vector2d::Zero();  // the rate in G to track
+  InterceptFallback fallback = InterceptFallback::None;
+  double time_to_go_s = 0.0;  // tau used (0 when it fell back)
+};
+
+// The UGV's mean velocity over the next tau seconds at forward speed u and yaw rate w, in
+// G's axes now: D(tau) / tau (tau = 0: [u, 0]). Finite for finite inputs.
+Eigen::Vector2d ugv_mean_velocity(double speed_m_s, double yaw_rate_rad_s, double tau_s);
+
+// Whether the UGV's motion allows the prediction at all (speed estimate, direction, yaw
+// rate): None, or why not. intercept_velocity() also checks its other inputs.
+InterceptFallback prediction_fallback(const InterceptParams& params, const model::UgvMotion& ugv);
+
+// The intercept velocity reference at position `p_m` (in G), from eq. 30's value there
+// (`eq30_m_s`, computed by the caller for the same p, Omega and s) and the reference
+// speed s (`speed_xy_m_s`). The UAV's velocity relative to the UGV's translation,
+// v + Omega x p, is kept within max(speed_limit_m_s, s). Returns eq. 30 bit for bit, with
+// the reason, whenever the prediction is not trusted; never a NaN from finite eq30_m_s.
+InterceptVelocity intercept_velocity(const InterceptParams& params, const model::UgvMotion& ugv,
+                                     const Eigen::Vector3d& p_m, double speed_xy_m_s,
+                                     const Eigen::Vector2d& eq30_m_s, double speed_limit_m_s);
+
+}  // namespace cover::sampc
