@@ -217,6 +217,9 @@ SampcInput transition_input(const model::UgvMotion& ugv) {
 TEST(InterceptVelocity, InterceptModeIsCoverWhereverThePredictionIsNotTrusted) {
   SampcParams cover_params;
   cover_params.custom_velocity_nodes = 3;
+  // The laws themselves: with the reachable-change limit node 1 of both sits near the UAV's
+  // own velocity.
+  cover_params.eq30_acceleration_limit_m_s2 = 0.0;
   SampcParams intercept_params = cover_params;
   intercept_params.mode = Mode::Intercept;
   intercept_params.intercept.velocity_nodes = 4;

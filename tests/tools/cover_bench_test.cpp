@@ -82,7 +82,6 @@ std::set<std::string> all_methods() {
 }
 const std::set<std::string> kMethods = all_methods();
 
-
 }  // namespace
 
 TEST(CoverBench, Table1PrintsEveryMethodAndPlotsEachRun) {
@@ -181,7 +180,8 @@ TEST(CoverBench, Table1SamplesStartingPhases) {
   EXPECT_NE(phases, run_phases(other_seed));
   double g0_lo = cover::model::kTwoPi, g0_hi = 0.0, g1_lo = cover::model::kTwoPi, g1_hi = 0.0;
   for (const auto& [g0, g1] : phases) {
-    EXPECT_TRUE(g0 >= 0.0 && g0 < cover::model::kTwoPi && g1 >= 0.0 && g1 < cover::model::kTwoPi) << g0 << ", " << g1;
+    EXPECT_TRUE(g0 >= 0.0 && g0 < cover::model::kTwoPi && g1 >= 0.0 && g1 < cover::model::kTwoPi)
+        << g0 << ", " << g1;
     g0_lo = std::min(g0_lo, g0), g0_hi = std::max(g0_hi, g0);
     g1_lo = std::min(g1_lo, g1), g1_hi = std::max(g1_hi, g1);
   }

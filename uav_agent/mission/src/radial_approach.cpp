@@ -5,10 +5,13 @@
 
 namespace cover::mission {
 
+double braking_speed_m_s(double radius_m, const RadialApproachLimits& limits) {
+  return std::min(limits.vmax_m_s, std::sqrt(2.0 * limits.brake_m_s2 * std::max(radius_m, 0.0)));
+}
+
 double approach_speed_m_s(double radius_m, double closing_speed_m_s, double elapsed_s,
                           const RadialApproachLimits& limits) {
-  const double braking = std::sqrt(2.0 * limits.brake_m_s2 * std::max(radius_m, 0.0));
-  const double wanted = std::min(limits.vmax_m_s, braking);
+  const double wanted = braking_speed_m_s(radius_m, limits);
   // Speeding up is limited by amax; slowing down to the braking curve is not (the curve
   // itself brakes at a_brake).
   const double reachable = std::max(closing_speed_m_s, 0.0) + limits.amax_m_s2 * elapsed_s;
@@ -30,8 +33,10 @@ void fill_radial_approach(const Eigen::Vector3d& position_m, double closing_spee
   double elapsed = 0.0;
   for (int k = 0; k <= horizon_steps; ++k) {
     reference.position_m[k].head<2>() = outward * radius;
-    reference.velocity_m_s[k].head<2>() =
-        -outward * approach_speed_m_s(radius, closing_speed_m_s, elapsed, limits);
+    // The speed is the braking curve's, not the ramp's: it is eq. 30's (and intercept's)
+    // v0d, and SAMPC limits its velocity references to a reachable change itself; a ramp
+    // there would ask a UAV at rest near the UGV to stay at rest.
+    reference.velocity_m_s[k].head<2>() = -outward * braking_speed_m_s(radius, limits);
     for (int i = 0; i < kSubsteps; ++i) {
       radius -= h * approach_speed_m_s(radius, closing_speed_m_s, elapsed, limits);
       radius = std::max(radius, 0.0);

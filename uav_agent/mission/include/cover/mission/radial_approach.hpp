@@ -22,6 +22,9 @@ struct RadialApproachLimits {
   double brake_m_s2 = 1.0;  // the deceleration the approach plans to stop with
 };
 
+// The speed of the braking curve at radius `radius_m`: min(vmax, sqrt(2 a_brake r)).
+double braking_speed_m_s(double radius_m, const RadialApproachLimits& limits);
+
 // The approach speed at radius `radius_m`, `elapsed_s` after the closing speed was
 // `closing_speed_m_s`.
 double approach_speed_m_s(double radius_m, double closing_speed_m_s, double elapsed_s,
@@ -29,9 +32,10 @@ double approach_speed_m_s(double radius_m, double closing_speed_m_s, double elap
 
 // Overwrites the horizontal parts of nodes 0..horizon_steps of `reference` (spaced step_s):
 // positions on the line from the UAV's horizontal position `position_m` to the axis at the
-// approach's predicted radius, velocities along it at the approach speed (node 0's is eq.
-// 30's v0d). `closing_speed_m_s` is the UAV's speed toward the axis relative to the UGV's
-// translation now (negative: moving away). Heights are left as they are.
+// approach's predicted radius (speeding up from the closing speed now), velocities along it
+// at the braking curve's speed there (node 0's is eq. 30's v0d). `closing_speed_m_s` is the UAV's
+// speed toward the axis relative to the UGV's translation now (negative: moving away). Heights are
+// left as they are.
 void fill_radial_approach(const Eigen::Vector3d& position_m, double closing_speed_m_s,
                           const RadialApproachLimits& limits, int horizon_steps, double step_s,
                           sampc::HorizonReference& reference);

@@ -37,10 +37,10 @@ struct InterceptParams {
   double max_predicted_turn_rad = 2.5;
   // The law sits on the first `velocity_nodes` free nodes (cover's custom_velocity_nodes,
   // for this method), each at its own predicted position: a lead on node 1 alone is mostly
-  // undone by the rest of the horizon, more nodes make the frame switch abrupter (5: Table 1
-  // 1.064 / 1.084 / 1.220 but a 0.93 rad/s body-rate step on the star, above coni-mpc's).
-  // In [1, horizon_steps]. Default 2 (docs/benchmarks.md).
-  int velocity_nodes = 2;
+  // undone by the rest of the horizon; 10 nodes under the reachable-change limit (SampcParams::
+  // eq30_acceleration_limit_m_s2) fly the shortest paths with every switch peak below
+  // coni-mpc's. In [1, horizon_steps]. Default 10 (docs/benchmarks.md).
+  int velocity_nodes = 10;
 
   static InterceptParams load(config::YamlReader reader);
   // Throws config::ConfigError naming `context`.<key>.
