@@ -113,7 +113,7 @@ struct SampcParams {
   // step of -1.3 rad/s on the circle); this lets the command walk there over a few steps
   // instead of jumping. Order [F, wx, wy, wz], each >= 0; 0 s disables it.
   double switch_smoothing_s = 0.5;
-  Eigen::Vector4d switch_input_rate_weight{0.0, 1000.0, 1000.0, 300.0};
+  Eigen::Vector4d switch_input_rate_weight{30.0, 1000.0, 1000.0, 300.0};
 
   // Solver: 1 SQP iteration per call is the real-time iteration. After reset() (no warm
   // start) `cold_start_iterations` are spent instead. `max_sqp_iterations` > 1 iterates
