@@ -6,6 +6,7 @@
 // available.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -35,6 +36,7 @@ constexpr double kMaxLandingErrorM = 0.05;
 class WifiNetwork : public ::testing::Test {
  protected:
   void SetUp() override {
+    if (geteuid() != 0) GTEST_SKIP() << "not root: network namespaces need root";
     const auto check = cover::process::run_command(
         {COVER_WIFI_SIM, "check"}, ::testing::TempDir() + "wifi_check.log", kScriptTimeout);
     if (check.exit_code == kSkipped) GTEST_SKIP() << check.output;
