@@ -111,6 +111,39 @@ TEST(ParticipantOptionsFile, ShippedConfigIsValid) {
   EXPECT_NO_THROW(options.validate());
 }
 
+TEST(ParticipantOptionsFile, ProfileReplacesTheNetworkKeys) {
+  const auto file = write_temp_yaml(
+      "dds_profiles.yaml",
+      "dds:\n  domain_id: 4\n  interface: lo\n  profiles:\n    wifi:\n      interface: wifi0\n"
+      "      peers: [10.0.0.2]\n      announcement_period_s: 0.5\n    spare: {}\n");
+  const auto plain = ParticipantOptions::load_file(file);
+  EXPECT_EQ(plain.interface_name, "lo");
+  EXPECT_TRUE(plain.peers.empty());
+  const auto wifi = ParticipantOptions::load_file(file, "wifi");
+  EXPECT_EQ(wifi.interface_name, "wifi0");
+  ASSERT_EQ(wifi.peers.size(), 1u);
+  EXPECT_DOUBLE_EQ(wifi.announcement_period_s, 0.5);
+  EXPECT_EQ(wifi.domain_id, 4);  // not a network key: stays
+  EXPECT_NE(message_of([&] { ParticipantOptions::load_file(file, "wfi"); }).find("spare"),
+            std::string::npos);  // names the known profiles
+  const auto typo = write_temp_yaml("dds_profile_typo.yaml",
+                                    "dds:\n  profiles:\n    other:\n      peer: [10.0.0.2]\n");
+  EXPECT_NE(message_of([&] { ParticipantOptions::load_file(typo); }).find("peer"),
+            std::string::npos);  // a typo in an unselected profile fails too
+  const auto bad_period =
+      write_temp_yaml("dds_bad_period.yaml", "dds:\n  announcement_period_s: -1\n");
+  EXPECT_NE(
+      message_of([&] { ParticipantOptions::load_file(bad_period); }).find("announcement_period_s"),
+      std::string::npos);
+}
+
+TEST(ParticipantOptionsFile, ShippedWifiProfileUsesUnicastPeers) {
+  const auto wifi =
+      ParticipantOptions::load_file(std::string(COVER_SOURCE_DIR) + "/config/dds.yaml", "wifi");
+  EXPECT_EQ(wifi.interface_name, "wifi0");
+  EXPECT_FALSE(wifi.peers.empty());
+}
+
 class OnEachVendor : public testing::TestWithParam<Vendor> {};
 
 TEST_P(OnEachVendor, BadDomainIdIsAClearError) {

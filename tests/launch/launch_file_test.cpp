@@ -186,6 +186,10 @@ launch:
                "{COVER_DDS: cyclone}}]}"),
       "COVER_DDS is set by the launcher"));
   EXPECT_TRUE(contains(
+      error_of("launch: {name: a, processes: [{name: p, executable: x, ends_run: true, netns: "
+               "'a b'}]}"),
+      "netns: 'a b'"));
+  EXPECT_TRUE(contains(
       error_of("launch: {name: a, variables: {run_id: x}, processes: [{name: p, executable: x, "
                "ends_run: true}]}"),
       "'run_id' is a built-in placeholder"));

@@ -172,6 +172,24 @@ TEST(LaunchPlan, CarriesTheRespawnPolicy) {
   EXPECT_EQ(respawn.max_respawns, 4);
 }
 
+TEST(LaunchPlan, CarriesTheNetworkNamespace) {
+  LaunchFile file;
+  file.name = "wifi";
+  ProcessSpec sim;
+  sim.name = "sim";
+  sim.executable = "cover-sim";
+  sim.netns = "cwifi-sim";
+  ProcessSpec agent = sim;
+  agent.name = "agent";
+  agent.netns.clear();
+  file.processes = {sim, agent};
+  LaunchOptions options;
+  options.run_dir = "/tmp/runs/z";
+  const LaunchPlan plan = make_plan(file, options);
+  EXPECT_EQ(plan.processes.at(0).netns, "cwifi-sim");
+  EXPECT_TRUE(plan.processes.at(1).netns.empty());
+}
+
 TEST(LaunchExecutable, BareNamesBesideSelfThenPath) {
   const fs::path dir = fs::temp_directory_path() / ("cover-launch-exe-" + std::to_string(getpid()));
   fs::create_directories(dir / "self");

@@ -13,10 +13,14 @@ void DdsCliOptions::add_to(CLI::App& app) {
   domain_flag_ = app.add_option("--domain", domain_id,
                                 "DDS domain id 0..232 (default: config, $COVER_DDS_DOMAIN)");
   app.add_option("--dds-config", config_path, "DDS settings file")->capture_default_str();
+  app.add_option("--dds-profile", profile,
+                 "Network profile of the DDS settings file, e.g. wifi (default: "
+                 "$COVER_DDS_PROFILE, else none)");
 }
 
 ParticipantOptions DdsCliOptions::resolve(const std::string& participant_name) const {
-  ParticipantOptions options = apply_environment(ParticipantOptions::load_file(config_path));
+  ParticipantOptions options = apply_environment(ParticipantOptions::load_file(
+      config_path, profile.empty() ? profile_from_environment("") : profile));
   if (!vendor.empty()) options.vendor = parse_vendor(vendor);
   if (domain_flag_ && domain_flag_->count() > 0) options.domain_id = domain_id;
   options.participant_name = participant_name;

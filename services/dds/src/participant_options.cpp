@@ -14,6 +14,10 @@ void ParticipantOptions::validate() const {
     throw DdsError("invalid DDS domain id " + std::to_string(domain_id) + " (valid: 0.." +
                    std::to_string(kMaxDomainId) + ")");
   }
+  if (!(announcement_period_s >= 0.0 && announcement_period_s <= 3600.0)) {
+    throw DdsError("invalid announcement_period_s " + std::to_string(announcement_period_s) +
+                   " (valid: 0 = vendor default, or up to 3600 s)");
+  }
   for (const auto& peer : peers) {
     in_addr address{};
     if (inet_pton(AF_INET, peer.c_str(), &address) != 1) {
@@ -22,15 +26,51 @@ void ParticipantOptions::validate() const {
   }
 }
 
-ParticipantOptions ParticipantOptions::load_file(const std::string& path) {
+namespace {
+
+// The network keys, which the top level and every profile share.
+void read_network_keys(config::YamlReader& reader, ParticipantOptions& options) {
+  reader.optional("interface", options.interface_name);
+  reader.optional("peers", options.peers);
+  reader.optional("fastdds_shared_memory", options.fastdds_shared_memory);
+  reader.optional("announcement_period_s", options.announcement_period_s);
+}
+
+// Applies profile `name` of `profiles` on top of `options`; every profile is checked for
+// unknown keys, so that a typo in one not selected today still fails loudly.
+void apply_profile(config::YamlReader profiles, const std::string& name,
+                   ParticipantOptions& options) {
+  bool found = name.empty();
+  std::string known;
+  if (profiles.node().IsMap()) {
+    for (const auto& entry : profiles.node()) {
+      const auto key = entry.first.as<std::string>();
+      known += (known.empty() ? "" : ", ") + key;
+      ParticipantOptions scratch;
+      config::YamlReader profile = profiles.child(key);
+      read_network_keys(profile, key == name ? options : scratch);
+      profile.reject_unknown_keys();
+      found = found || key == name;
+    }
+  }
+  if (!found) {
+    throw config::ConfigError(profiles.context() + ": no DDS profile '" + name +
+                              "' (known: " + (known.empty() ? "none" : known) + ")");
+  }
+  profiles.reject_unknown_keys();
+}
+
+}  // namespace
+
+ParticipantOptions ParticipantOptions::load_file(const std::string& path,
+                                                 const std::string& profile) {
   ParticipantOptions options;
   config::YamlReader dds = config::open_section(path, "dds", /*required=*/false);
   std::string vendor = vendor_name(options.vendor);
   dds.optional("vendor", vendor);
   dds.optional("domain_id", options.domain_id);
-  dds.optional("interface", options.interface_name);
-  dds.optional("peers", options.peers);
-  dds.optional("fastdds_shared_memory", options.fastdds_shared_memory);
+  read_network_keys(dds, options);
+  apply_profile(dds.child("profiles"), profile, options);
   dds.reject_unknown_keys();
   try {
     options.vendor = parse_vendor(vendor);
@@ -50,6 +90,11 @@ ParticipantOptions apply_environment(ParticipantOptions options) {
     options.domain_id = static_cast<int>(value);
   }
   return options;
+}
+
+std::string profile_from_environment(const std::string& fallback) {
+  const char* profile = std::getenv("COVER_DDS_PROFILE");
+  return profile && *profile ? std::string(profile) : fallback;
 }
 
 }  // namespace cover::dds

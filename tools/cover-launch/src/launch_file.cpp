@@ -36,6 +36,7 @@ ProcessSpec parse_process(const YAML::Node& node, const std::string& context) {
   process.optional("args", spec.args);
   process.optional("dds", spec.dds);
   process.optional("env", spec.env);
+  process.optional("netns", spec.netns);
   process.optional("ends_run", spec.ends_run);
   process.optional("respawn", spec.respawn.enabled);
   process.optional("respawn_delay_s", spec.respawn.delay_s);
@@ -76,6 +77,8 @@ void validate_process(const ProcessSpec& spec, const std::set<std::string>& know
   config::check(spec.name != "launch", context, "the name 'launch' is taken by launch.log");
   config::check(!spec.executable.empty(), context, "executable is empty");
   config::check(is_vendor(spec.dds), context, "dds: '" + spec.dds + "' (valid: fastdds, cyclone)");
+  config::check(spec.netns.empty() || only_chars(spec.netns, "_-"), context,
+                "netns: '" + spec.netns + "' (use letters, digits, '_' and '-')");
   for (const auto& [key, value] : spec.env) {
     config::check(is_identifier(key), context, "env: bad variable name '" + key + "'");
     config::check(key != "COVER_DDS" && key != "COVER_DDS_DOMAIN", context,

@@ -30,6 +30,7 @@ PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& va
   planned.executable = spec.executable;
   planned.args = expand_arguments(spec.args, values);
   planned.dds = spec.dds;
+  planned.netns = spec.netns;
   planned.ends_run = spec.ends_run;
   planned.respawn = spec.respawn;
   for (const auto& [key, value] : spec.env) planned.env.push_back(key + "=" + value);

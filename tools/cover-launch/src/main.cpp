@@ -31,6 +31,7 @@ Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
         args: ["--seed={seed}", "--run-id={run_id}"]
         dds: fastdds         fastdds | cyclone, given as $COVER_DDS
         env: {KEY: value}
+        netns: cwifi-sim     run in this network namespace (ip netns exec; root)
         ends_run: true       exactly one process: its exit ends the run
         respawn: false       restart it when it dies (not with ends_run)
         respawn_delay_s: 1.0 wait before each restart (>= 0)

@@ -149,6 +149,24 @@ class Supervisor {
       }
       executables_.push_back(*resolved);
     }
+    return resolve_ip();
+  }
+
+  // `ip` runs a process in a network namespace: it enters the namespace and execs the
+  // command, so the pid the launcher watches and signals is the process's own.
+  bool resolve_ip() {
+    bool needed = false;
+    for (const auto& spec : plan_.processes) needed = needed || !spec.netns.empty();
+    if (!needed) return true;
+    const char* path = std::getenv("PATH");
+    const auto ip =
+        resolve_executable("ip", "", "", std::string(path ? path : "") + ":/usr/sbin:/sbin");
+    if (!ip) {
+      spdlog::error("'ip' (iproute2) not found: needed for processes with a netns");
+      finish(kExitProcessDied, "ip not found for netns");
+      return false;
+    }
+    ip_ = *ip;
     return true;
   }
 
@@ -161,7 +179,10 @@ class Supervisor {
   }
 
   std::vector<std::string> argv_of(std::size_t index) const {
-    std::vector<std::string> argv{executables_[index]};
+    std::vector<std::string> argv;
+    const std::string& netns = plan_.processes[index].netns;
+    if (!netns.empty()) argv = {ip_, "netns", "exec", netns};
+    argv.push_back(executables_[index]);
     const auto& args = plan_.processes[index].args;
     argv.insert(argv.end(), args.begin(), args.end());
     return argv;
@@ -293,6 +314,7 @@ class Supervisor {
   const LaunchPlan& plan_;
   RunOutcome& outcome_;
   std::vector<std::string> executables_;
+  std::string ip_;  // iproute2, when a process runs in a network namespace
   std::vector<Child> children_;
 };
 

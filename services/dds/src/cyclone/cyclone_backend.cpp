@@ -4,7 +4,9 @@
 
 #include <dds/dds.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <mutex>
@@ -38,6 +40,10 @@ std::string cyclone_config(const ParticipantOptions& options) {
         "MaxAutoParticipantIndex><Peers>";
     for (const auto& peer : options.peers) xml += "<Peer address=\"" + peer + "\"/>";
     xml += "</Peers>";
+  }
+  if (options.announcement_period_s > 0) {
+    const long period_ms = std::max(1L, std::lround(options.announcement_period_s * 1e3));
+    xml += "<SPDPInterval>" + std::to_string(period_ms) + " ms</SPDPInterval>";
   }
   xml += "</Discovery></Domain></CycloneDDS>";
   return xml;

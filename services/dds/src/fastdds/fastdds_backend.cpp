@@ -81,12 +81,21 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
       udp->interfaceWhiteList.push_back(address);
     }
     udp->maxInitialPeersRange = 32;  // more than 4 participants per host
+    // Unicast to a peer whose address does not resolve (a vehicle switched off, a spare
+    // address) fills the socket's send buffer until ARP gives up, ~3 s, and a blocking
+    // send would stall every writer of this process that long: drop instead, as a lossy
+    // link would.
+    udp->non_blocking_send = !options.peers.empty();
     qos.transport().use_builtin_transports = false;
     qos.transport().user_transports.push_back(udp);
     if (options.fastdds_shared_memory) {
       qos.transport().user_transports.push_back(
           std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
     }
+  }
+  if (options.announcement_period_s > 0) {
+    qos.wire_protocol().builtin.discovery_config.leaseDuration_announcementperiod =
+        to_duration(options.announcement_period_s);
   }
   for (const auto& peer : options.peers) {
     eprosima::fastrtps::rtps::Locator_t locator;

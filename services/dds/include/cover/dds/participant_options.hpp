@@ -8,7 +8,8 @@
 namespace cover::dds {
 
 // How a process joins the DDS network. Loaded from config/dds.yaml (see load_file), then
-// overridden by --dds / $COVER_DDS and --domain / $COVER_DDS_DOMAIN.
+// overridden by --dds / $COVER_DDS and --domain / $COVER_DDS_DOMAIN; a profile of the
+// file (--dds-profile / $COVER_DDS_PROFILE) replaces its network keys.
 struct ParticipantOptions {
   Vendor vendor = Vendor::FastDds;
   int domain_id = 0;  // 0..232 (the RTPS port formula overflows above 232)
@@ -24,13 +25,23 @@ struct ParticipantOptions {
   // participant restarted on its port could not receive over it (a task manager killed
   // and restarted stayed deaf to its fleet); loopback UDP costs a few microseconds.
   bool fastdds_shared_memory = false;
+  // How often a participant announces itself (SPDP), in seconds; 0: the vendor's default
+  // (Fast DDS 3 s, Cyclone 30 s). On a lossy link a lost announcement delays discovery
+  // by one period: a UAV agent that discovers a UGV's IMU writer late fails its stage.
+  double announcement_period_s = 0.0;
   std::string participant_name = "cover";
 
   void validate() const;  // throws DdsError naming the bad field
-  static ParticipantOptions load_file(const std::string& path);  // throws ConfigError
+  // Reads `dds:` of `path`, then, when `profile` is not empty, the network keys of
+  // `dds.profiles.<profile>` on top (e.g. "wifi"). Throws ConfigError, also for a
+  // profile the file does not define.
+  static ParticipantOptions load_file(const std::string& path, const std::string& profile = "");
 };
 
 inline constexpr int kMaxDomainId = 232;
+
+// $COVER_DDS_PROFILE when set and not empty, else `fallback`.
+std::string profile_from_environment(const std::string& fallback);
 
 // Applies $COVER_DDS and $COVER_DDS_DOMAIN on top of `options`.
 ParticipantOptions apply_environment(ParticipantOptions options);

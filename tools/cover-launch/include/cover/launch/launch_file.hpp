@@ -17,6 +17,9 @@ struct ProcessSpec {
   std::vector<std::string> args;
   std::string dds = "fastdds";  // fastdds | cyclone, given to the child as COVER_DDS
   std::map<std::string, std::string> env;
+  // A Linux network namespace (`ip netns`) to run in, e.g. one of scripts/wifi-sim's;
+  // empty: the launcher's own network.
+  std::string netns;
   bool ends_run = false;  // exactly one process ends the run when it exits
   RespawnPolicy respawn;  // keys respawn, respawn_delay_s, max_respawns
 };

@@ -27,6 +27,7 @@ struct PlannedProcess {
   std::string executable;  // as in the file
   std::vector<std::string> args;
   std::string dds;
+  std::string netns;             // empty: the launcher's network namespace
   std::vector<std::string> env;  // "KEY=value": the file's env, COVER_DDS, COVER_DDS_DOMAIN
   bool ends_run = false;
   RespawnPolicy respawn;
