@@ -65,24 +65,54 @@ TEST(MissionController, StartsTheTaskAndPlansTheFirstStage) {
   EXPECT_DOUBLE_EQ(controller.reference_trajectory().position(1e9).z(), 1.0);
 }
 
-TEST(MissionController, StaleInputsHoverThenFailTheMission) {
+TEST(MissionController, StaleInputsHoverThenLandAndFailTheMission) {
   MissionController controller = make_controller();
   feed_at_rest(controller, 0.0);
   controller.step(0.0);
   const auto& stale = controller.step(0.2);  // inputs 0.2 s old (> 0.1 s)
-  EXPECT_EQ(stale.status.failsafe, Failsafe::StaleInput);
+  EXPECT_EQ(stale.status.failsafe, Failsafe::EmergencyHover);
+  EXPECT_EQ(stale.status.failsafe_cause, cover::mission::FailsafeCause::StateStale);
+  EXPECT_NEAR(stale.status.failsafe_input_age_s, 0.2, 1e-9);
   EXPECT_TRUE(stale.command.armed);
-  EXPECT_DOUBLE_EQ(stale.command.thrust_m_s2, cover::model::kGravity_m_s2);
-  EXPECT_TRUE(stale.command.body_rate_rad_s.isZero());
+  EXPECT_TRUE(stale.command.body_rate_rad_s.isZero());  // level already
   EXPECT_EQ(stale.status.stage.state, MissionState::Running);
-  const auto& failed = controller.step(1.0);  // stale for 0.8 s (> 0.5 s)
-  EXPECT_EQ(failed.status.stage.state, MissionState::Failed);
-  EXPECT_EQ(failed.status.stage.failure, FailureReason::StaleInput);
-  // Fresh inputs again: it holds its position (tracking), with the failure still shown.
-  feed_at_rest(controller, 1.01);
-  const auto& holding = controller.step(1.01);
-  EXPECT_EQ(holding.status.failsafe, Failsafe::MissionFailed);
-  expect_finite(holding.command);
+  const auto& landing = controller.step(1.25);  // 1.05 s in the hover (> 1.0 s)
+  EXPECT_EQ(landing.status.failsafe, Failsafe::EmergencyLanding);
+  EXPECT_EQ(landing.status.stage.state, MissionState::Failed);
+  EXPECT_EQ(landing.status.stage.failure, FailureReason::StaleInput);
+  // Fresh inputs again: the landing is latched (the task has failed), not a silent return.
+  feed_at_rest(controller, 1.26);
+  const auto& still = controller.step(1.26);
+  EXPECT_EQ(still.status.failsafe, Failsafe::EmergencyLanding);
+  expect_finite(still.command);
+}
+
+TEST(MissionController, InputsBackDuringTheHoverResumeTheStageReplanned) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  controller.step(0.0);
+  EXPECT_EQ(controller.step(0.3).status.failsafe, Failsafe::EmergencyHover);
+  feed_at_rest(controller, 0.6);
+  const auto& back = controller.step(0.6);
+  EXPECT_EQ(back.status.failsafe, Failsafe::None);
+  EXPECT_TRUE(back.status.planned);
+  EXPECT_EQ(back.status.stage.state, MissionState::Running);
+  EXPECT_DOUBLE_EQ(controller.reference_start_s(), 0.6);
+}
+
+TEST(MissionController, StaleImuIsHeldBrieflyThenHovers) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  controller.step(0.0);
+  RelativeMeasurement state;
+  state.stamp_s = 0.15;
+  controller.set_relative_state(0, state);
+  const auto& held = controller.step(0.15);  // IMU 0.15 s old: within 0.1 + 0.1
+  EXPECT_EQ(held.status.failsafe, Failsafe::ImuHold);
+  EXPECT_EQ(held.status.failsafe_cause, cover::mission::FailsafeCause::ImuStale);
+  state.stamp_s = 0.25;
+  controller.set_relative_state(0, state);
+  EXPECT_EQ(controller.step(0.25).status.failsafe, Failsafe::EmergencyHover);
 }
 
 TEST(MissionController, NonFiniteStateNeverReachesTheCommand) {
@@ -98,7 +128,8 @@ TEST(MissionController, NonFiniteStateNeverReachesTheCommand) {
   imu.motion.angular_velocity_rad_s.z() = std::numeric_limits<double>::infinity();
   controller.set_ugv_imu(0, imu);
   const auto& out = controller.step(0.01);
-  EXPECT_EQ(out.status.failsafe, Failsafe::StaleInput);
+  EXPECT_EQ(out.status.failsafe, Failsafe::EmergencyHover);
+  EXPECT_EQ(out.status.failsafe_cause, cover::mission::FailsafeCause::StateInvalid);
   expect_finite(out.command);
 }
 

@@ -31,7 +31,8 @@ void RunRecorder::record(const mission::ControllerStatus& status,
   record_tracking(status, world);
   if (status.solve_us > 0.0) mpc_us_.push_back(status.solve_us);
   if (status.planned) plan_ms_.push_back(status.plan_ms);
-  if (status.failsafe == mission::Failsafe::StaleInput ||
+  if (status.failsafe == mission::Failsafe::EmergencyHover ||
+      status.failsafe == mission::Failsafe::EmergencyLanding ||
       status.failsafe == mission::Failsafe::SolverError) {
     ++result_.failsafe_steps;
   }
