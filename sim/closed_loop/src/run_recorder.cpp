@@ -37,8 +37,11 @@ void RunRecorder::record(const mission::ControllerStatus& status,
     ++result_.failsafe_steps;
   }
   record_path(status, ws);
-  // An aborted task is over for the run once its safe action has disarmed the motors.
-  const bool over = mission::is_terminal(status.stage.state) &&
+  // An aborted task is over for the run once its safe action has disarmed the motors, a
+  // task failed by the failsafe ladder once its emergency landing has.
+  const bool landing = status.failsafe == mission::Failsafe::EmergencyHover ||
+                       status.failsafe == mission::Failsafe::EmergencyLanding;
+  const bool over = mission::is_terminal(status.stage.state) && !landing &&
                     (status.stage.state != mission::MissionState::Aborted || !command.armed);
   if (done_time_s_ < 0.0 && over) done_time_s_ = ws.time_s;
   ++steps_;
