@@ -242,8 +242,10 @@ void UavAgentNode::publish_task_status_on_change(double now_s) {
                           mission::to_string(failsafe);
   if (key == reported_key_) return;
   reported_key_ = key;
-  // A failsafe change is reported with its cause (the task's history keeps it).
-  const bool failsafe_changed = failsafe != reported_failsafe_ && !failsafe_event_.empty();
+  // A change on the failsafe ladder is reported with its cause (the task's history keeps
+  // it); the others (landed, aborted, ...) with the stage machine's line.
+  const bool failsafe_changed = failsafe != reported_failsafe_ && !failsafe_event_.empty() &&
+                                (on_ladder(failsafe) || on_ladder(reported_failsafe_));
   reported_failsafe_ = failsafe;
   msg::TaskStatus status =
       wire::to_task_status(task->task_id, options_.uav_id, now_s, d, task->processes.size(),
