@@ -100,6 +100,28 @@ TEST(MissionController, InputsBackDuringTheHoverResumeTheStageReplanned) {
   EXPECT_DOUBLE_EQ(controller.reference_start_s(), 0.6);
 }
 
+TEST(MissionController, AnAbortInterruptedByTheHoverHoldsTheNewPointAndLandsAgain) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  controller.step(0.0);
+  ASSERT_TRUE(controller.abort(0.01));
+  feed_at_rest(controller, 0.01);
+  controller.step(0.01);
+  EXPECT_EQ(controller.step(0.3).status.failsafe, Failsafe::EmergencyHover);
+  RelativeMeasurement moved;
+  moved.stamp_s = 0.6;
+  moved.position_m = Eigen::Vector3d(0.4, -0.2, 0.8);
+  controller.set_relative_state(0, moved);
+  UgvImuMeasurement imu;
+  imu.stamp_s = 0.6;
+  controller.set_ugv_imu(0, imu);
+  const auto& back = controller.step(0.6);
+  EXPECT_EQ(back.status.failsafe, Failsafe::Aborted);
+  EXPECT_EQ(back.status.stage.state, MissionState::Aborted);
+  EXPECT_TRUE(controller.reference_trajectory().position(0.0).isApprox(moved.position_m));
+  EXPECT_FALSE(back.status.planned);  // no stage plan for a task that has ended
+}
+
 TEST(MissionController, StaleImuIsHeldBrieflyThenHovers) {
   MissionController controller = make_controller();
   feed_at_rest(controller, 0.0);

@@ -29,9 +29,10 @@ bool on_ladder(mission::Failsafe f) {
 std::string failsafe_event(const mission::ControllerStatus& s, mission::Failsafe before) {
   const std::string was = mission::to_string(before);
   if (s.failsafe == mission::Failsafe::None) {
-    return on_ladder(before) ? "failsafe cleared (was " + was + "): inputs back, stage resumes" +
-                                   (before == mission::Failsafe::EmergencyHover ? " replanned" : "")
-                             : "failsafe cleared (was " + was + ")";
+    if (before == mission::Failsafe::ImuHold) return "failsafe cleared (was " + was + "): IMU back";
+    return on_ladder(before)
+               ? "failsafe cleared (was " + was + "): inputs back, stage resumes replanned"
+               : "failsafe cleared (was " + was + ")";
   }
   std::string line =
       std::string("failsafe ") + mission::to_string(s.failsafe) + " (was " + was + ")";

@@ -94,11 +94,19 @@ bool MissionController::emergency_step(int reference, double now_s) {
   output_.status.failsafe_cause = ladder_.cause();
   output_.status.failsafe_input_age_s = ladder_.cause_age_s();
   if (ladder_.resumed()) {
-    // The inputs are back: the stage goes on from where the hover left the UAV.
-    plan_pending_ = true;
-    plan_attempts_ = 0;
+    // The inputs are back: the stage goes on from where the hover left the UAV; a task that
+    // had ended holds that point instead (an abort then holds and lands again).
     sampc_.reset_frame();
     observer_.reset();
+    if (holding_) {
+      hold_current_point(now_s);
+      descending_ = false;
+      touchdown_since_s_ = -1.0;
+      abort_time_s_ = now_s;
+    } else {
+      plan_pending_ = true;
+      plan_attempts_ = 0;
+    }
   }
   if (level == LadderLevel::EmergencyLanding && before != LadderLevel::EmergencyLanding) {
     machine_.fail(FailureReason::StaleInput, now_s);
