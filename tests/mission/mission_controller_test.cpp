@@ -5,6 +5,7 @@
 
 #include "cover/mission/mission_controller.hpp"
 #include "cover/uav/controller_config.hpp"
+#include "cover/uav/uav_loop.hpp"
 
 using cover::mission::Failsafe;
 using cover::mission::FailureReason;
@@ -120,6 +121,44 @@ TEST(MissionController, AnAbortInterruptedByTheHoverHoldsTheNewPointAndLandsAgai
   EXPECT_EQ(back.status.stage.state, MissionState::Aborted);
   EXPECT_TRUE(controller.reference_trajectory().position(0.0).isApprox(moved.position_m));
   EXPECT_FALSE(back.status.planned);  // no stage plan for a task that has ended
+}
+
+// The loop's inputs: the UAV at rest on both decks, stamped when the test says.
+struct AtRest : cover::uav::UavInputs {
+  double stamp_s = 0.0;
+  bool relative_state(int, RelativeMeasurement& out) override {
+    out = RelativeMeasurement{};
+    out.stamp_s = stamp_s;
+    return true;
+  }
+  bool ugv_imu(int, UgvImuMeasurement& out) override {
+    out = UgvImuMeasurement{};
+    out.stamp_s = stamp_s;
+    return true;
+  }
+};
+struct Discard : cover::uav::CommandOutput {
+  void write(const cover::uav::StepOutput&) override {}
+};
+
+TEST(UavLoop, RefusesANewTaskWhileAnEmergencyLandingHasTheMotors) {
+  const auto config = cover::uav::ControllerConfig::load_default(cover::sampc::Mode::Cover);
+  cover::uav::UavLoop loop(0, 2, config);
+  cover::mission::Task task = cover::mission::load_task_file(
+      cover::config::default_config_dir() + "/tasks/scenario2.yaml", 2);
+  task.uav_id = 0;
+  ASSERT_TRUE(loop.give_task(task).accepted);
+  AtRest inputs;
+  Discard out;
+  loop.step(0.0, inputs, out);
+  inputs.stamp_s = -100.0;  // nothing fresh from now on
+  loop.step(0.3, inputs, out);
+  EXPECT_EQ(loop.step(1.4, inputs, out).status.failsafe, Failsafe::EmergencyLanding);
+  EXPECT_EQ(loop.task_state(), MissionState::Failed);
+  task.task_id = "next";
+  const auto decision = loop.give_task(task);
+  EXPECT_FALSE(decision.accepted);
+  EXPECT_NE(decision.reason.find("emergency-landing"), std::string::npos) << decision.reason;
 }
 
 TEST(MissionController, StaleImuIsHeldBrieflyThenHovers) {
