@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "cover/config/config_error.hpp"
 #include "cover/config/yaml_reader.hpp"
@@ -39,6 +40,7 @@ struct CommandLine {
   std::string plot_file;
   std::string summary_file;
   bool standing = false;
+  std::vector<double> relative_gap;  // start_s, duration_s
   std::string params_file = cover::config::default_config_dir() + "/sim/sim_process.yaml";
   cover::dds::DdsCliOptions dds;
 };
@@ -132,6 +134,11 @@ int main(int argc, char** argv) {
   app.add_flag("--standing", cli.standing,
                "run until stopped (a standing system flying the tasks it is sent), no result");
   app.add_option("--params", cli.params_file, "cover-sim settings")->capture_default_str();
+  app.add_option("--relative-gap", cli.relative_gap,
+                 "START_S DURATION_S: inject a motion-capture outage, no relative state published "
+                 "in that window of simulated time (realtime; in lockstep every tick of it waits "
+                 "for the agents' input timeout)")
+      ->expected(2);
   cli.dds.add_to(app);
   CLI11_PARSE(app, argc, argv);
   cover::logging::init("sim");
@@ -147,6 +154,13 @@ int main(int argc, char** argv) {
     options.clock = cli.clock == "lockstep" ? cover::sim::SimClockMode::Lockstep
                                             : cover::sim::SimClockMode::Realtime;
     options.standing = cli.standing;
+    if (!cli.relative_gap.empty()) {
+      if (!(cli.relative_gap[0] >= 0.0 && cli.relative_gap[1] > 0.0)) {
+        throw cover::config::ConfigError("--relative-gap: START_S must be >= 0, DURATION_S > 0");
+      }
+      options.relative_gap_start_s = cli.relative_gap[0];
+      options.relative_gap_s = cli.relative_gap[1];
+    }
     const std::string segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
     // Declared first, removed last: see SimNode.
     cover::shm::SeqlockWriter<cover::sim::SharedWorld> segment(

@@ -116,10 +116,22 @@ bool SimNode::wait_for_agents() {
   return true;
 }
 
+bool SimNode::relative_withheld(double t_s) {
+  const double start_s = options_.relative_gap_start_s;
+  const bool withheld = start_s >= 0.0 && t_s >= start_s && t_s < start_s + options_.relative_gap_s;
+  if (withheld != in_relative_gap_) {
+    spdlog::warn("injected fault: relative states {} at t = {:.2f} s",
+                 withheld ? "withheld" : "published again", t_s);
+    in_relative_gap_ = withheld;
+  }
+  return withheld;
+}
+
 void SimNode::publish_tick() {
   const double t = fleet_.time_s();
   std::int64_t relative_stamp_ns = -1;
-  for (int u = 0; u < fleet_.uav_count(); ++u) {
+  const bool withheld = relative_withheld(t);
+  for (int u = 0; u < fleet_.uav_count() && !withheld; ++u) {
     const World& world = fleet_.world(u);
     if (!world.relative_sensor().has_measurement()) continue;
     for (int k = 0; k < world.ugv_count(); ++k) {

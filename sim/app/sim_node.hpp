@@ -23,6 +23,10 @@ struct SimRunOptions {
   // A standing world (a system that flies whatever tasks it is sent): runs until stopped,
   // whatever the scenario's task and max_duration_s say.
   bool standing = false;
+  // A motion-capture outage to inject (docs/failsafes.md): no relative state is published
+  // for any UAV from relative_gap_start_s for relative_gap_s of simulated time (< 0: none).
+  double relative_gap_start_s = -1.0;
+  double relative_gap_s = 0.0;
 };
 
 // Why a run ended.
@@ -58,6 +62,7 @@ class SimNode {
   SimExit run_lockstep();
   SimExit run_realtime();
   void publish_tick();
+  bool relative_withheld(double t_s);
   enum class TickWait { Answered, Stalled, Interrupted };
   TickWait wait_for_commands(std::int64_t tick_ns);
   void apply_commands(bool lockstep);
@@ -78,6 +83,7 @@ class SimNode {
   std::vector<double> latency_ms_;
   double wall_time_s_ = 0.0;
   std::uint64_t republished_ticks_ = 0;
+  bool in_relative_gap_ = false;
 
   std::vector<dds::Reader<msg::UavCommand>> command_readers_;
   std::vector<dds::Reader<msg::ControlTrace>> trace_readers_;

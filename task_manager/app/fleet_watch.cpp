@@ -1,6 +1,7 @@
 #include "fleet_watch.hpp"
 
 #include "cover/clock/clock.hpp"
+#include "cover/wire/enums.hpp"
 
 namespace cover::task_manager {
 namespace {
@@ -51,6 +52,8 @@ void FleetWatch::on_uav_status(const msg::UavStatus& s) {
   report.task_state = s.task_id.empty() ? AgentReport::AgentTask::None : agent_task(s.task_state);
   const auto message = task_messages_.find(s.task_id);
   report.message = message == task_messages_.end() ? "" : message->second;
+  const auto failsafe = wire::from_msg(s.failsafe);
+  report.failsafe = failsafe ? mission::to_string(*failsafe) : "unknown";
 }
 
 void FleetWatch::on_task_status(const msg::TaskStatus& s) {

@@ -5,6 +5,7 @@
 
 #include "cover/mission/mission_controller.hpp"
 #include "cover/uav/controller_config.hpp"
+#include "cover/uav/uav_loop.hpp"
 
 using cover::mission::Failsafe;
 using cover::mission::FailureReason;
@@ -65,24 +66,114 @@ TEST(MissionController, StartsTheTaskAndPlansTheFirstStage) {
   EXPECT_DOUBLE_EQ(controller.reference_trajectory().position(1e9).z(), 1.0);
 }
 
-TEST(MissionController, StaleInputsHoverThenFailTheMission) {
+TEST(MissionController, StaleInputsHoverThenLandAndFailTheMission) {
   MissionController controller = make_controller();
   feed_at_rest(controller, 0.0);
   controller.step(0.0);
   const auto& stale = controller.step(0.2);  // inputs 0.2 s old (> 0.1 s)
-  EXPECT_EQ(stale.status.failsafe, Failsafe::StaleInput);
+  EXPECT_EQ(stale.status.failsafe, Failsafe::EmergencyHover);
+  EXPECT_EQ(stale.status.failsafe_cause, cover::mission::FailsafeCause::StateStale);
+  EXPECT_NEAR(stale.status.failsafe_input_age_s, 0.2, 1e-9);
   EXPECT_TRUE(stale.command.armed);
-  EXPECT_DOUBLE_EQ(stale.command.thrust_m_s2, cover::model::kGravity_m_s2);
-  EXPECT_TRUE(stale.command.body_rate_rad_s.isZero());
+  EXPECT_TRUE(stale.command.body_rate_rad_s.isZero());  // level already
   EXPECT_EQ(stale.status.stage.state, MissionState::Running);
-  const auto& failed = controller.step(1.0);  // stale for 0.8 s (> 0.5 s)
-  EXPECT_EQ(failed.status.stage.state, MissionState::Failed);
-  EXPECT_EQ(failed.status.stage.failure, FailureReason::StaleInput);
-  // Fresh inputs again: it holds its position (tracking), with the failure still shown.
-  feed_at_rest(controller, 1.01);
-  const auto& holding = controller.step(1.01);
-  EXPECT_EQ(holding.status.failsafe, Failsafe::MissionFailed);
-  expect_finite(holding.command);
+  const auto& landing = controller.step(1.25);  // 1.05 s in the hover (> 1.0 s)
+  EXPECT_EQ(landing.status.failsafe, Failsafe::EmergencyLanding);
+  EXPECT_EQ(landing.status.stage.state, MissionState::Failed);
+  EXPECT_EQ(landing.status.stage.failure, FailureReason::StaleInput);
+  // Fresh inputs again: the landing is latched (the task has failed), not a silent return.
+  feed_at_rest(controller, 1.26);
+  const auto& still = controller.step(1.26);
+  EXPECT_EQ(still.status.failsafe, Failsafe::EmergencyLanding);
+  expect_finite(still.command);
+}
+
+TEST(MissionController, InputsBackDuringTheHoverResumeTheStageReplanned) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  controller.step(0.0);
+  EXPECT_EQ(controller.step(0.3).status.failsafe, Failsafe::EmergencyHover);
+  feed_at_rest(controller, 0.6);
+  const auto& back = controller.step(0.6);
+  EXPECT_EQ(back.status.failsafe, Failsafe::None);
+  EXPECT_TRUE(back.status.planned);
+  EXPECT_EQ(back.status.stage.state, MissionState::Running);
+  EXPECT_DOUBLE_EQ(controller.reference_start_s(), 0.6);
+}
+
+TEST(MissionController, AnAbortInterruptedByTheHoverHoldsTheNewPointAndLandsAgain) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  controller.step(0.0);
+  ASSERT_TRUE(controller.abort(0.01));
+  feed_at_rest(controller, 0.01);
+  controller.step(0.01);
+  EXPECT_EQ(controller.step(0.3).status.failsafe, Failsafe::EmergencyHover);
+  RelativeMeasurement moved;
+  moved.stamp_s = 0.6;
+  moved.position_m = Eigen::Vector3d(0.4, -0.2, 0.8);
+  controller.set_relative_state(0, moved);
+  UgvImuMeasurement imu;
+  imu.stamp_s = 0.6;
+  controller.set_ugv_imu(0, imu);
+  const auto& back = controller.step(0.6);
+  EXPECT_EQ(back.status.failsafe, Failsafe::Aborted);
+  EXPECT_EQ(back.status.stage.state, MissionState::Aborted);
+  EXPECT_TRUE(controller.reference_trajectory().position(0.0).isApprox(moved.position_m));
+  EXPECT_FALSE(back.status.planned);  // no stage plan for a task that has ended
+}
+
+// The loop's inputs: the UAV at rest on both decks, stamped when the test says.
+struct AtRest : cover::uav::UavInputs {
+  double stamp_s = 0.0;
+  bool relative_state(int, RelativeMeasurement& out) override {
+    out = RelativeMeasurement{};
+    out.stamp_s = stamp_s;
+    return true;
+  }
+  bool ugv_imu(int, UgvImuMeasurement& out) override {
+    out = UgvImuMeasurement{};
+    out.stamp_s = stamp_s;
+    return true;
+  }
+};
+struct Discard : cover::uav::CommandOutput {
+  void write(const cover::uav::StepOutput&) override {}
+};
+
+TEST(UavLoop, RefusesANewTaskWhileAnEmergencyLandingHasTheMotors) {
+  const auto config = cover::uav::ControllerConfig::load_default(cover::sampc::Mode::Cover);
+  cover::uav::UavLoop loop(0, 2, config);
+  cover::mission::Task task = cover::mission::load_task_file(
+      cover::config::default_config_dir() + "/tasks/scenario2.yaml", 2);
+  task.uav_id = 0;
+  ASSERT_TRUE(loop.give_task(task).accepted);
+  AtRest inputs;
+  Discard out;
+  loop.step(0.0, inputs, out);
+  inputs.stamp_s = -100.0;  // nothing fresh from now on
+  loop.step(0.3, inputs, out);
+  EXPECT_EQ(loop.step(1.4, inputs, out).status.failsafe, Failsafe::EmergencyLanding);
+  EXPECT_EQ(loop.task_state(), MissionState::Failed);
+  task.task_id = "next";
+  const auto decision = loop.give_task(task);
+  EXPECT_FALSE(decision.accepted);
+  EXPECT_NE(decision.reason.find("emergency-landing"), std::string::npos) << decision.reason;
+}
+
+TEST(MissionController, StaleImuIsHeldBrieflyThenHovers) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  controller.step(0.0);
+  RelativeMeasurement state;
+  state.stamp_s = 0.15;
+  controller.set_relative_state(0, state);
+  const auto& held = controller.step(0.15);  // IMU 0.15 s old: within 0.1 + 0.1
+  EXPECT_EQ(held.status.failsafe, Failsafe::ImuHold);
+  EXPECT_EQ(held.status.failsafe_cause, cover::mission::FailsafeCause::ImuStale);
+  state.stamp_s = 0.25;
+  controller.set_relative_state(0, state);
+  EXPECT_EQ(controller.step(0.25).status.failsafe, Failsafe::EmergencyHover);
 }
 
 TEST(MissionController, NonFiniteStateNeverReachesTheCommand) {
@@ -98,7 +189,8 @@ TEST(MissionController, NonFiniteStateNeverReachesTheCommand) {
   imu.motion.angular_velocity_rad_s.z() = std::numeric_limits<double>::infinity();
   controller.set_ugv_imu(0, imu);
   const auto& out = controller.step(0.01);
-  EXPECT_EQ(out.status.failsafe, Failsafe::StaleInput);
+  EXPECT_EQ(out.status.failsafe, Failsafe::EmergencyHover);
+  EXPECT_EQ(out.status.failsafe_cause, cover::mission::FailsafeCause::StateInvalid);
   expect_finite(out.command);
 }
 

@@ -192,11 +192,37 @@ TEST_F(DispatcherTest, ASilentAgentFailsItsRunningTask) {
   step(1.0);
   hear(0, 1.5, "t1", AgentTask::Running);
   step(1.5);
-  step(3.5);  // 2.0 s of silence: not yet
+  step(2.5);  // 1.0 s of silence: not yet
   EXPECT_EQ(state("t1"), TaskState::Running);
-  step(3.6);
+  step(2.6);
   EXPECT_EQ(state("t1"), TaskState::Failed);
-  EXPECT_EQ(reason("t1"), "UAV 0 went silent (no heartbeat for 2.1 s)");
+  EXPECT_EQ(reason("t1"), "UAV 0 went silent (no heartbeat for 1.1 s)");
+}
+
+TEST_F(DispatcherTest, FailsafeEntriesAndExitsAreInTheTasksHistoryWithTheirCause) {
+  hear(0, 1.0);
+  submit("t1", 0, 1.0);
+  step(1.0);
+  hear(0, 1.1, "t1", AgentTask::Running, "running");
+  live_.agents[0].failsafe = "none";
+  step(1.1);
+  const std::size_t before = store_->history("t1").size();
+  hear(0, 1.2, "t1", AgentTask::Running, "failsafe emergency-hover: relative-state-stale of G1");
+  live_.agents[0].failsafe = "emergency-hover";
+  step(1.2);
+  step(1.25);  // the same report again: no second row
+  hear(0, 1.6, "t1", AgentTask::Running, "failsafe cleared (was emergency-hover)");
+  live_.agents[0].failsafe = "none";
+  step(1.6);
+  const auto history = store_->history("t1");
+  ASSERT_EQ(history.size(), before + 2);
+  EXPECT_EQ(history[before].from, TaskState::Running);
+  EXPECT_EQ(history[before].to, TaskState::Running);
+  EXPECT_EQ(history[before].reason,
+            "UAV 0 failsafe none -> emergency-hover: failsafe emergency-hover: "
+            "relative-state-stale of G1");
+  EXPECT_EQ(history[before + 1].time_s, 1.6);
+  EXPECT_EQ(state("t1"), TaskState::Running);
 }
 
 TEST_F(DispatcherTest, AnAgentBackIdleFailsItsRunningTask) {
@@ -270,7 +296,7 @@ TEST_F(DispatcherTest, ASilentAgentAfterARestartFailsOnceTheTimeoutHasPassed) {
   EXPECT_EQ(state("t1"), TaskState::Running);
   step(110.5);
   EXPECT_EQ(state("t1"), TaskState::Failed);
-  EXPECT_EQ(reason("t1"), "UAV 0 went silent (no heartbeat for 2.5 s)");
+  EXPECT_EQ(reason("t1"), "UAV 0 went silent (no heartbeat for 1.5 s)");
 }
 
 TEST_F(DispatcherTest, ADispatchTheAgentNeverTakesFailsAfterTheDispatchTimeout) {

@@ -60,7 +60,7 @@ TEST(TaskManagerFlyability, UgvWithoutImuIsNamed) {
   EXPECT_EQ(why(task, live), "UGV 3 is not publishing its IMU");
   live.ugv_imu_heard_s[3] = kNow_s - 2.5;
   EXPECT_EQ(why(task, live), "UGV 3 is not publishing its IMU (not heard for 2.5 s)");
-  live.ugv_imu_heard_s[3] = kNow_s - 1.5;
+  live.ugv_imu_heard_s[3] = kNow_s - 0.5;
   EXPECT_EQ(why(task, live), "flyable");
 }
 

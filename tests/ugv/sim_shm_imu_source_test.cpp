@@ -185,6 +185,8 @@ TEST_F(SimShmImuSourceTest, ReportsGoneWhenTheWriterProcessDies) {
       },
       2s));
   EXPECT_NE(source.status().detail.find("died"), std::string::npos) << source.status().detail;
+  // The dead writer cannot unlink its world: the reader that found it dead did.
+  EXPECT_NE(access(cover::shm::segment_path(name_).c_str(), F_OK), 0);
   close(ready[0]);
   close(ready[1]);
 }

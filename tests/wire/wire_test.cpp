@@ -140,7 +140,7 @@ TEST(Wire, TraceCarriesWhatTheRecorderReads) {
   s.stage.stage = cover::model::Stage::Transition;
   s.stage.process_index = 2;
   s.stage.reference_ugv = 3;
-  s.failsafe = mission::Failsafe::StaleInput;
+  s.failsafe = mission::Failsafe::EmergencyHover;
   s.solve_status = cover::sampc::SolveStatus::QpNotConverged;
   s.solve_us = 61.5;
   s.planned = true;
@@ -250,9 +250,10 @@ TEST(Wire, EnumsMapOneToOne) {
   using mission::Failsafe;
   using mission::MissionState;
   expect_bijective<Failsafe, msg::FailsafeState>(
-      {Failsafe::None, Failsafe::WaitingForInputs, Failsafe::StaleInput, Failsafe::SolverError,
-       Failsafe::MissionFailed, Failsafe::Landed, Failsafe::Aborted});
-  EXPECT_EQ(msg::EnumCount<msg::FailsafeState>::value, 7u);  // no wire value left unmapped
+      {Failsafe::None, Failsafe::WaitingForInputs, Failsafe::EmergencyHover, Failsafe::SolverError,
+       Failsafe::MissionFailed, Failsafe::Landed, Failsafe::Aborted, Failsafe::ImuHold,
+       Failsafe::EmergencyLanding, Failsafe::EmergencyLanded});
+  EXPECT_EQ(msg::EnumCount<msg::FailsafeState>::value, 10u);  // no wire value left unmapped
   expect_bijective<MissionState, msg::TaskState>({MissionState::NotStarted, MissionState::Running,
                                                   MissionState::Complete, MissionState::Failed,
                                                   MissionState::Aborted});

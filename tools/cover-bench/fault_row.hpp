@@ -1,52 +1,41 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
 #include <vector>
 
-// One row of the fault benchmarks (`cover-bench faults`, `cover-bench wifi`): what a fault
-// did to one seeded mission, in the JSON both print under "rows".
 namespace cover::bench {
 
-enum class FaultOutcome { Completed, LandedSafely, Crashed };
-
-inline const char* to_string(FaultOutcome outcome) {
-  switch (outcome) {
-    case FaultOutcome::Completed:
-      return "completed";
-    case FaultOutcome::LandedSafely:
-      return "landed_safely";
-    case FaultOutcome::Crashed:
-      return "crashed";
-  }
-  return "crashed";
-}
-
+// One row of `cover-bench faults` (and `wifi`): one run with one injected fault.
 struct FaultRow {
-  std::string fault;  // uav_agent_kill, ugv_agent_kill, ..., wifi_loss
-  std::string mix;    // the DDS vendors: fastdds, cyclone, mixed
-  int seed = 0;
-  std::optional<double> time_to_failsafe_ms;  // none: no failsafe was entered
-  FaultOutcome outcome = FaultOutcome::Crashed;
-  std::optional<double> touchdown_speed_m_s;  // none: not measured / no touchdown
-  std::optional<double> landing_error_m;      // on the target deck; none: not landed there
+  std::string fault;  // uav_agent_kill | ugv_agent_kill | relative_state_gap | mocap_dropout |
+                      // imu_fault | sim_kill | wifi_loss
+  std::string mix;    // the DDS vendors: fastdds | cyclone | mixed
+  std::uint64_t seed = 0;
+  double fault_time_s = NAN;         // simulated time the fault was injected at
+  double time_to_failsafe_ms = NAN;  // input lost -> failsafe entered; NaN: none entered
+  std::string outcome = "crashed";   // completed | landed_safely | crashed
+  double touchdown_speed_m_s = NAN;  // vertical, just before contact
+  double landing_error_m = NAN;      // from the target deck's centre; NaN: not on it
+  std::string detail;                // what decided the outcome, for a reader
 };
 
-// A finite number, or null: NaN would not be valid JSON.
-inline nlohmann::json number_or_null(const std::optional<double>& value) {
-  return value && std::isfinite(*value) ? nlohmann::json(*value) : nlohmann::json(nullptr);
+inline nlohmann::json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
-inline nlohmann::json to_json(const FaultRow& row) {
-  return {{"fault", row.fault},
-          {"mix", row.mix},
-          {"seed", row.seed},
-          {"time_to_failsafe_ms", number_or_null(row.time_to_failsafe_ms)},
-          {"outcome", to_string(row.outcome)},
-          {"touchdown_speed_m_s", number_or_null(row.touchdown_speed_m_s)},
-          {"landing_error_m", number_or_null(row.landing_error_m)}};
+inline nlohmann::json to_json(const FaultRow& r) {
+  return {{"fault", r.fault},
+          {"mix", r.mix},
+          {"seed", r.seed},
+          {"fault_time_s", number_or_null(r.fault_time_s)},
+          {"time_to_failsafe_ms", number_or_null(r.time_to_failsafe_ms)},
+          {"outcome", r.outcome},
+          {"touchdown_speed_m_s", number_or_null(r.touchdown_speed_m_s)},
+          {"landing_error_m", number_or_null(r.landing_error_m)},
+          {"detail", r.detail}};
 }
 
 // {"rows": [...]}: the document `--json` prints.

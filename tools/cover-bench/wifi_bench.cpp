@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -93,9 +94,10 @@ nlohmann::json fly(const Mix& mix, int seed, int domain) {
   return result.is_object() ? result : nlohmann::json::object();
 }
 
-std::optional<double> optional_number(const nlohmann::json& j, const char* key) {
+// The report's number under `key`, NaN when it has none.
+double number_or_nan(const nlohmann::json& j, const char* key) {
   if (j.contains(key) && j[key].is_number()) return j[key].get<double>();
-  return std::nullopt;
+  return std::nan("");
 }
 
 // Completed: the mission succeeded. Landed safely: it did not, but the simulator saw a
@@ -106,14 +108,16 @@ cover::bench::FaultRow row_of(const Mix& mix, int seed, const nlohmann::json& r)
   row.fault = "wifi_loss";
   row.mix = mix.name;
   row.seed = seed;
-  row.time_to_failsafe_ms = optional_number(r, "time_to_failsafe_ms");
-  row.touchdown_speed_m_s = optional_number(r, "touchdown_speed_m_s");
-  row.landing_error_m = optional_number(r, "landing_error_m");
+  row.time_to_failsafe_ms = number_or_nan(r, "time_to_failsafe_ms");
+  row.touchdown_speed_m_s = number_or_nan(r, "touchdown_speed_m_s");
+  row.landing_error_m = number_or_nan(r, "landing_error_m");
+  row.outcome = "crashed";
   if (r.value("success", false)) {
-    row.outcome = cover::bench::FaultOutcome::Completed;
-  } else if (row.touchdown_speed_m_s && *row.touchdown_speed_m_s <= kSafeTouchdownMS) {
-    row.outcome = cover::bench::FaultOutcome::LandedSafely;
+    row.outcome = "completed";
+  } else if (row.touchdown_speed_m_s <= kSafeTouchdownMS) {  // false for NaN
+    row.outcome = "landed_safely";
   }
+  row.detail = r.value("status", std::string());
   return row;
 }
 
@@ -125,8 +129,10 @@ nlohmann::json mix_summary(const Mix& mix, const std::vector<cover::bench::Fault
   for (const auto& row : rows) {
     if (row.mix != mix.name) continue;
     ++runs;
-    if (row.outcome == cover::bench::FaultOutcome::Completed) ++completed;
-    if (row.landing_error_m) worst_landing_m = std::max(worst_landing_m, *row.landing_error_m);
+    if (row.outcome == "completed") ++completed;
+    if (std::isfinite(row.landing_error_m)) {
+      worst_landing_m = std::max(worst_landing_m, row.landing_error_m);
+    }
   }
   const double worst_p99 = latency_p99_ms.empty()
                                ? 0.0
@@ -176,8 +182,9 @@ int run(const std::vector<std::string>& args) {
       if (r.contains("latency_ms")) latency_p99_ms.push_back(r["latency_ms"].value("p99", 0.0));
       if (!flags.json) {
         const auto& row = rows.back();
-        std::printf("%-8s seed %2d  %-13s landing %s\n", mix.name, seed, to_string(row.outcome),
-                    row.landing_error_m ? std::to_string(*row.landing_error_m).c_str() : "-");
+        std::printf(
+            "%-8s seed %2d  %-13s landing %s\n", mix.name, seed, row.outcome.c_str(),
+            std::isfinite(row.landing_error_m) ? std::to_string(row.landing_error_m).c_str() : "-");
       }
     }
     summary.push_back(mix_summary(mix, rows, latency_p99_ms));

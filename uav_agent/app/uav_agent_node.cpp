@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 #include "cover/clock/clock.hpp"
@@ -17,6 +18,32 @@ namespace cover::uav_agent {
 
 namespace {
 using namespace std::chrono_literals;
+
+bool on_ladder(mission::Failsafe f) {
+  return f == mission::Failsafe::ImuHold || f == mission::Failsafe::EmergencyHover ||
+         f == mission::Failsafe::EmergencyLanding || f == mission::Failsafe::EmergencyLanded;
+}
+
+// One line for a failsafe change: the new state, and for the ladder the input that was
+// lost (cause, frame, age) or, on leaving it, that the stage resumes replanned.
+std::string failsafe_event(const mission::ControllerStatus& s, mission::Failsafe before) {
+  const std::string was = mission::to_string(before);
+  if (s.failsafe == mission::Failsafe::None) {
+    if (before == mission::Failsafe::ImuHold) return "failsafe cleared (was " + was + "): IMU back";
+    return on_ladder(before)
+               ? "failsafe cleared (was " + was + "): inputs back, stage resumes replanned"
+               : "failsafe cleared (was " + was + ")";
+  }
+  std::string line =
+      std::string("failsafe ") + mission::to_string(s.failsafe) + " (was " + was + ")";
+  if (on_ladder(s.failsafe)) {
+    char age[32];
+    std::snprintf(age, sizeof age, "%.3f", s.failsafe_input_age_s);
+    line += ": " + std::string(mission::to_string(s.failsafe_cause)) + " of G" +
+            std::to_string(s.stage.reference_ugv) + " (" + age + " s old)";
+  }
+  return line;
+}
 
 }  // namespace
 
@@ -210,12 +237,20 @@ void UavAgentNode::publish_task_status_on_change(double now_s) {
   const mission::Task* task = loop_.task();
   if (!task) return;
   const mission::StageDecision& d = loop_.output().status.stage;
+  const mission::Failsafe failsafe = loop_.output().status.failsafe;
   const std::string key = task->task_id + "/" + mission::to_string(loop_.task_state()) + "/" +
-                          std::to_string(d.process_index) + "/" + model::to_string(d.stage);
+                          std::to_string(d.process_index) + "/" + model::to_string(d.stage) + "/" +
+                          mission::to_string(failsafe);
   if (key == reported_key_) return;
   reported_key_ = key;
-  msg::TaskStatus status = wire::to_task_status(task->task_id, options_.uav_id, now_s, d,
-                                                task->processes.size(), loop_.describe());
+  // A change on the failsafe ladder is reported with its cause (the task's history keeps
+  // it); the others (landed, aborted, ...) with the stage machine's line.
+  const bool failsafe_changed = failsafe != reported_failsafe_ && !failsafe_event_.empty() &&
+                                (on_ladder(failsafe) || on_ladder(reported_failsafe_));
+  reported_failsafe_ = failsafe;
+  msg::TaskStatus status =
+      wire::to_task_status(task->task_id, options_.uav_id, now_s, d, task->processes.size(),
+                           failsafe_changed ? failsafe_event_ : loop_.describe());
   status.state = wire::to_msg(loop_.task_state());
   task_status_writer_.write(status);
 }
@@ -233,10 +268,11 @@ void UavAgentNode::log_changes() {
     }
   }
   if (s.failsafe != logged_failsafe_) {
+    failsafe_event_ = failsafe_event(s, logged_failsafe_);
     if (s.failsafe == mission::Failsafe::None) {
-      spdlog::info("failsafe cleared (was {})", mission::to_string(logged_failsafe_));
+      spdlog::info("{}", failsafe_event_);
     } else {
-      spdlog::warn("failsafe: {}", mission::to_string(s.failsafe));
+      spdlog::warn("{}", failsafe_event_);
     }
     logged_failsafe_ = s.failsafe;
   }

@@ -42,14 +42,17 @@ constexpr std::array<std::pair<MissionState, msg::TaskState>, 5> kTaskStates{{
     {MissionState::Aborted, msg::TaskState::TASK_CANCELLED},
 }};
 
-constexpr std::array<std::pair<Failsafe, msg::FailsafeState>, 7> kFailsafes{{
+constexpr std::array<std::pair<Failsafe, msg::FailsafeState>, 10> kFailsafes{{
     {Failsafe::None, msg::FailsafeState::FAILSAFE_NONE},
     {Failsafe::WaitingForInputs, msg::FailsafeState::FAILSAFE_WAITING_FOR_INPUTS},
-    {Failsafe::StaleInput, msg::FailsafeState::FAILSAFE_STALE_INPUT},
+    {Failsafe::EmergencyHover, msg::FailsafeState::FAILSAFE_EMERGENCY_HOVER},
     {Failsafe::SolverError, msg::FailsafeState::FAILSAFE_SOLVER_ERROR},
     {Failsafe::MissionFailed, msg::FailsafeState::FAILSAFE_MISSION_FAILED},
     {Failsafe::Landed, msg::FailsafeState::FAILSAFE_LANDED},
     {Failsafe::Aborted, msg::FailsafeState::FAILSAFE_ABORTED},
+    {Failsafe::ImuHold, msg::FailsafeState::FAILSAFE_IMU_HOLD},
+    {Failsafe::EmergencyLanding, msg::FailsafeState::FAILSAFE_EMERGENCY_LANDING},
+    {Failsafe::EmergencyLanded, msg::FailsafeState::FAILSAFE_EMERGENCY_LANDED},
 }};
 
 constexpr std::array<std::pair<SolveStatus, msg::SolverStatus>, 5> kSolveStatuses{{

@@ -31,13 +31,17 @@ void RunRecorder::record(const mission::ControllerStatus& status,
   record_tracking(status, world);
   if (status.solve_us > 0.0) mpc_us_.push_back(status.solve_us);
   if (status.planned) plan_ms_.push_back(status.plan_ms);
-  if (status.failsafe == mission::Failsafe::StaleInput ||
+  if (status.failsafe == mission::Failsafe::EmergencyHover ||
+      status.failsafe == mission::Failsafe::EmergencyLanding ||
       status.failsafe == mission::Failsafe::SolverError) {
     ++result_.failsafe_steps;
   }
   record_path(status, ws);
-  // An aborted task is over for the run once its safe action has disarmed the motors.
-  const bool over = mission::is_terminal(status.stage.state) &&
+  // An aborted task is over for the run once its safe action has disarmed the motors, a
+  // task failed by the failsafe ladder once its emergency landing has.
+  const bool landing = status.failsafe == mission::Failsafe::EmergencyHover ||
+                       status.failsafe == mission::Failsafe::EmergencyLanding;
+  const bool over = mission::is_terminal(status.stage.state) && !landing &&
                     (status.stage.state != mission::MissionState::Aborted || !command.armed);
   if (done_time_s_ < 0.0 && over) done_time_s_ = ws.time_s;
   ++steps_;

@@ -128,6 +128,7 @@ void Dispatcher::advance_reported(const TaskRecord& record, const AgentReport& r
         store_.set_state(record.task_id, TaskState::Running,
                          reason_or(report.message, uav + " runs it"), now_s);
       }
+      note_failsafe(record, report, now_s);
       return;
     case AgentTask::Succeeded:
       finish(record, TaskState::Succeeded, reason_or(report.message, uav + " succeeded"), now_s);
@@ -181,6 +182,23 @@ void Dispatcher::finish(const TaskRecord& record, TaskState to, const std::strin
   store_.set_state(record.task_id, to, reason, now_s);
   pending_aborts_.erase(record.task_id);
   last_sent_s_.erase(record.task_id);
+  failsafe_seen_.erase(record.task_id);
+}
+
+// A failsafe entry or exit during the flight: a history row with the agent's cause.
+void Dispatcher::note_failsafe(const TaskRecord& record, const AgentReport& report, double now_s) {
+  if (report.failsafe.empty()) return;
+  const auto seen = failsafe_seen_.find(record.task_id);
+  if (seen == failsafe_seen_.end()) {
+    failsafe_seen_[record.task_id] = report.failsafe;
+    return;
+  }
+  if (seen->second == report.failsafe) return;
+  store_.note(record.task_id,
+              uav_name(record.uav_id) + " failsafe " + seen->second + " -> " + report.failsafe +
+                  (report.message.empty() ? "" : ": " + report.message),
+              now_s);
+  seen->second = report.failsafe;
 }
 
 bool Dispatcher::agent_up(const LiveView& live, int uav_id, double now_s) const {

@@ -175,6 +175,19 @@ bool TaskStore::set_state(const std::string& task_id, TaskState to, const std::s
   return true;
 }
 
+bool TaskStore::note(const std::string& task_id, const std::string& reason, double now_s) {
+  sqlite::Transaction transaction(db_);
+  sqlite::Statement query(db_, "SELECT state FROM tasks WHERE task_id = ?");
+  if (!query.bind(1, task_id).step()) {
+    throw StoreError(path_ + ": no task '" + task_id + "'");
+  }
+  const TaskState state = state_from_text(query.text(0));
+  if (is_final(state)) return false;
+  append_history(db_, task_id, state, state, now_s, reason);
+  transaction.commit();
+  return true;
+}
+
 std::optional<TaskRecord> TaskStore::find(const std::string& task_id) const {
   sqlite::Statement query(db_, (std::string(kRecordColumns) + "WHERE task_id = ?").c_str());
   if (!query.bind(1, task_id).step()) return std::nullopt;

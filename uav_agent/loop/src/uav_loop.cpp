@@ -49,6 +49,13 @@ TaskDecision UavLoop::give_task(const mission::Task& task) {
     return {false, "task '" + controller_->stage_machine().task().task_id +
                        "' is still running (abort it first)"};
   }
+  // A failed task's emergency landing owns the motors until it has disarmed.
+  const mission::Failsafe failsafe = output().status.failsafe;
+  if (failsafe == mission::Failsafe::EmergencyHover ||
+      failsafe == mission::Failsafe::EmergencyLanding) {
+    return {false, std::string("the UAV is in its failsafe (") + mission::to_string(failsafe) +
+                       "): no task until it has landed"};
+  }
   try {
     controller_.emplace(task, ugv_count_, config_.mission, config_.planner, config_.sampc);
   } catch (const config::ConfigError& e) {

@@ -16,8 +16,8 @@ const char* to_string(Failsafe failsafe) {
       return "none";
     case Failsafe::WaitingForInputs:
       return "waiting-for-inputs";
-    case Failsafe::StaleInput:
-      return "stale-input";
+    case Failsafe::EmergencyHover:
+      return "emergency-hover";
     case Failsafe::SolverError:
       return "solver-error";
     case Failsafe::MissionFailed:
@@ -26,6 +26,12 @@ const char* to_string(Failsafe failsafe) {
       return "landed";
     case Failsafe::Aborted:
       return "aborted";
+    case Failsafe::ImuHold:
+      return "imu-hold";
+    case Failsafe::EmergencyLanding:
+      return "emergency-landing";
+    case Failsafe::EmergencyLanded:
+      return "emergency-landed";
   }
   return "unknown";
 }
@@ -45,11 +51,6 @@ std::vector<sampc::Mode> process_modes(const Task& task, sampc::Mode configured)
   return modes;
 }
 
-bool is_finite(const RelativeMeasurement& m) {
-  return std::isfinite(m.stamp_s) && m.position_m.allFinite() && m.velocity_m_s.allFinite() &&
-         m.attitude.coeffs().allFinite() && m.attitude.norm() > 0.5;
-}
-
 }  // namespace
 
 MissionController::MissionController(Task task, int ugv_count, MissionParams mission,
@@ -62,7 +63,8 @@ MissionController::MissionController(Task task, int ugv_count, MissionParams mis
       process_modes_(process_modes(machine_.task(), sampc.mode)),
       inputs_(static_cast<std::size_t>(ugv_count)),
       observer_(static_cast<int>(std::lround(mission.observer_window_s / mission.control_period_s)),
-                mission.control_period_s, mission.observer_time_constant_s) {
+                mission.control_period_s, mission.observer_time_constant_s),
+      ladder_(mission) {
   output_.status.stage = machine_.decision();
   idle(Failsafe::WaitingForInputs);
 }
@@ -85,39 +87,79 @@ void MissionController::set_ugv_imu(int ugv, const UgvImuMeasurement& measuremen
   inputs_[ugv].has_imu = true;
 }
 
-bool MissionController::inputs_fresh(int ugv, double now_s) const {
-  if (ugv < 0 || ugv >= ugv_count_) return false;
+InputHealth MissionController::input_health(int ugv, double now_s) const {
+  if (ugv < 0 || ugv >= ugv_count_) return assess_inputs(LadderInput{}, now_s, params_);
   const UgvInputs& in = inputs_[ugv];
-  return in.has_state && in.has_imu && is_finite(in.state) && in.imu.motion.all_finite() &&
-         std::isfinite(in.imu.stamp_s) && now_s - in.state.stamp_s <= params_.state_timeout_s &&
-         now_s - in.imu.stamp_s <= params_.imu_timeout_s;
+  const LadderInput input{in.has_state, &in.state, in.has_imu, in.imu.stamp_s, &in.imu.motion};
+  return assess_inputs(input, now_s, params_);
+}
+
+// The failsafe ladder on the reference frame's inputs: true when it wrote this step's
+// command (emergency hover, landing, or motors off after it), false when SAMPC flies.
+bool MissionController::emergency_step(int reference, double now_s) {
+  const InputHealth health = input_health(reference, now_s);
+  const LadderLevel before = ladder_.level();
+  const LadderLevel level = ladder_.update(health, now_s);
+  output_.status.failsafe_cause = ladder_.cause();
+  output_.status.failsafe_input_age_s = ladder_.cause_age_s();
+  if (ladder_.resumed()) {
+    // The inputs are back: the stage goes on from where the hover left the UAV; a task that
+    // had ended holds that point instead (an abort then holds and lands again).
+    sampc_.reset_frame();
+    observer_.reset();
+    if (holding_) {
+      hold_current_point(now_s);
+      descending_ = false;
+      touchdown_since_s_ = -1.0;
+      abort_time_s_ = now_s;
+    } else {
+      plan_pending_ = true;
+      plan_attempts_ = 0;
+    }
+  }
+  if (level == LadderLevel::EmergencyLanding && before != LadderLevel::EmergencyLanding) {
+    machine_.fail(FailureReason::StaleInput, now_s);
+  }
+  if (level == LadderLevel::Nominal || level == LadderLevel::ImuHold) return false;
+  const UgvInputs& in = inputs_[reference];
+  output_.command = ladder_.command(health.state_usable ? &in.state : nullptr, now_s);
+  switch (ladder_.level()) {
+    case LadderLevel::EmergencyHover:
+      output_.status.failsafe = Failsafe::EmergencyHover;
+      break;
+    case LadderLevel::EmergencyLanding:
+      output_.status.failsafe = Failsafe::EmergencyLanding;
+      break;
+    default:
+      output_.status.failsafe = Failsafe::EmergencyLanded;
+      break;
+  }
+  output_.status.stage = machine_.decision();
+  return true;
 }
 
 const ControllerOutput& MissionController::step(double now_s) {
   output_.command.release_payload = false;
   output_.status.planned = false;
   output_.status.solve_us = 0.0;
+  if (ladder_.level() == LadderLevel::Disarmed) {
+    idle(Failsafe::EmergencyLanded);
+    return output_;
+  }
   if (!machine_.decision().armed || disarmed_after_abort_) {
     idle(Failsafe::Landed);
     return output_;
   }
 
-  // 1. Inputs of the current reference frame: without them, hover (or stay idle on the
-  // deck before the mission has started); persistently stale fails the mission.
+  // 1. Inputs of the current reference frame: without them, the failsafe ladder (or stay
+  // idle on the deck before the mission has started).
   int reference = machine_.reference_ugv();
-  if (!std::isfinite(now_s) || !inputs_fresh(reference, now_s)) {
-    if (machine_.decision().state == MissionState::NotStarted) {
-      idle(Failsafe::WaitingForInputs);
-      return output_;
-    }
-    if (stale_since_s_ < 0.0) stale_since_s_ = now_s;
-    if (!(now_s - stale_since_s_ <= params_.stale_failure_s)) {
-      machine_.fail(FailureReason::StaleInput, now_s);
-    }
-    hover(Failsafe::StaleInput);
+  if (machine_.decision().state == MissionState::NotStarted &&
+      input_health(reference, now_s).cause != FailsafeCause::None) {
+    idle(Failsafe::WaitingForInputs);
     return output_;
   }
-  stale_since_s_ = -1.0;
+  if (emergency_step(reference, now_s)) return output_;
 
   // 2. Stage machine on the state in the current frame; a new stage needs a new plan.
   const RelativeMeasurement& state = inputs_[reference].state;
@@ -148,10 +190,7 @@ const ControllerOutput& MissionController::step(double now_s) {
     observer_.reset();
     last_reference_ugv_ = reference;
   }
-  if (!inputs_fresh(reference, now_s)) {
-    hover(Failsafe::StaleInput);
-    return output_;
-  }
+  if (emergency_step(reference, now_s)) return output_;
   const bool ended =
       decision.state == MissionState::Failed || decision.state == MissionState::Aborted;
   if (ended && !holding_) hold_current_point(now_s);
@@ -169,6 +208,9 @@ const ControllerOutput& MissionController::step(double now_s) {
 
   // 4. SAMPC on the horizon reference.
   command_from_sampc(inputs_[reference], now_s);
+  if (ladder_.level() == LadderLevel::ImuHold && output_.status.failsafe == Failsafe::None) {
+    output_.status.failsafe = Failsafe::ImuHold;
+  }
   if (holding_ && output_.status.failsafe == Failsafe::None) {
     output_.status.failsafe =
         decision.state == MissionState::Aborted ? Failsafe::Aborted : Failsafe::MissionFailed;
@@ -307,6 +349,8 @@ void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s
   output_.command.armed = true;
   output_.status.failsafe = sampc::is_error(out.status) ? Failsafe::SolverError : Failsafe::None;
   update_observer(out.command, now_s);
+  // What SAMPC treats as the hover thrust (a - d along z): the emergency hover's thrust.
+  ladder_.remember(inputs.state, sampc_input_.ugv.specific_force_m_s2.z(), output_.command, now_s);
 }
 
 void MissionController::update_observer(const model::Input& applied, double now_s) {
@@ -334,14 +378,6 @@ void MissionController::integrate_disturbance(const Eigen::Vector3d& position_m,
   disturbance_m_s2_ += params_.integral_gain_1_s3 * params_.control_period_s * error;
   disturbance_m_s2_ = disturbance_m_s2_.cwiseMax(-params_.integral_limit_m_s2)
                           .cwiseMin(params_.integral_limit_m_s2);
-}
-
-void MissionController::hover(Failsafe reason) {
-  output_.command.thrust_m_s2 = model::kGravity_m_s2;
-  output_.command.body_rate_rad_s.setZero();
-  output_.command.armed = true;
-  output_.status.failsafe = reason;
-  output_.status.stage = machine_.decision();
 }
 
 void MissionController::idle(Failsafe reason) {

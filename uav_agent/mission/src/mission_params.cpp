@@ -58,7 +58,11 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
   reader.optional("final_timeout_s", params.final_timeout_s);
   reader.optional("state_timeout_s", params.state_timeout_s);
   reader.optional("imu_timeout_s", params.imu_timeout_s);
-  reader.optional("stale_failure_s", params.stale_failure_s);
+  reader.optional("imu_hold_s", params.imu_hold_s);
+  reader.optional("emergency_hover_s", params.emergency_hover_s);
+  reader.optional("emergency_descent_rate_m_s", params.emergency_descent_rate_m_s);
+  reader.optional("emergency_level_gain_1_s", params.emergency_level_gain_1_s);
+  reader.optional("emergency_blind_floor_m", params.emergency_blind_floor_m);
   reader.optional("max_plan_attempts", params.max_plan_attempts);
   reader.optional("integral_gain_1_s3", params.integral_gain_1_s3);
   reader.optional("integral_error_clip_m", params.integral_error_clip_m);
@@ -102,7 +106,17 @@ void MissionParams::validate() const {
   config::check(positive(final_timeout_s), ctx + ".final_timeout_s", "must be > 0");
   config::check(positive(state_timeout_s), ctx + ".state_timeout_s", "must be > 0");
   config::check(positive(imu_timeout_s), ctx + ".imu_timeout_s", "must be > 0");
-  config::check(positive(stale_failure_s), ctx + ".stale_failure_s", "must be > 0");
+  config::check(std::isfinite(imu_hold_s) && imu_hold_s >= 0.0 && imu_hold_s <= 1.0,
+                ctx + ".imu_hold_s", "must be in [0, 1]");
+  config::check(positive(emergency_hover_s) && emergency_hover_s <= 30.0,
+                ctx + ".emergency_hover_s", "must be in (0, 30]");
+  config::check(positive(emergency_descent_rate_m_s) && emergency_descent_rate_m_s <= 1.0,
+                ctx + ".emergency_descent_rate_m_s", "must be in (0, 1]");
+  config::check(positive(emergency_level_gain_1_s) && emergency_level_gain_1_s <= 20.0,
+                ctx + ".emergency_level_gain_1_s", "must be in (0, 20]");
+  config::check(std::isfinite(emergency_blind_floor_m) && emergency_blind_floor_m >= 0.0 &&
+                    emergency_blind_floor_m <= 10.0,
+                ctx + ".emergency_blind_floor_m", "must be in [0, 10]");
   config::check(max_plan_attempts >= 1 && max_plan_attempts <= 1000, ctx + ".max_plan_attempts",
                 "must be in [1, 1000]");
   config::check(

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "cover/shm/segment.hpp"
 #include "cover/shm/segment_name.hpp"
 
 namespace cover::ugv {
@@ -117,6 +118,20 @@ void SimShmImuSource::check_writer() {
   status_.state = ImuSourceState::Gone;
   status_.detail = "the simulator (pid " + std::to_string(reader_.writer_pid()) +
                    ") died and left segment " + reader_.name() + " behind";
+  remove_dead_writers_segment();
+}
+
+// Nobody else will: a killed simulator cannot unlink its world. Only while the name still
+// holds that dead writer's segment (a new simulator may have replaced it meanwhile).
+void SimShmImuSource::remove_dead_writers_segment() {
+  try {
+    const auto current = cover::shm::SeqlockReader<SharedWorld>::open(
+        reader_.name(), cover::sim::kWorldSegmentLayoutVersion, std::chrono::milliseconds(0));
+    if (current.writer_pid() != reader_.writer_pid() || current.writer_alive()) return;
+  } catch (const std::exception&) {
+    return;  // gone already, or not a world of ours: leave it
+  }
+  if (cover::shm::remove_segment(reader_.name())) status_.detail += " (removed it)";
 }
 
 }  // namespace cover::ugv

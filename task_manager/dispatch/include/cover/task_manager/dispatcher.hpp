@@ -59,6 +59,7 @@ class Dispatcher {
   void advance_reported(const TaskRecord& record, const AgentReport& report, double now_s);
   void advance_unreported(const TaskRecord& record, const AgentReport& report, double now_s);
   void finish(const TaskRecord& record, TaskState to, const std::string& reason, double now_s);
+  void note_failsafe(const TaskRecord& record, const AgentReport& report, double now_s);
   bool agent_up(const LiveView& live, int uav_id, double now_s) const;
   double silence_s(const LiveView& live, int uav_id, double now_s) const;
   void dispatch_idle_uavs(const LiveView& live, double now_s, Actions& actions);
@@ -76,6 +77,9 @@ class Dispatcher {
   std::optional<double> started_s_;
   // When each Dispatched task was last sent (memory only: a restart re-sends at once).
   std::map<std::string, double> last_sent_s_;
+  // The failsafe each task in flight was last seen in (memory only): every change after
+  // the first report is a history row.
+  std::map<std::string, std::string> failsafe_seen_;
 };
 
 }  // namespace cover::task_manager

@@ -21,7 +21,8 @@ struct AgentReport {
     Rejected
   };
   AgentTask task_state = AgentTask::None;
-  std::string message;  // the agent's reason / status line
+  std::string message;   // the agent's reason / status line
+  std::string failsafe;  // the agent's failsafe (mission::to_string), "" not reported
 };
 
 // What the manager sees of the fleet right now (filled from DDS heartbeats by the process).

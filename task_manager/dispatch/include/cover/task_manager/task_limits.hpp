@@ -15,11 +15,11 @@ struct TaskLimits {
   double max_z_m = 10.0;
   double max_vmax_m_s = 3.0;         // the vehicle's speed limit
   double max_amax_m_s2 = 5.0;        // the vehicle's acceleration limit
-  double heartbeat_timeout_s = 2.0;  // an agent / UGV IMU not heard for this long is "not up"
+  double heartbeat_timeout_s = 1.0;  // an agent / UGV IMU not heard for this long is "not up"
   // After a (re)start, a task in flight on an agent not heard yet is given this long before
   // it counts as silent: discovery of a restarted participant can take seconds.
   double restart_grace_s = 10.0;
-  double dispatch_timeout_s = 5.0;   // a dispatched task the agent has not taken by then fails
+  double dispatch_timeout_s = 5.0;  // a dispatched task the agent has not taken by then fails
 
   static TaskLimits load(config::YamlReader& reader);
   static TaskLimits load_file(const std::string& path);

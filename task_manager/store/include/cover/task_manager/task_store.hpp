@@ -52,6 +52,10 @@ class TaskStore {
   // writes nothing, when the task is already final or `to` is its current state. Throws
   // StoreError for an unknown id.
   bool set_state(const std::string& task_id, TaskState to, const std::string& reason, double now_s);
+  // Appends a history row that keeps the state (from = to: an event such as a UAV's
+  // failsafe entry or exit). Returns false, and writes nothing, when the task is final.
+  // Throws StoreError for an unknown id.
+  bool note(const std::string& task_id, const std::string& reason, double now_s);
 
   std::optional<TaskRecord> find(const std::string& task_id) const;
   std::vector<TaskRecord> list(bool include_final) const;                            // queue order

@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "cover/mission/control_command.hpp"
 #include "cover/mission/disturbance_observer.hpp"
+#include "cover/mission/failsafe_ladder.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/mission/stage_machine.hpp"
 #include "cover/mission/task.hpp"
@@ -32,26 +34,24 @@ struct UgvImuMeasurement {
 enum class Failsafe : std::uint8_t {
   None = 0,
   WaitingForInputs = 1,  // no valid state/IMU of the start UGV yet: stay idle, disarmed
-  StaleInput = 2,        // reference UGV's state or IMU too old or non-finite: hover
+  EmergencyHover = 2,    // reference UGV's state or IMU lost or non-finite: level, hover thrust
   SolverError = 3,       // SAMPC returned its hover fallback
   MissionFailed = 4,     // the stage machine failed: hold position in the frame
   Landed = 5,            // disarmed on the landing point: motors idle
   Aborted = 6,           // the task was aborted: holding its point, then the safe action
+  ImuHold = 7,           // reference UGV's IMU stale: SAMPC flies on its last sample
+  EmergencyLanding = 8,  // inputs not back after the emergency hover: controlled descent
+  EmergencyLanded = 9,   // disarmed on contact after an emergency landing
 };
 
 const char* to_string(Failsafe failsafe);
 
-// Collective thrust per unit mass and body rates, plus the actuator flags.
-struct ControlCommand {
-  double thrust_m_s2 = 0.0;
-  Eigen::Vector3d body_rate_rad_s = Eigen::Vector3d::Zero();
-  bool armed = false;
-  bool release_payload = false;  // open the airdrop on this step
-};
-
 struct ControllerStatus {
   StageDecision stage;  // stage, process, reference UGV, mission state, failure reason
   Failsafe failsafe = Failsafe::WaitingForInputs;
+  // Why the failsafe ladder was last climbed, and how old that input was then (s).
+  FailsafeCause failsafe_cause = FailsafeCause::None;
+  double failsafe_input_age_s = 0.0;
   sampc::SolveStatus solve_status = sampc::SolveStatus::Ok;
   double solve_us = 0.0;  // SAMPC time of this step
   bool planned = false;   // a stage reference was planned this step
@@ -113,7 +113,8 @@ class MissionController {
     UgvImuMeasurement imu;
   };
 
-  bool inputs_fresh(int ugv, double now_s) const;
+  InputHealth input_health(int ugv, double now_s) const;
+  bool emergency_step(int reference, double now_s);
   bool plan_stage(double now_s);
   void fill_reference(double t_s, sampc::HorizonReference& reference) const;
   void command_from_sampc(const UgvInputs& inputs, double now_s);
@@ -124,7 +125,6 @@ class MissionController {
   void use_process_method(std::size_t process_index);
   void hold_current_point(double now_s);
   void run_abort_action(const RelativeMeasurement& state, double now_s);
-  void hover(Failsafe reason);
   void idle(Failsafe reason);
 
   MissionParams params_;
@@ -145,7 +145,6 @@ class MissionController {
   bool descending_ = false;          // the abort's landing descent is under way
   double touchdown_since_s_ = -1.0;  // land detector: held up since then, < 0: not
   bool disarmed_after_abort_ = false;
-  double stale_since_s_ = -1.0;
   int ignored_inputs_ = 0;
   // Integral estimate of the acceleration SAMPC's model misses, in the reference frame.
   Eigen::Vector3d disturbance_m_s2_ = Eigen::Vector3d::Zero();
@@ -153,6 +152,7 @@ class MissionController {
   // SAMPC steps in one frame.
   DisturbanceObserver observer_;
   double observer_time_s_ = -1.0;  // time of its last update, < 0: none
+  FailsafeLadder ladder_;
   sampc::SampcInput sampc_input_;
   ControllerOutput output_;
 };

@@ -40,11 +40,23 @@ struct MissionParams {
   double initial_timeout_s = 30.0;
   double transition_timeout_s = 40.0;
   double final_timeout_s = 30.0;
-  // Relative state / UGV IMU older than this is stale: the controller hovers (failsafe).
+  // The failsafe ladder (failsafe_ladder.hpp, docs/failsafes.md). A relative state of the
+  // reference UGV older than this (s) is stale: emergency hover.
   double state_timeout_s = 0.1;
+  // A UGV IMU older than this (s) is stale; SAMPC keeps flying on the last one for
+  // imu_hold_s more (s), then emergency hover.
   double imu_timeout_s = 0.1;
-  // Inputs stale for longer than this fail the mission (StaleInput); the UAV keeps hovering.
-  double stale_failure_s = 0.5;
+  double imu_hold_s = 0.1;
+  // After this long in emergency hover (s) without the inputs back: emergency landing, and
+  // the task fails (StaleInput).
+  double emergency_hover_s = 1.0;
+  // The emergency landing's sink rate (m/s) and the gain (1/s) that levels the attitude.
+  double emergency_descent_rate_m_s = 0.3;
+  double emergency_level_gain_1_s = 4.0;
+  // Without any relative state the landing cannot see contact: it disarms once its sinking
+  // reference is this far below the frame's origin (m; the lowest ground can be there) plus
+  // land_detect_gap_m, held for land_detect_time_s.
+  double emergency_blind_floor_m = 0.5;
   // A stage whose reference cannot be planned after this many attempts (one per control
   // step) fails the mission (PlanningFailed).
   int max_plan_attempts = 10;

@@ -41,6 +41,7 @@ class SimShmImuSource : public ImuSource {
   // there was nothing new (or the copy was torn: the next poll retries).
   bool take_new_samples(std::vector<ImuSample>& out);
   void check_writer();
+  void remove_dead_writers_segment();
 
   cover::shm::SeqlockReader<cover::sim::SharedWorld> reader_;
   int ugv_index_;

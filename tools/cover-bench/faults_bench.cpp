@@ -1,0 +1,454 @@
+// cover-bench faults: Scenario 2 as real processes (realtime) with one fault injected per
+// run at a seeded time (docs/failsafes.md): how long until a failsafe took over, and how
+// the flight ended. Ground truth from the simulator's shared-memory world.
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench_cli.hpp"
+#include "bench_registry.hpp"
+#include "bench_stats.hpp"
+#include "cover/config/yaml_reader.hpp"
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/process/child_process.hpp"
+#include "cover/shm/segment_name.hpp"
+#include "cover/shm/seqlock_reader.hpp"
+#include "cover/sim/world_segment.hpp"
+#include "fault_row.hpp"
+
+namespace {
+
+#ifdef COVER_LAUNCH
+const std::filesystem::path kBinDir = std::filesystem::path(COVER_LAUNCH).parent_path();
+#else
+const std::filesystem::path kBinDir = ".";
+#endif
+
+using namespace std::chrono_literals;
+using cover::bench::FaultRow;
+using cover::msg::FailsafeState;
+using cover::process::ChildProcess;
+using cover::sim::OffboardState;
+using cover::sim::SharedWorld;
+using Clock = std::chrono::steady_clock;
+
+const std::vector<std::string> kFaults = {"uav_agent_kill", "ugv_agent_kill", "relative_state_gap",
+                                          "mocap_dropout",  "imu_fault",      "sim_kill"};
+constexpr double kGapDuration_s = 0.5;
+// Harder than this, or tilted beyond kSafeTilt_rad at contact, is a crash. A nominal deck
+// landing disarms within action_tolerance_m (5 cm) and drops: ~1.0 m/s by design.
+constexpr double kSafeTouchdown_m_s = 1.5;
+constexpr double kSafeTilt_rad = 0.5;
+constexpr int kTargetUgv = 1;  // Scenario 2 lands on G1
+
+struct Vendors {
+  std::string sim, ugv, uav;
+};
+Vendors vendors_of(const std::string& mix) {
+  if (mix == "fastdds") return {"fastdds", "fastdds", "fastdds"};
+  if (mix == "mixed") return {"cyclone", "cyclone", "fastdds"};
+  return {"cyclone", "cyclone", "cyclone"};
+}
+
+// What the probe hears: the UAV agent's failsafe changes, the newest input stamps.
+class Probe {
+ public:
+  Probe(int domain) : participant_(options(domain)) {
+    trace_ = participant_.make_reader(
+        cover::dds::topics::uav_trace(0), [this](const cover::msg::ControlTrace& t) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          if (changes_.empty() || changes_.back().second != t.failsafe) {
+            changes_.push_back({t.stamp_ns * 1e-9, t.failsafe});
+          }
+          reference_ugv_ = static_cast<int>(t.reference_ugv);
+        });
+    for (std::uint32_t k = 0; k < 2; ++k) {
+      imu_.push_back(participant_.make_reader(
+          cover::dds::topics::ugv_imu(k), [this, k](const cover::msg::UgvImu& m) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            last_imu_s_[k] = std::max(last_imu_s_[k], m.stamp_ns * 1e-9);
+          }));
+      relative_.push_back(participant_.make_reader(
+          cover::dds::topics::relative_state(0, k), [this, k](const cover::msg::RelativeState& m) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            last_relative_s_[k] = std::max(last_relative_s_[k], m.stamp_ns * 1e-9);
+          }));
+    }
+  }
+  // The first change into one of `states` stamped at or after `after_s`; NaN: none.
+  double first(const std::vector<FailsafeState>& states, double after_s) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [t, s] : changes_) {
+      if (t >= after_s && std::find(states.begin(), states.end(), s) != states.end()) return t;
+    }
+    return NAN;
+  }
+  int reference_ugv() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return reference_ugv_;
+  }
+  double last_imu_s(int k) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return last_imu_s_[k];
+  }
+  double last_relative_s(int k) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return last_relative_s_[k];
+  }
+
+ private:
+  static cover::dds::ParticipantOptions options(int domain) {
+    cover::dds::ParticipantOptions o;
+    o.vendor = cover::dds::Vendor::Cyclone;
+    o.domain_id = domain;
+    return o;
+  }
+  cover::dds::Participant participant_;
+  mutable std::mutex mutex_;
+  std::vector<std::pair<double, FailsafeState>> changes_;
+  int reference_ugv_ = 0;
+  double last_imu_s_[2] = {0.0, 0.0};
+  double last_relative_s_[2] = {0.0, 0.0};
+  cover::dds::Reader<cover::msg::ControlTrace> trace_;
+  std::vector<cover::dds::Reader<cover::msg::UgvImu>> imu_;
+  std::vector<cover::dds::Reader<cover::msg::RelativeState>> relative_;
+};
+
+// The UAV's contacts with a surface while the world is watched.
+struct Landing {
+  bool airborne = false;
+  double last_vz_m_s = 0.0;
+  double last_tilt_cos = 1.0;
+  double touchdown_speed_m_s = NAN;  // the hardest contact after take-off
+  double touchdown_tilt_cos = 1.0;   // the most tilted contact
+  void observe(const cover::sim::SharedUav& uav) {
+    if (!uav.contact.resting) {
+      airborne = true;
+      last_vz_m_s = uav.state.velocity_m_s.z;
+      last_tilt_cos = (uav.state.attitude.eigen() * Eigen::Vector3d::UnitZ()).z();
+    } else if (airborne) {
+      const double speed = std::abs(last_vz_m_s);
+      touchdown_speed_m_s =
+          std::isfinite(touchdown_speed_m_s) ? std::max(touchdown_speed_m_s, speed) : speed;
+      touchdown_tilt_cos = std::min(touchdown_tilt_cos, last_tilt_cos);
+      airborne = false;
+    }
+  }
+};
+
+std::string scenario_with_sensor_faults(const std::string& fault, const std::string& dir) {
+  const std::string config = cover::config::default_config_dir();
+  std::ifstream in(config + "/scenarios/scenario2.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string task_key = "../tasks/scenario2.yaml";
+  text.replace(text.find(task_key), task_key.size(), config + "/tasks/scenario2.yaml");
+  const std::string world_key = "world: {seed: 2}";
+  const std::string injected = fault == "mocap_dropout"
+                                   ? "\n  relative_sensor: {dropout_probability: 0.1}"
+                                   : "\n  imu: {fault_probability: 0.02}";
+  text.replace(text.find(world_key), world_key.size(), world_key + injected);
+  const std::string path = dir + "/scenario2_" + fault + ".yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+class FaultRun {
+ public:
+  FaultRun(const std::string& fault, const std::string& mix, std::uint64_t seed, int domain,
+           const std::string& dir)
+      : fault_(fault), domain_(domain), dir_(dir), probe_(domain) {
+    row_.fault = fault;
+    row_.mix = mix;
+    row_.seed = seed;
+    std::mt19937_64 random(seed);
+    const bool whole_run = fault == "mocap_dropout" || fault == "imu_fault";
+    // Scenario 2 flies for ~10 s: from the climb (2 s) to the final stage's approach (8 s).
+    if (!whole_run) row_.fault_time_s = std::uniform_real_distribution<double>(2.0, 8.0)(random);
+    run_id_ = "fb_" + std::to_string(getpid()) + "_" + std::to_string(domain);
+    const Vendors v = vendors_of(mix);
+    std::vector<std::string> sim{(kBinDir / "cover-sim").string(),
+                                 "--scenario",
+                                 whole_run ? scenario_with_sensor_faults(fault, dir) : "scenario2",
+                                 "--clock",
+                                 "realtime",
+                                 "--seed",
+                                 std::to_string(seed),
+                                 "--run-id",
+                                 run_id_};
+    if (fault == "relative_state_gap") {
+      sim.insert(sim.end(), {"--relative-gap", std::to_string(row_.fault_time_s),
+                             std::to_string(kGapDuration_s)});
+    }
+    sim_ = spawn(sim, v.sim, "sim");
+    for (int k = 0; k < 2; ++k) {
+      ugvs_.push_back(spawn(
+          {(kBinDir / "cover-ugv-agent").string(), "--id", std::to_string(k), "--run-id", run_id_},
+          v.ugv, "ugv" + std::to_string(k)));
+    }
+    world_.emplace(cover::shm::SeqlockReader<SharedWorld>::open(
+        cover::shm::segment_name(domain, run_id_), cover::sim::kWorldSegmentLayoutVersion, 30s));
+    uav_ = spawn(
+        {(kBinDir / "cover-uav-agent").string(), "--id", "0", "--clock", "realtime", "--ugv-count",
+         "2", "--task", cover::config::default_config_dir() + "/tasks/scenario2.yaml"},
+        v.uav, "uav");
+  }
+  ~FaultRun() {
+    world_.reset();
+    for (auto* child : {uav_.get(), ugvs_[0].get(), ugvs_[1].get(), sim_.get()}) {
+      if (child) child->terminate(10s, SIGINT);
+    }
+  }
+
+  FaultRow run() {
+    if (std::isfinite(row_.fault_time_s)) {
+      if (watch([&](const SharedWorld& w) { return w.time_s >= row_.fault_time_s; }, 60s)) {
+        inject();
+      } else {
+        row_.detail = "not injected: the run ended before the fault time";
+      }
+    }
+    finish();
+    return row_;
+  }
+
+ private:
+  std::unique_ptr<ChildProcess> spawn(const std::vector<std::string>& argv,
+                                      const std::string& vendor, const std::string& name) {
+    cover::process::SpawnOptions o;
+    o.extra_env = {"COVER_DDS=" + vendor, "COVER_DDS_DOMAIN=" + std::to_string(domain_)};
+    o.log_file = dir_ + "/" + run_id_ + "_" + name + ".log";
+    return std::make_unique<ChildProcess>(argv, o);
+  }
+
+  // Polls the world (tracking the landing) until `until` holds; false on timeout or when
+  // the world is gone.
+  bool watch(const std::function<bool(const SharedWorld&)>& until,
+             std::chrono::milliseconds timeout) {
+    const auto deadline = Clock::now() + timeout;
+    while (Clock::now() < deadline && world_) {
+      if (world_->read(*last_) && last_->time_s > 0.0) {
+        landing_.observe(last_->uavs[0]);
+        if (until(*last_)) return true;
+      }
+      if (sim_exit_ = sim_->wait(0ms); sim_exit_) return false;
+      std::this_thread::sleep_for(2ms);
+    }
+    return false;
+  }
+
+  void inject() {
+    const int reference = probe_.reference_ugv();
+    const double world_at_fault_s = last_->time_s;
+    if (fault_ == "uav_agent_kill") {
+      kill(uav_->pid(), SIGKILL);
+      uav_->wait(5s);
+      double loss_s = NAN;
+      if (watch(
+              [&](const SharedWorld& w) {
+                loss_s = w.time_s;
+                return w.uavs[0].offboard == OffboardState::LossDescent;
+              },
+              5s)) {
+        row_.time_to_failsafe_ms = (loss_s - world_at_fault_s) * 1e3;
+      }
+    } else if (fault_ == "ugv_agent_kill") {
+      kill(ugvs_[reference]->pid(), SIGKILL);
+      ugvs_[reference]->wait(5s);
+      std::this_thread::sleep_for(500ms);  // the ladder climbs meanwhile (at 0.1 s)
+      const double lost_s = probe_.last_imu_s(reference);
+      row_.time_to_failsafe_ms =
+          (probe_.first({FailsafeState::FAILSAFE_IMU_HOLD, FailsafeState::FAILSAFE_EMERGENCY_HOVER},
+                        lost_s) -
+           lost_s) *
+          1e3;
+      row_.detail = "killed the agent of G" + std::to_string(reference);
+    } else if (fault_ == "relative_state_gap") {
+      watch([&](const SharedWorld& w) { return w.time_s >= row_.fault_time_s + 0.4; }, 5s);
+      const double lost_s = std::min(probe_.last_relative_s(reference), row_.fault_time_s);
+      row_.time_to_failsafe_ms =
+          (probe_.first({FailsafeState::FAILSAFE_EMERGENCY_HOVER}, lost_s) - lost_s) * 1e3;
+    } else if (fault_ == "sim_kill") {
+      const double lost_s = probe_.last_relative_s(reference);
+      world_.reset();
+      kill(sim_->pid(), SIGKILL);
+      sim_exit_ = sim_->wait(5s);
+      std::this_thread::sleep_for(500ms);
+      row_.time_to_failsafe_ms =
+          (probe_.first({FailsafeState::FAILSAFE_EMERGENCY_HOVER}, lost_s) - lost_s) * 1e3;
+    }
+  }
+
+  void finish() {
+    if (fault_ == "sim_kill") {
+      finish_without_world();
+      return;
+    }
+    const bool agent_gone = fault_ == "uav_agent_kill";
+    // Until the run is over (the simulator exits when the task has ended), or the UAV rests
+    // disarmed when nobody will end the task.
+    watch(
+        [&](const SharedWorld& w) {
+          const auto& uav = w.uavs[0];
+          const bool disarmed = agent_gone ? uav.offboard == OffboardState::LossDisarmed
+                                           : uav.command.thrust_m_s2 == 0.0;
+          return uav.contact.resting && disarmed && landing_.touchdown_speed_m_s >= 0.0 &&
+                 (agent_gone || row_.fault == "ugv_agent_kill");
+        },
+        90s);
+    if (!sim_exit_) sim_exit_ = sim_->wait(agent_gone ? 0ms : 30s);
+    const auto& uav = last_->uavs[0];
+    row_.touchdown_speed_m_s = landing_.touchdown_speed_m_s;
+    if (uav.contact.resting && uav.contact.surface == kTargetUgv) {
+      row_.landing_error_m =
+          std::hypot(uav.contact.offset_in_surface_m.x, uav.contact.offset_in_surface_m.y);
+    }
+    const bool soft = std::isfinite(landing_.touchdown_speed_m_s) &&
+                      landing_.touchdown_speed_m_s <= kSafeTouchdown_m_s &&
+                      landing_.touchdown_tilt_cos > std::cos(kSafeTilt_rad);
+    if (sim_exit_ == 0 && soft) {
+      row_.outcome = "completed";
+    } else if (uav.contact.resting && soft) {
+      row_.outcome = "landed_safely";
+    } else {
+      row_.outcome = "crashed";
+    }
+    if (row_.detail.empty()) {
+      row_.detail =
+          "simulator exit " + (sim_exit_ ? std::to_string(*sim_exit_) : "-") + ", at rest on " +
+          (uav.contact.surface < 0 ? "ground" : "G" + std::to_string(uav.contact.surface));
+    }
+  }
+
+  // The plant is gone with the simulator: what can be judged is whether every agent
+  // stopped commanding (the UAV agent's blind landing disarmed, the UGV agents exited).
+  void finish_without_world() {
+    const auto deadline = Clock::now() + 20s;
+    while (Clock::now() < deadline &&
+           !std::isfinite(probe_.first({FailsafeState::FAILSAFE_EMERGENCY_LANDED}, 0.0))) {
+      std::this_thread::sleep_for(50ms);
+    }
+    const bool agent_disarmed =
+        std::isfinite(probe_.first({FailsafeState::FAILSAFE_EMERGENCY_LANDED}, 0.0));
+    int ugvs_exited = 0;
+    for (auto& ugv : ugvs_) ugvs_exited += ugv->wait(5s).has_value() ? 1 : 0;
+    row_.outcome = agent_disarmed && ugvs_exited == 2 ? "landed_safely" : "crashed";
+    row_.detail = std::string("world gone; UAV agent ") +
+                  (agent_disarmed ? "disarmed after its blind landing" : "still armed") + ", " +
+                  std::to_string(ugvs_exited) + "/2 UGV agents exited";
+  }
+
+  std::string fault_;
+  int domain_;
+  std::string dir_;
+  std::string run_id_;
+  FaultRow row_;
+  Probe probe_;
+  std::unique_ptr<ChildProcess> sim_;
+  std::vector<std::unique_ptr<ChildProcess>> ugvs_;
+  std::unique_ptr<ChildProcess> uav_;
+  std::optional<cover::shm::SeqlockReader<SharedWorld>> world_;
+  std::unique_ptr<SharedWorld> last_ = std::make_unique<SharedWorld>();
+  std::optional<int> sim_exit_;
+  Landing landing_;
+};
+
+void print_table(const std::vector<FaultRow>& rows) {
+  std::printf("%-20s %-8s %5s %9s %9s %9s %6s %6s %6s %10s\n", "fault", "mix", "runs", "ttf p50",
+              "ttf max", "td max", "done", "landed", "crash", "land err");
+  std::map<std::string, std::vector<const FaultRow*>> by_fault;
+  for (const FaultRow& r : rows) by_fault[r.fault + "/" + r.mix].push_back(&r);
+  for (const auto& [key, group] : by_fault) {
+    std::vector<double> ttf, td, err;
+    int done = 0, landed = 0, crashed = 0;
+    for (const FaultRow* r : group) {
+      if (std::isfinite(r->time_to_failsafe_ms)) ttf.push_back(r->time_to_failsafe_ms);
+      if (std::isfinite(r->touchdown_speed_m_s)) td.push_back(r->touchdown_speed_m_s);
+      if (std::isfinite(r->landing_error_m)) err.push_back(r->landing_error_m);
+      done += r->outcome == "completed";
+      landed += r->outcome == "landed_safely";
+      crashed += r->outcome == "crashed";
+    }
+    auto max_of = [](const std::vector<double>& v) {
+      return v.empty() ? NAN : cover::bench::percentile(v, 1.0);
+    };
+    auto median_of = [](const std::vector<double>& v) {
+      return v.empty() ? NAN : cover::bench::percentile(v, 0.5);
+    };
+    std::printf("%-20s %-8s %5zu %7.0fms %7.0fms %7.2fm/s %6d %6d %6d %8.3fm\n",
+                group.front()->fault.c_str(), group.front()->mix.c_str(), group.size(),
+                median_of(ttf), max_of(ttf), max_of(td), done, landed, crashed, max_of(err));
+  }
+  std::printf(
+      "ttf: input lost -> failsafe entered (the flight controller's for uav_agent_kill); "
+      "td: touchdown vertical speed\n");
+}
+
+int run(const std::vector<std::string>& args) {
+  CLI::App app{"Faults injected into Scenario 2 as processes (realtime): failsafe time, outcome"};
+  bool json = false;
+  int count = 20;
+  int domain = 190;
+  std::uint64_t first_seed = 1;
+  std::string mix = "cyclone";
+  std::vector<std::string> faults = kFaults;
+  app.add_flag("--json", json, "print JSON instead of a table");
+  app.add_option("--count", count, "seeded fault times per fault")->capture_default_str();
+  app.add_option("--seed", first_seed, "first seed")->capture_default_str();
+  app.add_option("--fault", faults, "only these faults")->check(CLI::IsMember(kFaults));
+  app.add_option("--mix", mix, "DDS vendors: fastdds | cyclone | mixed (UAV agent on Fast DDS)")
+      ->check(CLI::IsMember({"fastdds", "cyclone", "mixed"}))
+      ->capture_default_str();
+  app.add_option("--domain", domain, "first DDS domain (one per run, 30 in turn)")
+      ->capture_default_str();
+  if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cover_faults_" + std::to_string(getpid())))
+          .string();
+  std::filesystem::create_directories(dir);
+  std::vector<FaultRow> rows;
+  int index = 0;
+  for (const std::string& fault : faults) {
+    for (int i = 0; i < count; ++i, ++index) {
+      const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
+      FaultRun one(fault, mix, seed, domain + index % 30, dir);
+      rows.push_back(one.run());
+      if (!json)
+        std::fprintf(stderr, "%s seed %llu: %s\n", fault.c_str(),
+                     static_cast<unsigned long long>(seed), rows.back().outcome.c_str());
+    }
+  }
+  const bool all_safe = std::none_of(rows.begin(), rows.end(),
+                                     [](const FaultRow& r) { return r.outcome == "crashed"; });
+  if (all_safe) std::filesystem::remove_all(dir);
+  if (json) {
+    nlohmann::json out{{"rows", nlohmann::json::array()}};
+    for (const FaultRow& r : rows) out["rows"].push_back(cover::bench::to_json(r));
+    std::cout << out.dump(2) << "\n";
+  } else {
+    print_table(rows);
+    if (!all_safe) std::printf("logs of the crashed runs: %s\n", dir.c_str());
+  }
+  return all_safe ? 0 : 1;
+}
+
+const cover::bench::Registrar kRegistrar{
+    "faults", "faults injected into Scenario 2 as processes: time to failsafe, outcome", &run};
+
+}  // namespace

@@ -1,0 +1,110 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+
+#include "cover/mission/control_command.hpp"
+#include "cover/mission/mission_params.hpp"
+#include "cover/model/relative_state.hpp"
+#include "cover/model/state.hpp"
+#include "cover/model/ugv_motion.hpp"
+
+namespace cover::mission {
+
+// What is wrong with the reference frame's inputs on one step (the first problem found).
+enum class FailsafeCause : std::uint8_t {
+  None = 0,
+  ClockInvalid = 1,  // the step's time is not finite
+  StateMissing = 2,  // no relative state of the reference UGV yet
+  StateInvalid = 3,  // non-finite relative state
+  StateStale = 4,    // relative state older than state_timeout_s
+  ImuMissing = 5,
+  ImuInvalid = 6,
+  ImuStale = 7,  // UGV IMU older than imu_timeout_s (held up to imu_hold_s more)
+};
+const char* to_string(FailsafeCause cause);
+
+// The rungs, in the order a lost input climbs them. Landing and Disarmed are latched: the
+// task has failed and only a new task starts a new ladder.
+enum class LadderLevel : std::uint8_t {
+  Nominal = 0,           // SAMPC flies the stage
+  ImuHold = 1,           // SAMPC flies on the reference UGV's last IMU
+  EmergencyHover = 2,    // level attitude, hover thrust, no position control
+  EmergencyLanding = 3,  // level attitude, controlled sink, disarm on contact
+  Disarmed = 4,          // touched down after an emergency landing: motors off
+};
+const char* to_string(LadderLevel level);
+
+// The reference frame's inputs on one step, judged against the timeouts.
+struct InputHealth {
+  FailsafeCause cause = FailsafeCause::None;  // None: all fresh
+  double age_s = 0.0;                         // age of the input `cause` names (0 when it has none)
+  bool state_usable = false;  // the relative state is fresh and finite (feedback for the ladder)
+  bool imu_held = false;      // the only problem is an IMU still within imu_hold_s
+};
+
+struct LadderInput {
+  bool has_state = false;
+  const model::RelativeState* state = nullptr;
+  bool has_imu = false;
+  double imu_stamp_s = 0.0;
+  const model::UgvMotion* imu = nullptr;
+};
+
+InputHealth assess_inputs(const LadderInput& input, double now_s, const MissionParams& params);
+
+// The UAV agent's failsafes for a lost or invalid reference input (docs/failsafes.md): the
+// last IMU held briefly, then emergency hover (level attitude, the last hover thrust),
+// after emergency_hover_s an emergency landing (level, sinking at
+// emergency_descent_rate_m_s) that disarms on contact. Data back during the hover returns
+// to Nominal (`resumed()`: the caller replans the stage). Without a relative state the
+// attitude and vertical speed are dead-reckoned from the commands since the last one.
+class FailsafeLadder {
+ public:
+  explicit FailsafeLadder(const MissionParams& params);
+
+  // Climbs or leaves the ladder on this step's health. `changed()` is true on the step
+  // where the level changed.
+  LadderLevel update(const InputHealth& health, double now_s);
+  // On every nominal step: the state, the hover thrust SAMPC's estimate implies, and the
+  // command sent (the dead reckoning's start).
+  void remember(const model::RelativeState& state, double hover_thrust_m_s2,
+                const ControlCommand& sent, double now_s);
+  // The emergency command of the current level (EmergencyHover or EmergencyLanding);
+  // `state` is the reference frame's relative state when usable, else nullptr.
+  ControlCommand command(const model::RelativeState* state, double now_s);
+
+  LadderLevel level() const { return level_; }
+  bool changed() const { return changed_; }
+  bool resumed() const { return resumed_; }       // left EmergencyHover for Nominal this step
+  FailsafeCause cause() const { return cause_; }  // of the current (or last) climb
+  double cause_age_s() const { return cause_age_s_; }
+  double hover_thrust_m_s2() const { return hover_thrust_m_s2_; }
+
+ private:
+  void climb_to(LadderLevel level, double now_s);
+  void set_estimate(const model::RelativeState& state, double now_s);
+  void dead_reckon(const model::RelativeState* state, double now_s);
+  bool touched_down(const model::RelativeState* state, double now_s);
+
+  MissionParams params_;
+  LadderLevel level_ = LadderLevel::Nominal;
+  bool changed_ = false;
+  bool resumed_ = false;
+  FailsafeCause cause_ = FailsafeCause::None;
+  double cause_age_s_ = 0.0;
+  double level_since_s_ = 0.0;
+  double hover_thrust_m_s2_ = model::kGravity_m_s2;
+  // The UAV's attitude in the reference frame and its height and vertical speed there:
+  // measured when available, else propagated from the commands.
+  Eigen::Quaterniond attitude_ = Eigen::Quaterniond::Identity();
+  double height_m_ = 0.0;
+  double vertical_speed_m_s_ = 0.0;
+  double estimate_time_s_ = -1.0;  // < 0: nothing remembered yet
+  ControlCommand last_command_;
+  double descent_start_height_m_ = 0.0;
+  double touchdown_since_s_ = -1.0;
+};
+
+}  // namespace cover::mission
