@@ -138,18 +138,42 @@ struct Landing {
   double last_tilt_cos = 1.0;
   double touchdown_speed_m_s = NAN;  // the hardest contact after take-off
   double touchdown_tilt_cos = 1.0;   // the most tilted contact
-  void observe(const cover::sim::SharedUav& uav) {
+  int touchdown_surface = -2;        // of the hardest contact: -1 ground, k: G_k's deck
+  // The motors stopped in the air (a disarm before contact): the height and time it began.
+  double motors_off_height_m = NAN;
+  double motors_off_time_s = NAN;
+  void observe(const cover::sim::SharedUav& uav, double time_s) {
     if (!uav.contact.resting) {
+      if (airborne && uav.command.thrust_m_s2 == 0.0 && !std::isfinite(motors_off_height_m)) {
+        motors_off_height_m = uav.state.position_m.z;
+        motors_off_time_s = time_s;
+      }
       airborne = true;
       last_vz_m_s = uav.state.velocity_m_s.z;
       last_tilt_cos = (uav.state.attitude.eigen() * Eigen::Vector3d::UnitZ()).z();
     } else if (airborne) {
       const double speed = std::abs(last_vz_m_s);
+      if (!std::isfinite(touchdown_speed_m_s) || speed > touchdown_speed_m_s) {
+        touchdown_surface = uav.contact.surface;
+      }
       touchdown_speed_m_s =
           std::isfinite(touchdown_speed_m_s) ? std::max(touchdown_speed_m_s, speed) : speed;
       touchdown_tilt_cos = std::min(touchdown_tilt_cos, last_tilt_cos);
       airborne = false;
     }
+  }
+  // For a reader of a crashed row: where the hardest contact was, and an airborne disarm.
+  std::string describe() const {
+    std::string text =
+        "hardest contact on " +
+        (touchdown_surface == -1 ? std::string("ground") : "G" + std::to_string(touchdown_surface));
+    if (std::isfinite(motors_off_height_m)) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "; motors off in the air at %.2f m (t %.2f s)",
+                    motors_off_height_m, motors_off_time_s);
+      text += buf;
+    }
+    return text;
   }
 };
 
@@ -181,7 +205,9 @@ class FaultRun {
     const bool whole_run = fault == "mocap_dropout" || fault == "imu_fault";
     // Scenario 2 flies for ~10 s: from the climb (2 s) to the final stage's approach (8 s).
     if (!whole_run) row_.fault_time_s = std::uniform_real_distribution<double>(2.0, 8.0)(random);
-    run_id_ = "fb_" + std::to_string(getpid()) + "_" + std::to_string(domain);
+    // One name per run, so that a crashed run's logs survive the runs after it.
+    run_id_ =
+        "fb_" + std::to_string(getpid()) + "_" + fault + "_" + mix + "_" + std::to_string(seed);
     const Vendors v = vendors_of(mix);
     std::vector<std::string> sim{(kBinDir / "cover-sim").string(),
                                  "--scenario",
@@ -244,7 +270,7 @@ class FaultRun {
     const auto deadline = Clock::now() + timeout;
     while (Clock::now() < deadline && world_) {
       if (world_->read(*last_) && last_->time_s > 0.0) {
-        landing_.observe(last_->uavs[0]);
+        landing_.observe(last_->uavs[0], last_->time_s);
         if (until(*last_)) return true;
       }
       if (sim_exit_ = sim_->wait(0ms); sim_exit_) return false;
@@ -329,11 +355,11 @@ class FaultRun {
     } else {
       row_.outcome = "crashed";
     }
-    if (row_.detail.empty()) {
-      row_.detail =
-          "simulator exit " + (sim_exit_ ? std::to_string(*sim_exit_) : "-") + ", at rest on " +
-          (uav.contact.surface < 0 ? "ground" : "G" + std::to_string(uav.contact.surface));
-    }
+    if (!row_.detail.empty()) row_.detail += "; ";
+    row_.detail +=
+        "simulator exit " + (sim_exit_ ? std::to_string(*sim_exit_) : "-") + ", at rest on " +
+        (uav.contact.surface < 0 ? "ground" : "G" + std::to_string(uav.contact.surface)) + "; " +
+        landing_.describe();
   }
 
   // The plant is gone with the simulator: what can be judged is whether every agent
