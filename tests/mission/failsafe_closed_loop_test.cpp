@@ -102,12 +102,16 @@ Outcome fly_with_loss(Loss loss, double fault_s) {
         outcome.motors_off_height_m = s.uav.position_m.z;
       }
       airborne = true;
-      last_vz = s.uav.velocity_m_s.z;
+      // Held on a surface while the thrust exceeds the weight, the sim zeroes the sink
+      // before the UAV rests: the impact is the last sinking sample.
+      if (s.uav.velocity_m_s.z < 0.0 || last_vz >= 0.0) last_vz = s.uav.velocity_m_s.z;
       last_tilt = tilt;
     } else if (airborne) {
       airborne = false;
+      const double impact_vz = last_vz;
+      last_vz = 0.0;
       if (t > fault_s) {
-        outcome.worst_touchdown_m_s = std::max(outcome.worst_touchdown_m_s, std::abs(last_vz));
+        outcome.worst_touchdown_m_s = std::max(outcome.worst_touchdown_m_s, std::abs(impact_vz));
         outcome.worst_tilt_rad = std::max(outcome.worst_tilt_rad, last_tilt);
         outcome.surface =
             s.uav_contact.surface < 0 ? "ground" : "G" + std::to_string(s.uav_contact.surface);

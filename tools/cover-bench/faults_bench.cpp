@@ -149,7 +149,11 @@ struct Landing {
         motors_off_time_s = time_s;
       }
       airborne = true;
-      last_vz_m_s = uav.state.velocity_m_s.z;
+      // A UAV that meets a surface while its thrust still exceeds its weight is held on top
+      // with its sink zeroed (sim/src/world.cpp) and rests only once the thrust drops: the
+      // impact is the last sinking sample, not the one before resting.
+      if (uav.state.velocity_m_s.z < 0.0 || last_vz_m_s >= 0.0)
+        last_vz_m_s = uav.state.velocity_m_s.z;
       last_tilt_cos = (uav.state.attitude.eigen() * Eigen::Vector3d::UnitZ()).z();
     } else if (airborne) {
       const double speed = std::abs(last_vz_m_s);
@@ -160,6 +164,7 @@ struct Landing {
           std::isfinite(touchdown_speed_m_s) ? std::max(touchdown_speed_m_s, speed) : speed;
       touchdown_tilt_cos = std::min(touchdown_tilt_cos, last_tilt_cos);
       airborne = false;
+      last_vz_m_s = 0.0;
     }
   }
   // For a reader of a crashed row: where the hardest contact was, and an airborne disarm.
