@@ -103,8 +103,8 @@ Outcome fly_with_loss(Loss loss, double fault_s) {
       }
       airborne = true;
       // Held on a surface while the thrust exceeds the weight, the sim zeroes the sink
-      // before the UAV rests: the impact is the last sinking sample.
-      if (s.uav.velocity_m_s.z < 0.0 || last_vz >= 0.0) last_vz = s.uav.velocity_m_s.z;
+      // before the UAV rests: the impact is the last sample sinking faster than 2 cm/s.
+      if (s.uav.velocity_m_s.z < -0.02 || last_vz >= 0.0) last_vz = s.uav.velocity_m_s.z;
       last_tilt = tilt;
     } else if (airborne) {
       airborne = false;

@@ -152,7 +152,7 @@ struct Landing {
       // A UAV that meets a surface while its thrust still exceeds its weight is held on top
       // with its sink zeroed (sim/src/world.cpp) and rests only once the thrust drops: the
       // impact is the last sinking sample, not the one before resting.
-      if (uav.state.velocity_m_s.z < 0.0 || last_vz_m_s >= 0.0)
+      if (uav.state.velocity_m_s.z < -0.02 || last_vz_m_s >= 0.0)
         last_vz_m_s = uav.state.velocity_m_s.z;
       last_tilt_cos = (uav.state.attitude.eigen() * Eigen::Vector3d::UnitZ()).z();
     } else if (airborne) {
