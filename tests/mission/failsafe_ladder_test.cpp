@@ -223,3 +223,29 @@ TEST(FailsafeLadder, BlindLandingDisarmsOnlyBelowTheFloor) {
   EXPECT_DOUBLE_EQ(disarm_height_m, plant.ground_m);  // on the ground when the motors stop
   EXPECT_LE(plant.touchdown_speed_m_s, 1.0);
 }
+
+// The hover thrust comes from the flight itself: thrust along up against the change of
+// vertical speed, whatever the mass, and not from the deck or across a missed step.
+TEST(HoverThrustEstimate, LearnsTheThrustThatHoldsTheHeight) {
+  cover::mission::HoverThrustEstimate estimate;
+  const double true_hover_m_s2 = 10.6;  // heavier than nominal
+  double z_m = 1.0;
+  double vz_m_s = 0.0;
+  double t_s = 0.0;
+  for (int k = 0; k < 200; ++k, t_s += 0.01) {
+    // A climbing-then-braking thrust profile: the window's mean is not the hover thrust.
+    const double thrust_m_s2 = true_hover_m_s2 * (1.0 + 0.05 * std::sin(3.0 * t_s));
+    estimate.add(t_s, z_m, vz_m_s, thrust_m_s2, 0.01);
+    const double accel_m_s2 = kGravity_m_s2 * (thrust_m_s2 / true_hover_m_s2 - 1.0);
+    z_m += vz_m_s * 0.01 + 0.5 * accel_m_s2 * 1e-4;
+    vz_m_s += accel_m_s2 * 0.01;
+  }
+  ASSERT_TRUE(estimate.valid());
+  EXPECT_NEAR(estimate.value_m_s2(), true_hover_m_s2, 1e-3 * true_hover_m_s2);
+
+  estimate.add(t_s + 0.5, z_m, vz_m_s, true_hover_m_s2, 0.01);  // a gap: starts anew
+  EXPECT_FALSE(estimate.valid());
+  cover::mission::HoverThrustEstimate on_deck;
+  for (int k = 0; k < 100; ++k) on_deck.add(0.01 * k, 0.0, 0.0, 5.0, 0.01);
+  EXPECT_FALSE(on_deck.valid());
+}

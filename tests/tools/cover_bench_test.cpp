@@ -280,4 +280,9 @@ TEST(CoverBench, BadArgumentsAreUsageErrors) {
   EXPECT_NE(run_bench({"table1", "--sampling", "random"}).exit_code, 0);
   EXPECT_NE(run_bench({"stability", "--pattern", "spiral"}).exit_code, 0);
   EXPECT_NE(run_bench({"mpc", "--mode", "pid"}).exit_code, 0);
+  // Rejected before any process or network namespace is started.
+  EXPECT_NE(run_bench({"faults", "--mix", "opendds"}).exit_code, 0);
+  EXPECT_NE(run_bench({"faults", "--fault", "meteor"}).exit_code, 0);
+  EXPECT_NE(run_bench({"faults", "--count", "0"}).exit_code, 0);
+  EXPECT_NE(run_bench({"wifi", "--seeds", "0"}).exit_code, 0);
 }

@@ -3,9 +3,7 @@
 //            stamps each relative state it publishes; the command computed from it names
 //            that stamp when it comes back), per DDS mix;
 //  lockstep: Scenarios 2 and 4 in lockstep, simulated seconds per wall second.
-#include <unistd.h>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -13,62 +11,10 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
-#include "cover/config/yaml_reader.hpp"
-#include "cover/process/child_process.hpp"
+#include "launch_run.hpp"
+#include "vendor_mix.hpp"
 
 namespace {
-
-#ifdef COVER_LAUNCH
-constexpr const char* kLaunch = COVER_LAUNCH;
-#else
-constexpr const char* kLaunch = "cover-launch";
-#endif
-
-struct DdsMix {
-  const char* name;
-  std::vector<std::string> flags;  // cover-launch --dds flags
-};
-
-// fastdds / cyclone: every process on one vendor; mixed: the simulator and UGV agents on
-// Cyclone, the UAV agent on Fast DDS, so the measured path crosses vendors both ways.
-const std::vector<DdsMix> kMixes = {
-    {"fastdds", {"--dds", "*=fastdds"}},
-    {"cyclone", {"--dds", "*=cyclone"}},
-    {"mixed", {"--dds", "*=cyclone", "--dds", "uav*=fastdds"}},
-};
-
-nlohmann::json run_launch(const std::string& scenario, std::vector<std::string> flags, int domain) {
-  const std::filesystem::path run_dir =
-      std::filesystem::temp_directory_path() / ("cover_e2e_" + std::to_string(getpid()));
-  std::filesystem::remove_all(run_dir);
-  std::vector<std::string> argv = {
-      kLaunch,
-      cover::config::default_config_dir() + "/launch/" + scenario + ".yaml",
-      "--json",
-      "--domain",
-      std::to_string(domain),
-      "--run-dir",
-      run_dir.string()};
-  argv.insert(argv.end(), flags.begin(), flags.end());
-  cover::process::SpawnOptions options;
-  options.capture_stdout = true;
-  // The launcher's own log lines would bury the table: keep them in a file (kept when the
-  // run produced no result, to show why).
-  const std::string launcher_log = run_dir.string() + ".log";
-  options.log_file = launcher_log;
-  cover::process::ChildProcess child(argv, options);
-  std::string out;
-  while (const auto line = child.read_line(std::chrono::minutes(5))) out += *line + "\n";
-  child.wait(std::chrono::minutes(1));
-  std::filesystem::remove_all(run_dir);
-  const nlohmann::json result = nlohmann::json::parse(out, nullptr, false);
-  if (result.is_object() && result.contains("success")) {
-    std::filesystem::remove(launcher_log);
-  } else {
-    std::cerr << "cover-bench e2e: " << scenario << " gave no result; see " << launcher_log << "\n";
-  }
-  return result;
-}
 
 double number(const nlohmann::json& j, const char* key) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : 0.0;
@@ -93,11 +39,11 @@ int run(const std::vector<std::string>& args) {
                      : std::vector<std::string>{"--var", "method=" + method};
 
   nlohmann::json out{{"latency", nlohmann::json::array()}, {"lockstep", nlohmann::json::array()}};
-  for (const DdsMix& mix : kMixes) {
-    std::vector<std::string> flags = mix.flags;
+  for (const cover::bench::VendorMix& mix : cover::bench::vendor_mixes()) {
+    std::vector<std::string> flags = cover::bench::launch_dds_flags(mix);
     flags.insert(flags.end(), {"--clock", "realtime"});
     flags.insert(flags.end(), method_flags.begin(), method_flags.end());
-    const nlohmann::json r = run_launch("scenario2", flags, domain++);
+    const nlohmann::json r = cover::bench::run_launch("scenario2", flags, domain++, "e2e");
     const nlohmann::json latency =
         r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();
     out["latency"].push_back({{"mix", mix.name},
@@ -109,7 +55,7 @@ int run(const std::vector<std::string>& args) {
   for (const char* scenario : {"scenario2", "scenario4"}) {
     std::vector<std::string> flags = {"--dds", "ugv*=cyclone"};
     flags.insert(flags.end(), method_flags.begin(), method_flags.end());
-    const nlohmann::json r = run_launch(scenario, flags, domain++);
+    const nlohmann::json r = cover::bench::run_launch(scenario, flags, domain++, "e2e");
     out["lockstep"].push_back({{"scenario", scenario},
                                {"success", r.is_object() && r.value("success", false)},
                                {"speed_factor", number(r, "speed_factor")}});

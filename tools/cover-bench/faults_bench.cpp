@@ -32,6 +32,8 @@
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "fault_row.hpp"
+#include "vendor_mix.hpp"
+#include "wifi_runs.hpp"
 
 namespace {
 
@@ -49,23 +51,21 @@ using cover::sim::OffboardState;
 using cover::sim::SharedWorld;
 using Clock = std::chrono::steady_clock;
 
+// The faults injected into one run each; wifi_loss runs the whole flight over
+// scripts/wifi-sim's lossy network instead (wifi_runs.hpp).
 const std::vector<std::string> kFaults = {"uav_agent_kill", "ugv_agent_kill", "relative_state_gap",
-                                          "mocap_dropout",  "imu_fault",      "sim_kill"};
+                                          "mocap_dropout",  "imu_fault",      "sim_kill",
+                                          "wifi_loss"};
+constexpr const char* kWifiFault = "wifi_loss";
+// --mix alternate: seed s flies the (s - 1) % 3-th vendor mix, so every fault meets each
+// mix at no extra cost.
+constexpr const char* kAlternate = "alternate";
 constexpr double kGapDuration_s = 0.5;
 // Harder than this, or tilted beyond kSafeTilt_rad at contact, is a crash. A nominal deck
 // landing disarms within action_tolerance_m (5 cm) and drops: ~1.0 m/s by design.
 constexpr double kSafeTouchdown_m_s = 1.5;
 constexpr double kSafeTilt_rad = 0.5;
 constexpr int kTargetUgv = 1;  // Scenario 2 lands on G1
-
-struct Vendors {
-  std::string sim, ugv, uav;
-};
-Vendors vendors_of(const std::string& mix) {
-  if (mix == "fastdds") return {"fastdds", "fastdds", "fastdds"};
-  if (mix == "mixed") return {"cyclone", "cyclone", "fastdds"};
-  return {"cyclone", "cyclone", "cyclone"};
-}
 
 // What the probe hears: the UAV agent's failsafe changes, the newest input stamps.
 class Probe {
@@ -138,18 +138,47 @@ struct Landing {
   double last_tilt_cos = 1.0;
   double touchdown_speed_m_s = NAN;  // the hardest contact after take-off
   double touchdown_tilt_cos = 1.0;   // the most tilted contact
-  void observe(const cover::sim::SharedUav& uav) {
+  int touchdown_surface = -2;        // of the hardest contact: -1 ground, k: G_k's deck
+  // The motors stopped in the air (a disarm before contact): the height and time it began.
+  double motors_off_height_m = NAN;
+  double motors_off_time_s = NAN;
+  void observe(const cover::sim::SharedUav& uav, double time_s) {
     if (!uav.contact.resting) {
+      if (airborne && uav.command.thrust_m_s2 == 0.0 && !std::isfinite(motors_off_height_m)) {
+        motors_off_height_m = uav.state.position_m.z;
+        motors_off_time_s = time_s;
+      }
       airborne = true;
-      last_vz_m_s = uav.state.velocity_m_s.z;
+      // A UAV that meets a surface while its thrust still exceeds its weight is held on top
+      // with its sink zeroed (sim/src/world.cpp) and rests only once the thrust drops: the
+      // impact is the last sinking sample, not the one before resting.
+      if (uav.state.velocity_m_s.z < -0.02 || last_vz_m_s >= 0.0)
+        last_vz_m_s = uav.state.velocity_m_s.z;
       last_tilt_cos = (uav.state.attitude.eigen() * Eigen::Vector3d::UnitZ()).z();
     } else if (airborne) {
       const double speed = std::abs(last_vz_m_s);
+      if (!std::isfinite(touchdown_speed_m_s) || speed > touchdown_speed_m_s) {
+        touchdown_surface = uav.contact.surface;
+      }
       touchdown_speed_m_s =
           std::isfinite(touchdown_speed_m_s) ? std::max(touchdown_speed_m_s, speed) : speed;
       touchdown_tilt_cos = std::min(touchdown_tilt_cos, last_tilt_cos);
       airborne = false;
+      last_vz_m_s = 0.0;
     }
+  }
+  // For a reader of a crashed row: where the hardest contact was, and an airborne disarm.
+  std::string describe() const {
+    std::string text =
+        "hardest contact on " +
+        (touchdown_surface == -1 ? std::string("ground") : "G" + std::to_string(touchdown_surface));
+    if (std::isfinite(motors_off_height_m)) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "; motors off in the air at %.2f m (t %.2f s)",
+                    motors_off_height_m, motors_off_time_s);
+      text += buf;
+    }
+    return text;
   }
 };
 
@@ -181,8 +210,10 @@ class FaultRun {
     const bool whole_run = fault == "mocap_dropout" || fault == "imu_fault";
     // Scenario 2 flies for ~10 s: from the climb (2 s) to the final stage's approach (8 s).
     if (!whole_run) row_.fault_time_s = std::uniform_real_distribution<double>(2.0, 8.0)(random);
-    run_id_ = "fb_" + std::to_string(getpid()) + "_" + std::to_string(domain);
-    const Vendors v = vendors_of(mix);
+    // One name per run, so that a crashed run's logs survive the runs after it.
+    run_id_ =
+        "fb_" + std::to_string(getpid()) + "_" + fault + "_" + mix + "_" + std::to_string(seed);
+    const cover::bench::VendorMix& v = cover::bench::vendor_mix(mix);
     std::vector<std::string> sim{(kBinDir / "cover-sim").string(),
                                  "--scenario",
                                  whole_run ? scenario_with_sensor_faults(fault, dir) : "scenario2",
@@ -244,7 +275,7 @@ class FaultRun {
     const auto deadline = Clock::now() + timeout;
     while (Clock::now() < deadline && world_) {
       if (world_->read(*last_) && last_->time_s > 0.0) {
-        landing_.observe(last_->uavs[0]);
+        landing_.observe(last_->uavs[0], last_->time_s);
         if (until(*last_)) return true;
       }
       if (sim_exit_ = sim_->wait(0ms); sim_exit_) return false;
@@ -329,11 +360,11 @@ class FaultRun {
     } else {
       row_.outcome = "crashed";
     }
-    if (row_.detail.empty()) {
-      row_.detail =
-          "simulator exit " + (sim_exit_ ? std::to_string(*sim_exit_) : "-") + ", at rest on " +
-          (uav.contact.surface < 0 ? "ground" : "G" + std::to_string(uav.contact.surface));
-    }
+    if (!row_.detail.empty()) row_.detail += "; ";
+    row_.detail +=
+        "simulator exit " + (sim_exit_ ? std::to_string(*sim_exit_) : "-") + ", at rest on " +
+        (uav.contact.surface < 0 ? "ground" : "G" + std::to_string(uav.contact.surface)) + "; " +
+        landing_.describe();
   }
 
   // The plant is gone with the simulator: what can be judged is whether every agent
@@ -400,22 +431,51 @@ void print_table(const std::vector<FaultRow>& rows) {
       "td: touchdown vertical speed\n");
 }
 
+// The mix of one seed's run: the one asked for, or the seeds in turn over every mix.
+std::string mix_of_seed(const std::string& mix, std::uint64_t seed) {
+  if (mix != kAlternate) return mix;
+  const auto& mixes = cover::bench::vendor_mixes();
+  return mixes[static_cast<std::size_t>((seed - 1) % mixes.size())].name;
+}
+
+void print_progress(const FaultRow& row) {
+  std::fprintf(stderr, "%s %s seed %llu: %s\n", row.fault.c_str(), row.mix.c_str(),
+               static_cast<unsigned long long>(row.seed), row.outcome.c_str());
+}
+
 int run(const std::vector<std::string>& args) {
   CLI::App app{"Faults injected into Scenario 2 as processes (realtime): failsafe time, outcome"};
   bool json = false;
   int count = 20;
   int domain = 190;
   std::uint64_t first_seed = 1;
-  std::string mix = "cyclone";
+  std::string mix = kAlternate;
   std::vector<std::string> faults = kFaults;
+  cover::bench::WifiOptions wifi;
+  std::vector<std::string> mixes = cover::bench::vendor_mix_names();
+  mixes.push_back(kAlternate);
   app.add_flag("--json", json, "print JSON instead of a table");
-  app.add_option("--count", count, "seeded fault times per fault")->capture_default_str();
-  app.add_option("--seed", first_seed, "first seed")->capture_default_str();
+  app.add_option("--count", count, "seeded fault times per fault")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--seed", first_seed, "first seed")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--fault", faults, "only these faults")->check(CLI::IsMember(kFaults));
-  app.add_option("--mix", mix, "DDS vendors: fastdds | cyclone | mixed (UAV agent on Fast DDS)")
-      ->check(CLI::IsMember({"fastdds", "cyclone", "mixed"}))
+  app.add_option("--mix", mix,
+                 "DDS vendors: fastdds | cyclone | mixed (UAV agent on Fast DDS, the rest on "
+                 "Cyclone) | alternate (seeds in turn over the three); wifi_loss flies every mix "
+                 "unless one is named")
+      ->check(CLI::IsMember(mixes))
       ->capture_default_str();
   app.add_option("--domain", domain, "first DDS domain (one per run, 30 in turn)")
+      ->check(CLI::Range(0, 202))
+      ->capture_default_str();
+  app.add_option("--wifi-seeds", wifi.seeds, "wifi_loss: seeds per vendor mix")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--wifi-domain", wifi.first_domain, "wifi_loss: first DDS domain (10 in turn)")
+      ->check(CLI::Range(0, 222))
       ->capture_default_str();
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
   const std::string dir =
@@ -424,28 +484,40 @@ int run(const std::vector<std::string>& args) {
   std::filesystem::create_directories(dir);
   std::vector<FaultRow> rows;
   int index = 0;
+  bool wifi_failed = false;
   for (const std::string& fault : faults) {
+    if (fault == kWifiFault) {
+      std::vector<cover::bench::VendorMix> wifi_mixes = cover::bench::vendor_mixes();
+      if (mix != kAlternate) wifi_mixes = {cover::bench::vendor_mix(mix)};
+      const auto result = cover::bench::run_wifi(wifi, wifi_mixes, [&](const auto& run) {
+        if (!json) print_progress(run.row);
+      });
+      if (!result.network_up) {
+        std::cerr << "cover-bench faults: wifi_loss: scripts/wifi-sim up failed (root "
+                     "needed):\n"
+                  << result.network_output;
+        wifi_failed = true;
+      }
+      for (const auto& run : result.runs) rows.push_back(run.row);
+      continue;
+    }
     for (int i = 0; i < count; ++i, ++index) {
       const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
-      FaultRun one(fault, mix, seed, domain + index % 30, dir);
+      FaultRun one(fault, mix_of_seed(mix, seed), seed, domain + index % 30, dir);
       rows.push_back(one.run());
-      if (!json)
-        std::fprintf(stderr, "%s seed %llu: %s\n", fault.c_str(),
-                     static_cast<unsigned long long>(seed), rows.back().outcome.c_str());
+      if (!json) print_progress(rows.back());
     }
   }
   const bool all_safe = std::none_of(rows.begin(), rows.end(),
                                      [](const FaultRow& r) { return r.outcome == "crashed"; });
   if (all_safe) std::filesystem::remove_all(dir);
   if (json) {
-    nlohmann::json out{{"rows", nlohmann::json::array()}};
-    for (const FaultRow& r : rows) out["rows"].push_back(cover::bench::to_json(r));
-    std::cout << out.dump(2) << "\n";
+    std::cout << cover::bench::rows_json(rows).dump(2) << "\n";
   } else {
     print_table(rows);
     if (!all_safe) std::printf("logs of the crashed runs: %s\n", dir.c_str());
   }
-  return all_safe ? 0 : 1;
+  return all_safe && !wifi_failed ? 0 : 1;
 }
 
 const cover::bench::Registrar kRegistrar{

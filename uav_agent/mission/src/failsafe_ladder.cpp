@@ -122,17 +122,25 @@ void FailsafeLadder::climb_to(LadderLevel level, double now_s) {
   level_ = level;
   // An invalid clock keeps the previous time: the hover's duration then counts from there.
   if (std::isfinite(now_s)) level_since_s_ = now_s;
+  if (level == LadderLevel::EmergencyHover) {
+    // Hold the height the UAV was last known at; the integral starts anew each episode.
+    reference_start_height_m_ = height_m_;
+    height_integral_m_s2_ = 0.0;
+  }
   if (level == LadderLevel::EmergencyLanding) {
-    descent_start_height_m_ = height_m_;
+    reference_start_height_m_ = height_m_;
     touchdown_since_s_ = -1.0;
   }
 }
 
 void FailsafeLadder::remember(const model::RelativeState& state, double hover_thrust_m_s2,
                               const ControlCommand& sent, double now_s) {
-  if (std::isfinite(hover_thrust_m_s2)) {
-    hover_thrust_m_s2_ =
-        std::clamp(hover_thrust_m_s2, 0.5 * model::kGravity_m_s2, 1.5 * model::kGravity_m_s2);
+  const double up = (state.attitude.normalized() * Eigen::Vector3d::UnitZ()).z();
+  hover_estimate_.add(now_s, state.position_m.z(), state.velocity_m_s.z(),
+                      sent.armed ? sent.thrust_m_s2 * up : 0.0, params_.control_period_s);
+  const double hover = hover_estimate_.valid() ? hover_estimate_.value_m_s2() : hover_thrust_m_s2;
+  if (std::isfinite(hover)) {
+    hover_thrust_m_s2_ = std::clamp(hover, 0.5 * model::kGravity_m_s2, 1.5 * model::kGravity_m_s2);
   }
   last_command_ = sent;
   set_estimate(state, now_s);
@@ -170,9 +178,41 @@ void FailsafeLadder::dead_reckon(const model::RelativeState* state, double now_s
   if (std::isfinite(now_s)) estimate_time_s_ = now_s;
 }
 
+double FailsafeLadder::reference_height_m(double now_s) const {
+  if (level_ != LadderLevel::EmergencyLanding) return reference_start_height_m_;
+  return reference_start_height_m_ - params_.emergency_descent_rate_m_s * (now_s - level_since_s_);
+}
+
+// Thrust along the frame's up that tracks the vertical reference: PID on the height with
+// the reference's speed as feed-forward, around the hover thrust. The integral learns only
+// from a measured height; blind, it keeps what it had learnt.
+double FailsafeLadder::vertical_thrust_m_s2(bool measured, double now_s) {
+  constexpr double kHeightGain_1_s2 = 2.0;
+  constexpr double kSpeedGain_1_s = 2.5;
+  constexpr double kIntegralGain_1_s3 = 0.5;
+  constexpr double kIntegralLimit_m_s2 = 0.2 * model::kGravity_m_s2;
+  const double reference_speed_m_s =
+      level_ == LadderLevel::EmergencyLanding ? -params_.emergency_descent_rate_m_s : 0.0;
+  const double error_m = reference_height_m(now_s) - height_m_;
+  if (measured && std::isfinite(error_m)) {
+    height_integral_m_s2_ =
+        std::clamp(height_integral_m_s2_ + kIntegralGain_1_s3 * error_m * params_.control_period_s,
+                   -kIntegralLimit_m_s2, kIntegralLimit_m_s2);
+  }
+  const double accel_m_s2 = kHeightGain_1_s2 * error_m +
+                            kSpeedGain_1_s * (reference_speed_m_s - vertical_speed_m_s_) +
+                            height_integral_m_s2_;
+  const double thrust_m_s2 = hover_thrust_m_s2_ * (1.0 + accel_m_s2 / model::kGravity_m_s2);
+  // A blind landing may slow its sink but never push up: on the ground (which it cannot
+  // see) more than the hover thrust would lift it off again.
+  if (!measured && level_ == LadderLevel::EmergencyLanding) {
+    return std::min(thrust_m_s2, hover_thrust_m_s2_);
+  }
+  return thrust_m_s2;
+}
+
 bool FailsafeLadder::touched_down(const model::RelativeState* state, double now_s) {
-  const double reference_m =
-      descent_start_height_m_ - params_.emergency_descent_rate_m_s * (now_s - level_since_s_);
+  const double reference_m = reference_height_m(now_s);
   // Measured: something holds the UAV above its sinking reference. Blind: the reference is
   // below the lowest ground the frame can have, so contact has certainly been made.
   const bool held_up =
@@ -204,14 +244,9 @@ ControlCommand FailsafeLadder::command(const model::RelativeState* state, double
       params_.emergency_level_gain_1_s * Eigen::Vector3d::UnitZ().cross(up_in_body);
   const double max_rate_rad_s = 2.0;
   if (rates.norm() > max_rate_rad_s) rates *= max_rate_rad_s / rates.norm();
-  // Vertical speed toward 0 (hover) or the sink rate (landing), on the hover thrust.
-  const double target_m_s =
-      level_ == LadderLevel::EmergencyLanding ? -params_.emergency_descent_rate_m_s : 0.0;
-  const double sink_gain_1_s = 2.0;
+  // Height held (hover) or sinking along a line (landing), on the hover thrust.
   const double tilt_cos = std::max((attitude_ * Eigen::Vector3d::UnitZ()).z(), 0.7);
-  const double thrust =
-      hover_thrust_m_s2_ *
-      (1.0 + sink_gain_1_s * (target_m_s - vertical_speed_m_s_) / model::kGravity_m_s2) / tilt_cos;
+  const double thrust = vertical_thrust_m_s2(state != nullptr, t_s) / tilt_cos;
   command.thrust_m_s2 = std::clamp(thrust, 0.5 * hover_thrust_m_s2_, 1.5 * hover_thrust_m_s2_);
   command.body_rate_rad_s = rates;
   command.armed = true;

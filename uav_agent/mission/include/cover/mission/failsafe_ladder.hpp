@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cover/mission/control_command.hpp"
+#include "cover/mission/failsafe_ladder_hover_thrust.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/model/relative_state.hpp"
 #include "cover/model/state.hpp"
@@ -87,6 +88,8 @@ class FailsafeLadder {
   void set_estimate(const model::RelativeState& state, double now_s);
   void dead_reckon(const model::RelativeState* state, double now_s);
   bool touched_down(const model::RelativeState* state, double now_s);
+  double reference_height_m(double now_s) const;
+  double vertical_thrust_m_s2(bool measured, double now_s);
 
   MissionParams params_;
   LadderLevel level_ = LadderLevel::Nominal;
@@ -103,7 +106,12 @@ class FailsafeLadder {
   double vertical_speed_m_s_ = 0.0;
   double estimate_time_s_ = -1.0;  // < 0: nothing remembered yet
   ControlCommand last_command_;
-  double descent_start_height_m_ = 0.0;
+  // The vertical reference (a held height in the hover, a line sinking at the descent
+  // rate in the landing) and the integral of its error, which absorbs what the hover
+  // thrust estimate still misses while a relative state is there to measure it.
+  double reference_start_height_m_ = 0.0;
+  double height_integral_m_s2_ = 0.0;
+  HoverThrustEstimate hover_estimate_;
   double touchdown_since_s_ = -1.0;
 };
 

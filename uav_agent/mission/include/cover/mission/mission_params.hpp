@@ -56,7 +56,7 @@ struct MissionParams {
   // Without any relative state the landing cannot see contact: it disarms once its sinking
   // reference is this far below the frame's origin (m; the lowest ground can be there) plus
   // land_detect_gap_m, held for land_detect_time_s.
-  double emergency_blind_floor_m = 0.5;
+  double emergency_blind_floor_m = 1.0;
   // A stage whose reference cannot be planned after this many attempts (one per control
   // step) fails the mission (PlanningFailed).
   int max_plan_attempts = 10;
