@@ -114,7 +114,10 @@ TEST(InterceptVelocity, AimsAtWhereTheTurningUgvWillBeAtTheEarliestArrival) {
     for (const bool solve : {true, false}) {
       InterceptParams params;
       params.solve_time_to_go = solve;
-      const InterceptVelocity law = intercept_velocity(params, ugv, p, s, eq30(ugv, p, s), 2.0);
+      // Solved: the approach at the speed limit (s = vmax), far from the braking curve;
+      // without the solve, a limit that does not cut the lead.
+      const double limit = solve ? s : 2.0;
+      const InterceptVelocity law = intercept_velocity(params, ugv, p, s, eq30(ugv, p, s), limit);
       ASSERT_EQ(law.fallback, InterceptFallback::None);
       const double tau = law.time_to_go_s;
       // The inertial velocity v + Omega x p + [u, 0] flies from p to D(tau) in tau.
@@ -129,6 +132,13 @@ TEST(InterceptVelocity, AimsAtWhereTheTurningUgvWillBeAtTheEarliestArrival) {
       EXPECT_NEAR((law.velocity_m_s + rotation).norm(), s, 1e-8);
       for (double t = 0.05; t < tau - 1e-3; t += 0.001) ASSERT_GT(needed(t).norm(), s) << t;
       EXPECT_GT(std::abs(tau - p.head<2>().norm() / s), 0.05);
+      // On the braking curve (s below the limit) the lead goes on top of eq. 30: the law
+      // without the solve, bit for bit.
+      InterceptParams unsolved = params;
+      unsolved.solve_time_to_go = false;
+      const double slow = 0.6;
+      EXPECT_EQ(intercept_velocity(params, ugv, p, slow, eq30(ugv, p, slow), s).velocity_m_s,
+                intercept_velocity(unsolved, ugv, p, slow, eq30(ugv, p, slow), s).velocity_m_s);
     }
   }
 }
