@@ -151,6 +151,12 @@ TEST(InterceptVelocity, EarliestTimeToGoIsTheStraightLineForAStraightUgvAndNoneW
   // A UGV that turns away faster than the approach closes (a tiny s): none within the cap,
   // and the law then takes |p| / s, capped.
   EXPECT_FALSE(earliest_time_to_go_s(0.8, 0.3, Vector2d(-30.0, 0.0), 0.01, 6.0).has_value());
+  // Non-finite inputs: no time to go, never a NaN one.
+  EXPECT_FALSE(earliest_time_to_go_s(0.8, 0.3, Vector2d(kNaN, 1.0), 1.0, 6.0).has_value());
+  EXPECT_FALSE(earliest_time_to_go_s(kNaN, 0.3, Vector2d(3.0, 1.0), 1.0, 6.0).has_value());
+  EXPECT_FALSE(earliest_time_to_go_s(0.8, kNaN, Vector2d(3.0, 1.0), 1.0, 6.0).has_value());
+  EXPECT_FALSE(earliest_time_to_go_s(0.8, 0.3, Vector2d(3.0, 1.0), kNaN, 6.0).has_value());
+  EXPECT_FALSE(earliest_time_to_go_s(0.8, 0.3, Vector2d(3.0, 1.0), 1.0, kInf).has_value());
   const model::UgvMotion ugv = driving(0.8, 0.3);
   const Vector3d far(-30.0, 0.0, 1.0);
   EXPECT_EQ(

@@ -82,6 +82,10 @@ Eigen::Vector2d straight_relative_velocity(double u, double w, const Eigen::Vect
 std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_rad_s,
                                             const Eigen::Vector2d& p_m, double approach_speed_m_s,
                                             double tau_max_s) {
+  if (!p_m.allFinite() || !std::isfinite(speed_m_s) || !std::isfinite(yaw_rate_rad_s) ||
+      !std::isfinite(approach_speed_m_s) || !std::isfinite(tau_max_s)) {
+    return std::nullopt;
+  }
   const double distance = p_m.norm();
   if (!(distance > 0.0)) return 0.0;
   const double u = std::abs(speed_m_s), s = std::max(approach_speed_m_s, 0.0);

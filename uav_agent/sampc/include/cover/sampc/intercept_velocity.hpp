@@ -90,7 +90,8 @@ InterceptFallback prediction_fallback(const InterceptParams& params, const model
 // The earliest time to go tau in (0, tau_max] at which flying straight from `p_m` to the
 // UGV's predicted position needs a velocity relative to its translation now of at most
 // `approach_speed_m_s`; nullopt when none does (the UGV outruns the approach within the
-// prediction's horizon: the law then takes tau = |p_xy| / s). 0 at the axis.
+// prediction's horizon: the law then takes tau = |p_xy| / s). 0 at the axis; nullopt for
+// a non-finite input.
 std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_rad_s,
                                             const Eigen::Vector2d& p_m, double approach_speed_m_s,
                                             double tau_max_s);
