@@ -94,23 +94,74 @@ TEST(InterceptVelocity, AStraightDrivingUgvIsAlreadyInterceptedByEq30) {
   const InterceptVelocity law =
       intercept_velocity(InterceptParams{}, ugv, p, 1.0, eq30(ugv, p, 1.0), 1.0);
   EXPECT_EQ(law.fallback, InterceptFallback::None);
-  EXPECT_LT((law.velocity_m_s - eq30(ugv, p, 1.0)).norm(), 1e-15);
+  // (to the time-to-go search's tolerance)
+  EXPECT_LT((law.velocity_m_s - eq30(ugv, p, 1.0)).norm(), 1e-9);
 }
 
-TEST(InterceptVelocity, AimsAtWhereTheTurningUgvWillBe) {
-  const InterceptParams params;
+TEST(InterceptVelocity, AimsAtWhereTheTurningUgvWillBeAtTheEarliestArrival) {
   const double u = 0.8, w = 0.35, s = 1.0;
   const model::UgvMotion ugv = driving(u, w);
-  const Vector3d p(1.5, -2.0, 1.5);  // 2.5 m away: tau = 2.5 s, a 0.875 rad turn
-  const InterceptVelocity law = intercept_velocity(params, ugv, p, s, eq30(ugv, p, s), 2.0);
-  ASSERT_EQ(law.fallback, InterceptFallback::None);
-  EXPECT_NEAR(law.time_to_go_s, 2.5, 1e-12);
-  // The inertial velocity v + Omega x p + [u, 0] flies from p to D(tau) in tau.
-  const double tau = law.time_to_go_s;
-  const Vector2d inertial =
-      law.velocity_m_s + ugv.angular_velocity_rad_s.cross(p).head<2>() + Vector2d(u, 0.0);
-  const Vector2d ugv_then = u / w * Vector2d(std::sin(w * tau), 1.0 - std::cos(w * tau));
-  EXPECT_LT((p.head<2>() + inertial * tau - ugv_then).norm(), 1e-12);
+  const auto ugv_at = [&](double tau) {
+    return Vector2d(u / w * Vector2d(std::sin(w * tau), 1.0 - std::cos(w * tau)));
+  };
+  for (const Vector3d& p : {Vector3d(-1.5, 2.0, 1.5), Vector3d(2.5, 0.0, 1.5)}) {
+    const Vector2d rotation = ugv.angular_velocity_rad_s.cross(p).head<2>();
+    // The relative velocity (to the UGV's translation now) that flies straight from p to
+    // the UGV at tau.
+    const auto needed = [&](double tau) {
+      return Vector2d((ugv_at(tau) - p.head<2>()) / tau - Vector2d(u, 0.0));
+    };
+    for (const bool solve : {true, false}) {
+      InterceptParams params;
+      params.solve_time_to_go = solve;
+      // Solved: the approach at the speed limit (s = vmax), far from the braking curve;
+      // without the solve, a limit that does not cut the lead.
+      const double limit = solve ? s : 2.0;
+      const InterceptVelocity law = intercept_velocity(params, ugv, p, s, eq30(ugv, p, s), limit);
+      ASSERT_EQ(law.fallback, InterceptFallback::None);
+      const double tau = law.time_to_go_s;
+      // The inertial velocity v + Omega x p + [u, 0] flies from p to D(tau) in tau.
+      const Vector2d inertial = law.velocity_m_s + rotation + Vector2d(u, 0.0);
+      EXPECT_LT((p.head<2>() + inertial * tau - ugv_at(tau)).norm(), 1e-8) << solve;
+      if (!solve) {
+        EXPECT_NEAR(tau, p.head<2>().norm() / s, 1e-12);
+        continue;
+      }
+      // Solved: the whole approach speed relative to the UGV, and no earlier arrival within
+      // it (a fine scan); not |p| / s.
+      EXPECT_NEAR((law.velocity_m_s + rotation).norm(), s, 1e-8);
+      for (double t = 0.05; t < tau - 1e-3; t += 0.001) ASSERT_GT(needed(t).norm(), s) << t;
+      EXPECT_GT(std::abs(tau - p.head<2>().norm() / s), 0.05);
+      // On the braking curve (s below the limit) the lead goes on top of eq. 30: the law
+      // without the solve, bit for bit.
+      InterceptParams unsolved = params;
+      unsolved.solve_time_to_go = false;
+      const double slow = 0.6;
+      EXPECT_EQ(intercept_velocity(params, ugv, p, slow, eq30(ugv, p, slow), s).velocity_m_s,
+                intercept_velocity(unsolved, ugv, p, slow, eq30(ugv, p, slow), s).velocity_m_s);
+    }
+  }
+}
+
+TEST(InterceptVelocity, EarliestTimeToGoIsTheStraightLineForAStraightUgvAndNoneWhenOutrun) {
+  // Driving straight: D(tau) = [u tau, 0], so the relative flight is p / tau: tau = |p| / s.
+  EXPECT_NEAR(earliest_time_to_go_s(0.8, 0.0, Vector2d(3.0, 4.0), 1.25, 10.0).value(), 4.0, 1e-9);
+  // At the axis nothing to fly.
+  EXPECT_EQ(earliest_time_to_go_s(0.8, 0.3, Vector2d::Zero(), 1.0, 6.0).value(), 0.0);
+  // A UGV that turns away faster than the approach closes (a tiny s): none within the cap,
+  // and the law then takes |p| / s, capped.
+  EXPECT_FALSE(earliest_time_to_go_s(0.8, 0.3, Vector2d(-30.0, 0.0), 0.01, 6.0).has_value());
+  // Non-finite inputs: no time to go, never a NaN one.
+  EXPECT_FALSE(earliest_time_to_go_s(0.8, 0.3, Vector2d(kNaN, 1.0), 1.0, 6.0).has_value());
+  EXPECT_FALSE(earliest_time_to_go_s(kNaN, 0.3, Vector2d(3.0, 1.0), 1.0, 6.0).has_value());
+  EXPECT_FALSE(earliest_time_to_go_s(0.8, kNaN, Vector2d(3.0, 1.0), 1.0, 6.0).has_value());
+  EXPECT_FALSE(earliest_time_to_go_s(0.8, 0.3, Vector2d(3.0, 1.0), kNaN, 6.0).has_value());
+  EXPECT_FALSE(earliest_time_to_go_s(0.8, 0.3, Vector2d(3.0, 1.0), 1.0, kInf).has_value());
+  const model::UgvMotion ugv = driving(0.8, 0.3);
+  const Vector3d far(-30.0, 0.0, 1.0);
+  EXPECT_EQ(
+      intercept_velocity(InterceptParams{}, ugv, far, 0.01, eq30(ugv, far, 0.01), 1.0).time_to_go_s,
+      InterceptParams{}.max_time_to_go_s);
 }
 
 TEST(InterceptVelocity, KeepsTheRelativeSpeedWithinTheLimitAndCapsTheTimeToGo) {
