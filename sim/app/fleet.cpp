@@ -31,7 +31,8 @@ void Fleet::apply(int u, const mission::ControllerStatus& status,
                   const mission::ControlCommand& command, double command_age_s) {
   Uav& uav = uavs_[u];
   World& world = *uav.world;
-  uav.plant_command = uav.failsafe.plant_command(to_plant_command(command), command_age_s, world);
+  uav.plant_command =
+      uav.failsafe.plant_command(to_plant_command(command), command_age_s, command.handover, world);
   const bool offboard = uav.failsafe.state() == OffboardState::Offboard;
   if (offboard && command.release_payload && world.release_payload()) {
     uav.recorder->record_release(world);

@@ -37,6 +37,7 @@ class Fleet {
   bool finished() const;
   OffboardState offboard_state(int uav) const { return uavs_[uav].failsafe.state(); }
   bool offboard_changed(int uav) const { return uavs_[uav].failsafe.changed(); }
+  bool offboard_handed_over(int uav) const { return uavs_[uav].failsafe.handed_over(); }
 
   // The world as the shared-memory segment carries it (IMU rings included).
   const SharedWorld& shared() const { return shared_; }

@@ -214,7 +214,10 @@ void SimNode::apply_commands(bool lockstep) {
       if (state == OffboardState::Offboard) {
         spdlog::info("UAV {}: offboard (agent commanding)", u);
       } else {
-        spdlog::warn("UAV {}: {} at t = {:.2f} s", u, to_string(state), fleet_.time_s());
+        spdlog::warn("UAV {}: {} at t = {:.2f} s{}", u, to_string(state), fleet_.time_s(),
+                     fleet_.offboard_handed_over(u)
+                         ? " (the agent handed over: no relative state to land on)"
+                         : "");
       }
     }
   }

@@ -325,6 +325,38 @@ TEST(Faults, RelativeStatesBackAfterAGapResumeAndComplete) {
   EXPECT_EQ(uav->terminate(10s, SIGINT), 0);
 }
 
+// Relative states gone for good mid-flight: the agent hovers, then hands the blind landing
+// to the flight controller (its own height sensing), which lands the UAV softly and level.
+TEST(Faults, RelativeStatesLostForGoodAreLandedByTheFlightController) {
+  FaultSystem system(186, {"--scenario", "scenario2", "--relative-gap", "6.0", "1000"});
+  cover::dds::Participant probe(on_domain(system.domain()));
+  TraceLog trace(probe);
+  auto uav = system.uav_agent(true);
+  double descent_s = -1.0;
+  ASSERT_TRUE(system.wait_for_world(
+      [&](const SharedWorld& w) {
+        descent_s = w.time_s;
+        return w.uavs[0].offboard == OffboardState::LossDescent;
+      },
+      60s));
+  // Hover from ~6.1 s for emergency_hover_s (1 s), then the landing's first step hands over:
+  // the flight controller takes over then, not offboard_timeout_s (0.5 s) after silence.
+  ASSERT_TRUE(wait_until(
+      [&] { return trace.first(FailsafeState::FAILSAFE_EMERGENCY_LANDING, 6.0) > 0.0; }, 5s));
+  const double landing_s = trace.first(FailsafeState::FAILSAFE_EMERGENCY_LANDING, 6.0);
+  EXPECT_GT(landing_s, 6.9);
+  EXPECT_NEAR(descent_s, landing_s, 0.2);
+  const Touchdown touchdown = watch_touchdown(
+      system,
+      [](const SharedWorld& w) { return w.uavs[0].offboard == OffboardState::LossDisarmed; }, 30s);
+  EXPECT_TRUE(touchdown.disarmed);
+  EXPECT_GE(touchdown.vertical_speed_m_s, 0.0);
+  EXPECT_LE(touchdown.vertical_speed_m_s, 1.0);
+  EXPECT_GT(touchdown.lowest_tilt_cos, std::cos(0.5));
+  EXPECT_EQ(system.sim().wait(60s), std::optional<int>(1));  // the task failed
+  EXPECT_EQ(uav->terminate(10s, SIGINT), 0);
+}
+
 // Motion-capture dropouts (10 % of samples) and corrupted IMU samples: the mission succeeds.
 TEST(Faults, MocapDropoutsAndImuFaultsStillSucceed) {
   const std::string scenario =

@@ -193,6 +193,7 @@ TEST(FailsafeLadder, MeasuredLandingTouchesDownSlowlyAndDisarmsOnContact) {
     ladder.update(imu_lost, t);
     const RelativeState s = plant.measured(t);
     const auto command = ladder.command(&s, t);
+    EXPECT_FALSE(command.handover) << "measured, the agent lands the UAV itself";
     if (!command.armed && plant.z_m > plant.ground_m) disarmed_in_air = true;
     plant.step(command, 0.01);
   }
@@ -222,6 +223,32 @@ TEST(FailsafeLadder, BlindLandingDisarmsOnlyBelowTheFloor) {
   EXPECT_EQ(ladder.level(), LadderLevel::Disarmed);
   EXPECT_DOUBLE_EQ(disarm_height_m, plant.ground_m);  // on the ground when the motors stop
   EXPECT_LE(plant.touchdown_speed_m_s, 1.0);
+}
+
+// Blind, the hover may still be dead-reckoned (inputs could come back), but the landing is
+// handed to the flight controller from its first step, and stays handed over even if a
+// relative state returns.
+TEST(FailsafeLadder, BlindLandingHandsOverToTheFlightController) {
+  MissionParams params;
+  FailsafeLadder ladder(params);
+  VerticalPlant plant;
+  ladder.remember(plant.measured(0.0), 10.3, hover_command(10.3), 0.0);
+  double t = 0.0;
+  bool handed_over_in_hover = false;
+  bool landing_handed_over = false;
+  while (t < 5.0 && ladder.level() != LadderLevel::EmergencyLanding) {
+    t += 0.01;
+    ladder.update(lost(), t);
+    const bool handover = ladder.command(nullptr, t).handover;
+    if (ladder.level() == LadderLevel::EmergencyHover && handover) handed_over_in_hover = true;
+    if (ladder.level() == LadderLevel::EmergencyLanding) landing_handed_over = handover;
+  }
+  ASSERT_EQ(ladder.level(), LadderLevel::EmergencyLanding);
+  EXPECT_FALSE(handed_over_in_hover);
+  EXPECT_TRUE(landing_handed_over);  // from the landing's first step
+  EXPECT_TRUE(ladder.handed_over());
+  const RelativeState back = plant.measured(t);
+  EXPECT_TRUE(ladder.command(&back, t + 0.01).handover);
 }
 
 // The hover thrust comes from the flight itself: thrust along up against the change of

@@ -120,6 +120,7 @@ TEST(Wire, CommandFieldByField) {
   c.body_rate_rad_s = {0.1, -0.2, 0.3};
   c.armed = true;
   c.release_payload = true;
+  c.handover = true;
   const msg::UavCommand m = wire::to_msg(c, 1, 2.0, 1.99, 42);
   EXPECT_EQ(m.uav_id, 1u);
   EXPECT_EQ(m.stamp_ns, 2'000'000'000);
@@ -132,6 +133,8 @@ TEST(Wire, CommandFieldByField) {
   EXPECT_EQ(back.body_rate_rad_s, c.body_rate_rad_s);
   EXPECT_TRUE(back.armed);
   EXPECT_TRUE(back.release_payload);
+  EXPECT_TRUE(m.handover);
+  EXPECT_TRUE(back.handover);
 }
 
 TEST(Wire, TraceCarriesWhatTheRecorderReads) {

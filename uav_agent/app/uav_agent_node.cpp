@@ -276,6 +276,14 @@ void UavAgentNode::log_changes() {
     }
     logged_failsafe_ = s.failsafe;
   }
+  const bool handover = loop_.output().command.handover;
+  if (handover && !logged_handover_) {
+    spdlog::warn(
+        "handing the UAV over to the flight controller's landing: no relative state "
+        "of G{} to land on",
+        s.stage.reference_ugv);
+  }
+  logged_handover_ = handover;
 }
 
 }  // namespace cover::uav_agent

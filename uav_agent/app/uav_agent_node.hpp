@@ -60,6 +60,7 @@ class UavAgentNode {
   std::string reported_key_;  // task id, state, process, stage of the last TaskStatus
   std::string logged_stage_;  // stage line last logged
   mission::Failsafe logged_failsafe_ = mission::Failsafe::WaitingForInputs;
+  bool logged_handover_ = false;
   std::string failsafe_event_;  // the last failsafe entry or exit, with its cause
   mission::Failsafe reported_failsafe_ = mission::Failsafe::WaitingForInputs;
 };

@@ -15,6 +15,7 @@ msg::UavCommand to_msg(const mission::ControlCommand& command, std::uint32_t uav
   m.body_rates_rad_s = to_msg(command.body_rate_rad_s);
   m.armed = command.armed;
   m.release_payload = command.release_payload;
+  m.handover = command.handover;
   m.measurement_stamp_ns = to_stamp_ns(measurement_stamp_s);
   return m;
 }
@@ -25,6 +26,7 @@ mission::ControlCommand from_msg(const msg::UavCommand& m) {
   command.body_rate_rad_s = to_eigen(m.body_rates_rad_s);
   command.armed = m.armed;
   command.release_payload = m.release_payload;
+  command.handover = m.handover;
   return command;
 }
 

@@ -233,7 +233,11 @@ ControlCommand FailsafeLadder::command(const model::RelativeState* state, double
   if (level_ == LadderLevel::EmergencyLanding && touched_down(state, t_s)) {
     climb_to(LadderLevel::Disarmed, t_s);
   }
+  // Blind, the descent's height is a guess that integrates the hover thrust's error; the
+  // flight controller senses its own height, so it lands the UAV from here on.
+  if (level_ == LadderLevel::EmergencyLanding && state == nullptr) handed_over_ = true;
   ControlCommand command;
+  command.handover = handed_over_;
   if (level_ == LadderLevel::Disarmed) {
     last_command_ = command;
     return command;

@@ -82,6 +82,9 @@ class FailsafeLadder {
   FailsafeCause cause() const { return cause_; }  // of the current (or last) climb
   double cause_age_s() const { return cause_age_s_; }
   double hover_thrust_m_s2() const { return hover_thrust_m_s2_; }
+  // An emergency landing has had to go on blind: every command since hands the UAV over
+  // to the flight controller's landing (ControlCommand::handover). Latched with the landing.
+  bool handed_over() const { return handed_over_; }
 
  private:
   void climb_to(LadderLevel level, double now_s);
@@ -113,6 +116,7 @@ class FailsafeLadder {
   double height_integral_m_s2_ = 0.0;
   HoverThrustEstimate hover_estimate_;
   double touchdown_since_s_ = -1.0;
+  bool handed_over_ = false;
 };
 
 }  // namespace cover::mission
