@@ -1,7 +1,8 @@
 // cover-bench e2e: the system as processes (cover-launch -> cover-sim, UGV and UAV agents).
 //  latency:  realtime Scenario 2, sensor-to-command latency as cover-sim measures it (it
 //            stamps each relative state it publishes; the command computed from it names
-//            that stamp when it comes back), per DDS mix;
+//            that stamp when it comes back), per DDS mix, plain and with DDS-Security
+//            (secure: every process authenticated, its data encrypted);
 //  lockstep: Scenarios 2 and 4 in lockstep, simulated seconds per wall second.
 #include <unistd.h>
 #include <cstdio>
@@ -23,10 +24,16 @@ constexpr const char* kLaunch = COVER_LAUNCH;
 #else
 constexpr const char* kLaunch = "cover-launch";
 #endif
+#ifdef COVER_CLI
+constexpr const char* kCoverCli = COVER_CLI;
+#else
+constexpr const char* kCoverCli = "cover";
+#endif
 
 struct DdsMix {
   const char* name;
   std::vector<std::string> flags;  // cover-launch --dds flags
+  const char* secure_vendor = nullptr;  // DDS-Security with a fleet of this vendor; null: plain
 };
 
 // fastdds / cyclone: every process on one vendor; mixed: the simulator and UGV agents on
@@ -35,7 +42,27 @@ const std::vector<DdsMix> kMixes = {
     {"fastdds", {"--dds", "*=fastdds"}},
     {"cyclone", {"--dds", "*=cyclone"}},
     {"mixed", {"--dds", "*=cyclone", "--dds", "uav*=fastdds"}},
+    // A secure fleet runs one vendor (docs/security.md): no secure mixed row.
+    {"fastdds", {"--dds", "*=fastdds"}, "fastdds"},
+    {"cyclone", {"--dds", "*=cyclone"}, "cyclone"},
 };
+
+// A fresh fleet directory for a secure row (removed after the run); empty on failure.
+std::string make_fleet(const char* vendor) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("cover_e2e_fleet_" + std::string(vendor) + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  cover::process::SpawnOptions options;
+  options.log_file = dir.string() + ".log";
+  cover::process::ChildProcess init({kCoverCli, "security", "init", dir.string(), "--vendor", vendor},
+                                    options);
+  if (init.wait(std::chrono::minutes(1)) != 0) {
+    std::cerr << "cover-bench e2e: cover security init failed; see " << options.log_file << "\n";
+    return "";
+  }
+  std::filesystem::remove(options.log_file);
+  return dir.string();
+}
 
 nlohmann::json run_launch(const std::string& scenario, std::vector<std::string> flags, int domain) {
   const std::filesystem::path run_dir =
@@ -97,10 +124,14 @@ int run(const std::vector<std::string>& args) {
     std::vector<std::string> flags = mix.flags;
     flags.insert(flags.end(), {"--clock", "realtime"});
     flags.insert(flags.end(), method_flags.begin(), method_flags.end());
+    const std::string fleet = mix.secure_vendor ? make_fleet(mix.secure_vendor) : "";
+    if (!fleet.empty()) flags.insert(flags.end(), {"--security", fleet});
     const nlohmann::json r = run_launch("scenario2", flags, domain++);
+    if (!fleet.empty()) std::filesystem::remove_all(fleet);
     const nlohmann::json latency =
         r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();
     out["latency"].push_back({{"mix", mix.name},
+                              {"secure", mix.secure_vendor != nullptr},
                               {"success", r.is_object() && r.value("success", false)},
                               {"p50_ms", number(latency, "p50")},
                               {"p99_ms", number(latency, "p99")},
@@ -120,8 +151,9 @@ int run(const std::vector<std::string>& args) {
     std::printf(
         "sensor-to-command latency, realtime Scenario 2 (relative state out -> command in)\n");
     for (const auto& l : out["latency"]) {
-      std::printf("  %-8s p50 %.3f ms  p99 %.3f ms  (%d samples)%s\n",
-                  l["mix"].get<std::string>().c_str(), l["p50_ms"].get<double>(),
+      std::printf("  %-8s %-6s p50 %.3f ms  p99 %.3f ms  (%d samples)%s\n",
+                  l["mix"].get<std::string>().c_str(),
+                  l["secure"].get<bool>() ? "secure" : "plain", l["p50_ms"].get<double>(),
                   l["p99_ms"].get<double>(), l["samples"].get<int>(),
                   l["success"].get<bool>() ? "" : "  MISSION FAILED");
     }

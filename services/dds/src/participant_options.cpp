@@ -18,7 +18,8 @@ void ParticipantOptions::validate() const {
     throw DdsError("invalid announcement_period_s " + std::to_string(announcement_period_s) +
                    " (valid: 0 = vendor default, or up to 3600 s)");
   }
-  security.validate();
+  // Not security.validate(): a file or profile may leave the identity to --identity;
+  // check_participant_security checks the complete options before a participant exists.
   for (const auto& peer : peers) {
     in_addr address{};
     if (inet_pton(AF_INET, peer.c_str(), &address) != 1) {
