@@ -65,12 +65,13 @@ TEST(SecurityOptions, LoadRejectsUnknownKeysAndNamesMissingOnes) {
   const auto no_dir =
       write_yaml("sec_nodir.yaml", "dds:\n  security:\n    enabled: true\n    identity: sim\n");
   const ParticipantOptions no_directory = ParticipantOptions::load_file(no_dir);
-  EXPECT_NE(message_of([&] { check_participant_security(no_directory); }).find("no fleet directory"),
-            std::string::npos);
-  const auto in_profile = write_yaml(
-      "sec_profile.yaml",
-      "dds:\n  profiles:\n    secure:\n      security: {enabled: true, directory: /f, "
-      "identity: sim}\n    other:\n      security: {enabeld: true}\n");
+  EXPECT_NE(
+      message_of([&] { check_participant_security(no_directory); }).find("no fleet directory"),
+      std::string::npos);
+  const auto in_profile =
+      write_yaml("sec_profile.yaml",
+                 "dds:\n  profiles:\n    secure:\n      security: {enabled: true, directory: /f, "
+                 "identity: sim}\n    other:\n      security: {enabeld: true}\n");
   EXPECT_NE(message_of([&] { ParticipantOptions::load_file(in_profile); }).find("enabeld"),
             std::string::npos);
 }
@@ -126,7 +127,8 @@ TEST(AccessRules, LeastPrivilegeOverTheWholeCatalogue) {
   const auto writers = [&](const std::string& topic) {
     std::set<std::string> who;
     for (const auto& identity : fleet_identities(fleet)) {
-      if (contains(topic_access(identity, fleet).publish, topic)) who.insert(identity_name(identity));
+      if (contains(topic_access(identity, fleet).publish, topic))
+        who.insert(identity_name(identity));
     }
     return who;
   };

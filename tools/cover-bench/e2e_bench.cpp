@@ -32,7 +32,7 @@ constexpr const char* kCoverCli = "cover";
 
 struct DdsMix {
   const char* name;
-  std::vector<std::string> flags;  // cover-launch --dds flags
+  std::vector<std::string> flags;       // cover-launch --dds flags
   const char* secure_vendor = nullptr;  // DDS-Security with a fleet of this vendor; null: plain
 };
 
@@ -54,8 +54,8 @@ std::string make_fleet(const char* vendor) {
   std::filesystem::remove_all(dir);
   cover::process::SpawnOptions options;
   options.log_file = dir.string() + ".log";
-  cover::process::ChildProcess init({kCoverCli, "security", "init", dir.string(), "--vendor", vendor},
-                                    options);
+  cover::process::ChildProcess init(
+      {kCoverCli, "security", "init", dir.string(), "--vendor", vendor}, options);
   if (init.wait(std::chrono::minutes(1)) != 0) {
     std::cerr << "cover-bench e2e: cover security init failed; see " << options.log_file << "\n";
     return "";
@@ -152,9 +152,8 @@ int run(const std::vector<std::string>& args) {
         "sensor-to-command latency, realtime Scenario 2 (relative state out -> command in)\n");
     for (const auto& l : out["latency"]) {
       std::printf("  %-8s %-6s p50 %.3f ms  p99 %.3f ms  (%d samples)%s\n",
-                  l["mix"].get<std::string>().c_str(),
-                  l["secure"].get<bool>() ? "secure" : "plain", l["p50_ms"].get<double>(),
-                  l["p99_ms"].get<double>(), l["samples"].get<int>(),
+                  l["mix"].get<std::string>().c_str(), l["secure"].get<bool>() ? "secure" : "plain",
+                  l["p50_ms"].get<double>(), l["p99_ms"].get<double>(), l["samples"].get<int>(),
                   l["success"].get<bool>() ? "" : "  MISSION FAILED");
     }
     std::printf("lockstep (UGV agents on Cyclone, the rest on Fast DDS)\n");

@@ -93,7 +93,8 @@ int main(int argc, char** argv) {
   security_init
       ->add_option("--ground-stations", init_request.fleet.ground_stations, "ground stations")
       ->capture_default_str();
-  security_init->add_option("--days", init_request.days, "validity of every certificate and permission")
+  security_init
+      ->add_option("--days", init_request.days, "validity of every certificate and permission")
       ->capture_default_str();
   security_init
       ->add_option("--vendor", init_request.vendor,

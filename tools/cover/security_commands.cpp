@@ -111,8 +111,8 @@ void sign(const fs::path& document, const fs::path& signed_document, const fs::p
 void make_ca(const fs::path& dir, int days, const fs::path& log) {
   new_key(dir / layout::kCaKey, log);
   openssl({"req", "-x509", "-new", "-key", (dir / layout::kCaKey).string(), "-subj",
-           std::string("/O=") + kOrganisation + "/CN=COVER fleet CA", "-days",
-           std::to_string(days), "-sha256", "-out", (dir / layout::kIdentityCa).string()},
+           std::string("/O=") + kOrganisation + "/CN=COVER fleet CA", "-days", std::to_string(days),
+           "-sha256", "-out", (dir / layout::kIdentityCa).string()},
           log);
   // One CA signs both identities and permissions; the plugins take two files.
   fs::copy_file(dir / layout::kIdentityCa, dir / layout::kPermissionsCa);
@@ -197,9 +197,8 @@ int init(const SecurityInitRequest& request) {
     for (const auto& identity : identities) {
       dds::verify_identity(dir.string(), dds::identity_name(identity));
     }
-    std::cout << "fleet directory " << dir.string() << ": " << identities.size()
-              << " identities, " << request.vendor << ", valid " << request.days
-              << " days. Keep " << layout::kCaKey
+    std::cout << "fleet directory " << dir.string() << ": " << identities.size() << " identities, "
+              << request.vendor << ", valid " << request.days << " days. Keep " << layout::kCaKey
               << " (the CA's signing key) off the vehicles; give each process only its "
                  "identities/<name> folder and the shared files.\n";
     return 0;

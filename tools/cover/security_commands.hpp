@@ -10,7 +10,7 @@ namespace cover::cli {
 struct SecurityInitRequest {
   std::string directory;  // must not exist yet, or be empty
   dds::Fleet fleet;
-  int days = 365;                   // validity of the CA, certificates and permissions
+  int days = 365;                  // validity of the CA, certificates and permissions
   std::string vendor = "fastdds";  // the one vendor the fleet runs (docs/security.md)
 };
 

@@ -61,11 +61,19 @@ std::string permissions_xml(const std::string& grant_name, const std::string& su
                             const dds::TopicAccess& access, int max_domain) {
   return header("omg_shared_ca_permissions.xsd") +
          "  <permissions>\n"
-         "    <grant name=\"" + grant_name + "\">\n"
-         "      <subject_name>" + subject + "</subject_name>\n"
+         "    <grant name=\"" +
+         grant_name +
+         "\">\n"
+         "      <subject_name>" +
+         subject +
+         "</subject_name>\n"
          "      <validity>\n"
-         "        <not_before>" + not_before_utc + "</not_before>\n"
-         "        <not_after>" + not_after_utc + "</not_after>\n"
+         "        <not_before>" +
+         not_before_utc +
+         "</not_before>\n"
+         "        <not_after>" +
+         not_after_utc +
+         "</not_after>\n"
          "      </validity>\n"
          "      <allow_rule>\n" +
          domains(max_domain, "        ") + topic_list("publish", access.publish) +

@@ -51,8 +51,7 @@ inline constexpr std::tuple kAccess{
     AccessRule<msg::TaskAbort>{{{Role::TaskManager}, kStation}, {{Role::UavAgent}}},
     AccessRule<msg::ManagerRequest>{{kStation}, {{Role::TaskManager}}},
     AccessRule<msg::ManagerReply>{{{Role::TaskManager}}, {kStation}},
-    AccessRule<msg::TaskStatus>{{{Role::UavAgent}},
-                                {{Role::TaskManager}, {Role::Sim}, kStation}},
+    AccessRule<msg::TaskStatus>{{{Role::UavAgent}}, {{Role::TaskManager}, {Role::Sim}, kStation}},
 };
 
 struct RoleName {
@@ -71,20 +70,28 @@ struct Binding {
   std::optional<std::uint32_t> ugv;
   std::optional<std::uint32_t> uav;
 };
-void set(Binding& binding, UgvId id) { binding.ugv = id.value; }
-void set(Binding& binding, UavId id) { binding.uav = id.value; }
+void set(Binding& binding, UgvId id) {
+  binding.ugv = id.value;
+}
+void set(Binding& binding, UavId id) {
+  binding.uav = id.value;
+}
 
-std::uint32_t count_of(UgvId, const Fleet& fleet) { return fleet.ugvs; }
-std::uint32_t count_of(UavId, const Fleet& fleet) { return fleet.uavs; }
+std::uint32_t count_of(UgvId, const Fleet& fleet) {
+  return fleet.ugvs;
+}
+std::uint32_t count_of(UavId, const Fleet& fleet) {
+  return fleet.uavs;
+}
 
 bool granted(const Grants& grants, const Identity& who, const Binding& binding) {
   for (std::size_t i = 0; i < grants.size; ++i) {
     const Grant& grant = grants.items[i];
     if (grant.role != who.role) continue;
     if (!grant.own_id_only) return true;
-    const std::optional<std::uint32_t> own =
-        who.role == Role::UgvAgent ? binding.ugv : who.role == Role::UavAgent ? binding.uav
-                                                                             : std::nullopt;
+    const std::optional<std::uint32_t> own = who.role == Role::UgvAgent   ? binding.ugv
+                                             : who.role == Role::UavAgent ? binding.uav
+                                                                          : std::nullopt;
     if (own && *own == who.id) return true;
   }
   return false;
@@ -138,7 +145,8 @@ std::optional<Identity> parse_identity(std::string_view name) {
         (digits.size() > 1 && digits[0] == '0')) {
       return std::nullopt;
     }
-    return Identity{entry.role, static_cast<std::uint32_t>(std::strtoul(digits.c_str(), nullptr, 10))};
+    return Identity{entry.role,
+                    static_cast<std::uint32_t>(std::strtoul(digits.c_str(), nullptr, 10))};
   }
   return std::nullopt;
 }

@@ -72,11 +72,14 @@ Cert read_certificate(const std::string& path) {
 }
 
 // No passphrase prompt: an encrypted key is refused instead of blocking a daemon.
-int no_passphrase(char*, int, int, void*) { return -1; }
+int no_passphrase(char*, int, int, void*) {
+  return -1;
+}
 
 Key read_private_key(const std::string& path) {
   struct stat info {};
-  if (stat(path.c_str(), &info) != 0) fail(path, std::string("cannot read: ") + std::strerror(errno));
+  if (stat(path.c_str(), &info) != 0)
+    fail(path, std::string("cannot read: ") + std::strerror(errno));
   if ((info.st_mode & 077) != 0) {
     char mode[8];
     std::snprintf(mode, sizeof(mode), "%04o", static_cast<unsigned>(info.st_mode & 07777));
@@ -96,7 +99,8 @@ Store store_of(const X509* ca) {
   return store;
 }
 
-void verify_against(const X509* ca, X509* cert, const std::string& path, const std::string& ca_path) {
+void verify_against(const X509* ca, X509* cert, const std::string& path,
+                    const std::string& ca_path) {
   Store store = store_of(ca);
   StoreCtx ctx(X509_STORE_CTX_new());
   X509_STORE_CTX_init(ctx.get(), store.get(), cert, nullptr);
@@ -176,8 +180,8 @@ void check_permissions(const std::string& xml, const std::string& subject, const
                        IdentityReport& report, std::time_t& not_after) {
   const std::string named = section(xml, "subject_name");
   if (named != subject) {
-    fail(path, "permissions are for '" + named + "', not this certificate's subject '" + subject +
-                   "'");
+    fail(path,
+         "permissions are for '" + named + "', not this certificate's subject '" + subject + "'");
   }
   const std::time_t begin = parse_xml_time(section(xml, "not_before"));
   const std::time_t end = parse_xml_time(section(xml, "not_after"));

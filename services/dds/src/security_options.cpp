@@ -22,8 +22,8 @@ SecurityFiles SecurityFiles::of(const std::string& directory, const std::string&
   namespace layout = security_layout;
   const std::string root = directory + "/";
   const std::string own = root + layout::kIdentities + "/" + identity + "/";
-  return {root + layout::kFleet,       root + layout::kIdentityCa, root + layout::kPermissionsCa,
-          root + layout::kGovernance,  own + layout::kCertificate, own + layout::kPrivateKey,
+  return {root + layout::kFleet,      root + layout::kIdentityCa, root + layout::kPermissionsCa,
+          root + layout::kGovernance, own + layout::kCertificate, own + layout::kPrivateKey,
           own + layout::kPermissions};
 }
 

@@ -24,8 +24,8 @@ void apply_variables(LaunchFile& file, const std::map<std::string, std::string>&
   }
 }
 
-PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& values,
-                            int domain_id, const std::string& security_directory) {
+PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& values, int domain_id,
+                            const std::string& security_directory) {
   PlannedProcess planned;
   planned.name = spec.name;
   planned.executable = spec.executable;

@@ -44,8 +44,7 @@ std::string launch_identity(const std::string& process_name, const std::string& 
                             const std::string& explicit_identity) {
   if (!explicit_identity.empty()) {
     if (!dds::parse_identity(explicit_identity)) {
-      throw std::invalid_argument("process '" + process_name + "': identity '" +
-                                  explicit_identity +
+      throw std::invalid_argument("process '" + process_name + "': identity '" + explicit_identity +
                                   "' is not an identity name (sim, task-manager, ugv-agent-K, "
                                   "uav-agent-U, ground-station-N)");
     }

@@ -25,9 +25,9 @@ FleetRecord read_fleet_record(const std::string& directory);
 // One identity after checking every file it needs, as a participant would load them.
 struct IdentityReport {
   std::string name;
-  std::string subject;                // RFC 2253, as the permissions must name it
-  std::string not_before_utc;         // certificate validity, ISO 8601
-  std::string not_after_utc;          // the earlier of certificate and permissions expiry
+  std::string subject;                 // RFC 2253, as the permissions must name it
+  std::string not_before_utc;          // certificate validity, ISO 8601
+  std::string not_after_utc;           // the earlier of certificate and permissions expiry
   std::int64_t seconds_to_expiry = 0;  // from now to not_after_utc
   std::vector<std::string> publish;    // topics, from the signed permissions
   std::vector<std::string> subscribe;

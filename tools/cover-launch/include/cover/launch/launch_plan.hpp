@@ -30,7 +30,7 @@ struct PlannedProcess {
   std::string executable;  // as in the file
   std::vector<std::string> args;
   std::string dds;
-  std::string netns;             // empty: the launcher's network namespace
+  std::string netns;  // empty: the launcher's network namespace
   // "KEY=value": the file's env, COVER_DDS, COVER_DDS_DOMAIN, and when secure
   // COVER_DDS_SECURITY and COVER_DDS_IDENTITY.
   std::vector<std::string> env;

@@ -20,8 +20,8 @@ namespace cover::dds {
 struct DdsCliOptions {
   std::string vendor;
   int domain_id = 0;
-  std::string config_path;  // default: config/dds.yaml of the shipped configuration
-  std::string profile;      // a `dds.profiles` entry of config_path; empty: none
+  std::string config_path;         // default: config/dds.yaml of the shipped configuration
+  std::string profile;             // a `dds.profiles` entry of config_path; empty: none
   std::string security_directory;  // a fleet directory: turns DDS-Security on
   std::string identity;            // this process's identity in it
 
