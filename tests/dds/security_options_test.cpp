@@ -16,24 +16,13 @@
 #include "cover/dds/participant_options.hpp"
 #include "cover/dds/security_check.hpp"
 #include "cover/dds/topics.hpp"
+#include "dds_test_support.hpp"
 
 namespace cover::dds {
 namespace {
 
-std::string message_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
-std::string write_yaml(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + "/" + name;
-  std::ofstream(path) << text;
-  return path;
-}
+using cover::test::message_of;
+using cover::test::write_temp_yaml;
 
 bool contains(const std::vector<std::string>& list, const std::string& item) {
   return std::find(list.begin(), list.end(), item) != list.end();
@@ -52,26 +41,26 @@ TEST(SecurityOptions, OffByDefaultAndInTheShippedConfig) {
 }
 
 TEST(SecurityOptions, LoadRejectsUnknownKeysAndNamesMissingOnes) {
-  const auto typo = write_yaml("sec_typo.yaml", "dds:\n  security:\n    directroy: /x\n");
+  const auto typo = write_temp_yaml("sec_typo.yaml", "dds:\n  security:\n    directroy: /x\n");
   EXPECT_NE(message_of([&] { ParticipantOptions::load_file(typo); }).find("directroy"),
             std::string::npos);
   // The identity may come from the command line: the file alone need not name it, but a
   // participant without one is refused.
   const auto no_identity =
-      write_yaml("sec_noid.yaml", "dds:\n  security:\n    enabled: true\n    directory: /x\n");
+      write_temp_yaml("sec_noid.yaml", "dds:\n  security:\n    enabled: true\n    directory: /x\n");
   const ParticipantOptions without = ParticipantOptions::load_file(no_identity);
   EXPECT_NE(message_of([&] { check_participant_security(without); }).find("no identity"),
             std::string::npos);
-  const auto no_dir =
-      write_yaml("sec_nodir.yaml", "dds:\n  security:\n    enabled: true\n    identity: sim\n");
+  const auto no_dir = write_temp_yaml("sec_nodir.yaml",
+                                      "dds:\n  security:\n    enabled: true\n    identity: sim\n");
   const ParticipantOptions no_directory = ParticipantOptions::load_file(no_dir);
   EXPECT_NE(
       message_of([&] { check_participant_security(no_directory); }).find("no fleet directory"),
       std::string::npos);
-  const auto in_profile =
-      write_yaml("sec_profile.yaml",
-                 "dds:\n  profiles:\n    secure:\n      security: {enabled: true, directory: /f, "
-                 "identity: sim}\n    other:\n      security: {enabeld: true}\n");
+  const auto in_profile = write_temp_yaml(
+      "sec_profile.yaml",
+      "dds:\n  profiles:\n    secure:\n      security: {enabled: true, directory: /f, "
+      "identity: sim}\n    other:\n      security: {enabeld: true}\n");
   EXPECT_NE(message_of([&] { ParticipantOptions::load_file(in_profile); }).find("enabeld"),
             std::string::npos);
 }

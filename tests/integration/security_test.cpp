@@ -78,10 +78,6 @@ Outcome cover_cli(const std::vector<std::string>& args, const std::string& log_n
   return outcome;
 }
 
-int lines(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
-
 // A fleet directory made by `cover security init` in the test's temp folder.
 fs::path make_fleet(const std::string& name, const std::vector<std::string>& flags = {}) {
   const fs::path dir = scratch() / ("fleet_" + name);
@@ -136,10 +132,14 @@ std::unique_ptr<ChildProcess> start_echo(const fs::path& fleet, const std::strin
 }
 
 int samples_taken(ChildProcess& echo) {
-  std::string out;
-  while (const auto line = echo.read_line(std::chrono::seconds(20))) out += *line + "\n";
+  int samples = 0;
+  // Only JSON objects are samples: a vendor's log lines may share stdout.
+  while (const auto line = echo.read_line(std::chrono::seconds(20))) {
+    const auto sample = nlohmann::json::parse(*line, nullptr, false);
+    if (sample.is_object()) ++samples;
+  }
   echo.wait(std::chrono::seconds(20));
-  return lines(out);
+  return samples;
 }
 
 // `cover ARGS` started in the background, its output in a log file.
@@ -198,7 +198,7 @@ TEST_P(Security, IdentityWithoutPermissionCannotWrite) {
   const std::string vendor = GetParam();
   const int domain = vendor == "fastdds" ? 172 : 173;
   const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
-  for (const std::string& topic : {"cover/uav/0/cmd", "cover/task/request", "cover/ugv/0/imu"}) {
+  for (const std::string topic : {"cover/uav/0/cmd", "cover/task/request", "cover/ugv/0/imu"}) {
     const Outcome pub = cover_cli(on(vendor, domain,
                                      std::vector<std::string>{"pub", topic, "{}", "--wait", "0"} +
                                          secure(fleet, "ground-station-0")),
@@ -415,7 +415,9 @@ TEST_P(Security, SecureScenarioTwoLands) {
   EXPECT_TRUE(run.result["success"].get<bool>()) << run.result.dump(2);
   EXPECT_LE(run.result["landing_error_m"].get<double>(), 0.05);
   for (const auto& name : cover::test::shm_entries()) {
-    if (!before.count(name)) EXPECT_TRUE(name.rfind("cover_sim_", 0) != 0) << name;
+    if (!before.count(name)) {
+      EXPECT_TRUE(name.rfind("cover_sim_", 0) != 0) << name;
+    }
   }
 }
 
