@@ -1,5 +1,7 @@
 #include "cover/dds/security_options.hpp"
 
+#include <filesystem>
+
 #include "cover/dds/dds_error.hpp"
 
 namespace cover::dds {
@@ -20,7 +22,8 @@ void SecurityOptions::validate() const {
 
 SecurityFiles SecurityFiles::of(const std::string& directory, const std::string& identity) {
   namespace layout = security_layout;
-  const std::string root = directory + "/";
+  // Absolute: the plugins take file URIs, which a relative path would not survive.
+  const std::string root = std::filesystem::absolute(directory).lexically_normal().string() + "/";
   const std::string own = root + layout::kIdentities + "/" + identity + "/";
   return {root + layout::kFleet,      root + layout::kIdentityCa, root + layout::kPermissionsCa,
           root + layout::kGovernance, own + layout::kCertificate, own + layout::kPrivateKey,
