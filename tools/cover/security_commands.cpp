@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -36,6 +37,7 @@ constexpr int kExitBroken = 1;
 constexpr int kExitUsage = 2;
 constexpr int kExitOpenssl = 3;
 constexpr int kMaxDays = 3650;
+constexpr std::uint32_t kMaxPerRole = 64;  // identities per numbered role
 constexpr const char* kOrganisation = "COVER";
 
 struct OpensslError : std::runtime_error {
@@ -163,6 +165,11 @@ void check_request(const SecurityInitRequest& request) {
                                 std::to_string(kMaxDays) + ")");
   }
   dds::parse_vendor(request.vendor);
+  const dds::Fleet& fleet = request.fleet;
+  if (fleet.ugvs > kMaxPerRole || fleet.uavs > kMaxPerRole || fleet.ground_stations > kMaxPerRole) {
+    throw std::invalid_argument("--ugvs, --uavs and --ground-stations are 0.." +
+                                std::to_string(kMaxPerRole) + " each");
+  }
   const fs::path dir(request.directory);
   if (fs::exists(dir) && !(fs::is_directory(dir) && fs::is_empty(dir))) {
     throw std::invalid_argument(request.directory +
