@@ -96,11 +96,11 @@ ParticipantOptions apply_environment(ParticipantOptions options) {
     if (*end != '\0') throw DdsError(std::string("COVER_DDS_DOMAIN is not a number: ") + domain);
     options.domain_id = static_cast<int>(value);
   }
-  if (const char* directory = std::getenv("COVER_DDS_SECURITY"); directory && *directory) {
+  if (const char* directory = std::getenv(kSecurityEnvironment); directory && *directory) {
     options.security.enabled = true;
     options.security.directory = directory;
   }
-  if (const char* identity = std::getenv("COVER_DDS_IDENTITY"); identity && *identity) {
+  if (const char* identity = std::getenv(kIdentityEnvironment); identity && *identity) {
     options.security.identity = identity;
   }
   return options;

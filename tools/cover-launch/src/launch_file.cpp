@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/dds/security_options.hpp"
 #include "cover/launch/dds_override.hpp"
 #include "cover/launch/placeholders.hpp"
 
@@ -84,7 +85,7 @@ void validate_process(const ProcessSpec& spec, const std::set<std::string>& know
     config::check(is_identifier(key), context, "env: bad variable name '" + key + "'");
     config::check(key != "COVER_DDS" && key != "COVER_DDS_DOMAIN", context,
                   "env: " + key + " is set by the launcher (use dds: / --domain)");
-    config::check(key != "COVER_DDS_SECURITY" && key != "COVER_DDS_IDENTITY", context,
+    config::check(key != dds::kSecurityEnvironment && key != dds::kIdentityEnvironment, context,
                   "env: " + key + " is set by the launcher (use launch.security / identity:)");
   }
   validate_respawn(spec, context);

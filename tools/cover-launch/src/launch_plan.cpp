@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/dds/security_options.hpp"
 #include "cover/launch/placeholders.hpp"
 #include "cover/launch/run_naming.hpp"
 #include "cover/launch/security_identity.hpp"
@@ -39,8 +40,8 @@ PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& va
   planned.env.push_back("COVER_DDS_DOMAIN=" + std::to_string(domain_id));
   if (!security_directory.empty()) {
     planned.identity = launch_identity(spec.name, spec.executable, planned.args, spec.identity);
-    planned.env.push_back("COVER_DDS_SECURITY=" + security_directory);
-    planned.env.push_back("COVER_DDS_IDENTITY=" + planned.identity);
+    planned.env.push_back(std::string(dds::kSecurityEnvironment) + "=" + security_directory);
+    planned.env.push_back(std::string(dds::kIdentityEnvironment) + "=" + planned.identity);
   }
   return planned;
 }

@@ -21,6 +21,11 @@ struct SecurityOptions {
 // refuses a domain id above 230 in them (DDS's 0..232 otherwise).
 inline constexpr int kMaxSecureDomainId = 230;
 
+// The environment variables that turn security on with a fleet directory and name the
+// identity (cover-launch sets them per process).
+inline constexpr const char* kSecurityEnvironment = "COVER_DDS_SECURITY";
+inline constexpr const char* kIdentityEnvironment = "COVER_DDS_IDENTITY";
+
 // The files of one identity in a fleet directory, as the DDS-Security plugins take them.
 // Layout (written by `cover security init`, read by every participant):
 //   DIR/fleet.yaml, DIR/identity_ca.pem, DIR/permissions_ca.pem, DIR/governance.p7s,
