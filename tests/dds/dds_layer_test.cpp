@@ -23,20 +23,8 @@ namespace msg = cover::msg;
 
 namespace {
 
-std::string message_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
-std::string write_temp_yaml(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + "/" + name;
-  std::ofstream(path) << text;
-  return path;
-}
+using cover::test::message_of;
+using cover::test::write_temp_yaml;
 
 TEST(Qos, NamedProfilesSetEveryPolicy) {
   const auto sensor = qos_profile("sensor");

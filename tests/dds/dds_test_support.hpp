@@ -1,8 +1,11 @@
 #pragma once
 
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <exception>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <thread>
@@ -26,6 +29,23 @@ inline cover::dds::ParticipantOptions private_options(cover::dds::Vendor vendor)
   options.vendor = vendor;
   options.domain_id = private_domain_id();
   return options;
+}
+
+// The message of what `action` throws; "" when it throws nothing.
+inline std::string message_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Writes `text` to a file `name` in the test's temp folder; its path.
+inline std::string write_temp_yaml(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
 }
 
 // Polls `condition` every millisecond until it holds or `timeout` passes; its final value.

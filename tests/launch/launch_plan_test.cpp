@@ -14,6 +14,7 @@
 #include "cover/launch/launch_plan.hpp"
 #include "cover/launch/placeholders.hpp"
 #include "cover/launch/run_naming.hpp"
+#include "cover/launch/security_identity.hpp"
 #include "cover/launch/shm_cleanup.hpp"
 
 namespace cover::launch {
@@ -153,6 +154,48 @@ TEST(LaunchPlan, ExpandsBuiltinsAndSetsEnvironment) {
   options.variables = {};
   options.domain_id = 233;
   EXPECT_THROW(make_plan(file, options), std::invalid_argument);
+}
+
+// A secure launch gives each process its identity by role, or its `identity:` key.
+TEST(LaunchPlan, SecureLaunchGivesEachProcessItsIdentity) {
+  EXPECT_EQ(launch_identity("a", "cover-sim", {}, ""), "sim");
+  EXPECT_EQ(launch_identity("a", "/opt/bin/cover-uav-agent", {"--id", "2"}, ""), "uav-agent-2");
+  EXPECT_EQ(launch_identity("a", "cover-ugv-agent", {"--source", "sim", "--id=1"}, ""),
+            "ugv-agent-1");
+  EXPECT_EQ(launch_identity("a", "cover-task-manager", {}, ""), "task-manager");
+  EXPECT_EQ(launch_identity("a", "cover-uav-agent", {"--id", "2"}, "ground-station-0"),
+            "ground-station-0");
+  EXPECT_THROW(launch_identity("a", "cover-uav-agent", {}, ""), std::invalid_argument);
+  EXPECT_THROW(launch_identity("a", "my-tool", {}, ""), std::invalid_argument);
+  EXPECT_THROW(launch_identity("a", "cover-sim", {}, "root"), std::invalid_argument);
+
+  LaunchFile file;
+  file.name = "secure";
+  file.directory = "/launch";
+  file.security = "../fleet";
+  ProcessSpec uav;
+  uav.name = "uav0";
+  uav.executable = "cover-uav-agent";
+  uav.args = {"--id", "{u}"};
+  uav.ends_run = true;
+  file.variables = {{"u", "3"}};
+  file.processes = {uav};
+  LaunchOptions options;
+  options.run_dir = "/tmp/runs/s";
+  const LaunchPlan from_file = make_plan(file, options);
+  EXPECT_EQ(from_file.security_directory, "/fleet");
+  EXPECT_EQ(from_file.processes[0].identity, "uav-agent-3");
+  const auto& env = from_file.processes[0].env;
+  EXPECT_NE(std::find(env.begin(), env.end(), "COVER_DDS_SECURITY=/fleet"), env.end());
+  EXPECT_NE(std::find(env.begin(), env.end(), "COVER_DDS_IDENTITY=uav-agent-3"), env.end());
+  options.security_directory = "/elsewhere";
+  EXPECT_EQ(make_plan(file, options).security_directory, "/elsewhere");
+  file.security.clear();
+  options.security_directory.clear();
+  const LaunchPlan plain = make_plan(file, options);
+  EXPECT_TRUE(plain.security_directory.empty());
+  EXPECT_TRUE(plain.processes[0].identity.empty());
+  EXPECT_EQ(plain.processes[0].env.size(), 2u);  // COVER_DDS, COVER_DDS_DOMAIN
 }
 
 TEST(LaunchPlan, CarriesTheRespawnPolicy) {

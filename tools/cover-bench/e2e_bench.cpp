@@ -1,9 +1,16 @@
 // cover-bench e2e: the system as processes (cover-launch -> cover-sim, UGV and UAV agents).
 //  latency:  realtime Scenario 2, sensor-to-command latency as cover-sim measures it (it
 //            stamps each relative state it publishes; the command computed from it names
-//            that stamp when it comes back), per DDS mix;
+//            that stamp when it comes back), per DDS mix, plain and with DDS-Security
+//            (secure: every process authenticated, its data encrypted; one-vendor mixes
+//            only, docs/security.md);
 //  lockstep: Scenarios 2 and 4 in lockstep, simulated seconds per wall second.
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -11,10 +18,39 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "cover/process/child_process.hpp"
 #include "launch_run.hpp"
 #include "vendor_mix.hpp"
 
 namespace {
+
+#ifdef COVER_CLI
+constexpr const char* kCoverCli = COVER_CLI;
+#else
+constexpr const char* kCoverCli = "cover";
+#endif
+
+// A secure fleet runs one vendor: the mixes whose processes all share one.
+bool one_vendor(const cover::bench::VendorMix& mix) {
+  return std::strcmp(mix.sim, mix.ugv) == 0 && std::strcmp(mix.sim, mix.uav) == 0;
+}
+
+// A fresh fleet directory for a secure row (the caller removes it); empty on failure.
+std::string make_fleet(const char* vendor) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("cover_e2e_fleet_" + std::string(vendor) + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  cover::process::SpawnOptions options;
+  options.log_file = dir.string() + ".log";
+  cover::process::ChildProcess init(
+      {kCoverCli, "security", "init", dir.string(), "--vendor", vendor}, options);
+  if (init.wait(std::chrono::minutes(1)) != 0) {
+    std::cerr << "cover-bench e2e: cover security init failed; see " << options.log_file << "\n";
+    return "";
+  }
+  std::filesystem::remove(options.log_file);
+  return dir.string();
+}
 
 double number(const nlohmann::json& j, const char* key) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : 0.0;
@@ -39,18 +75,26 @@ int run(const std::vector<std::string>& args) {
                      : std::vector<std::string>{"--var", "method=" + method};
 
   nlohmann::json out{{"latency", nlohmann::json::array()}, {"lockstep", nlohmann::json::array()}};
-  for (const cover::bench::VendorMix& mix : cover::bench::vendor_mixes()) {
-    std::vector<std::string> flags = cover::bench::launch_dds_flags(mix);
-    flags.insert(flags.end(), {"--clock", "realtime"});
-    flags.insert(flags.end(), method_flags.begin(), method_flags.end());
-    const nlohmann::json r = cover::bench::run_launch("scenario2", flags, domain++, "e2e");
-    const nlohmann::json latency =
-        r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();
-    out["latency"].push_back({{"mix", mix.name},
-                              {"success", r.is_object() && r.value("success", false)},
-                              {"p50_ms", number(latency, "p50")},
-                              {"p99_ms", number(latency, "p99")},
-                              {"samples", latency.value("samples", 0)}});
+  for (const bool secure : {false, true}) {
+    for (const cover::bench::VendorMix& mix : cover::bench::vendor_mixes()) {
+      if (secure && !one_vendor(mix)) continue;
+      std::vector<std::string> flags = cover::bench::launch_dds_flags(mix);
+      flags.insert(flags.end(), {"--clock", "realtime"});
+      flags.insert(flags.end(), method_flags.begin(), method_flags.end());
+      const std::string fleet = secure ? make_fleet(mix.sim) : "";
+      if (!fleet.empty()) flags.insert(flags.end(), {"--security", fleet});
+      const nlohmann::json r = cover::bench::run_launch("scenario2", flags, domain++, "e2e");
+      if (!fleet.empty()) std::filesystem::remove_all(fleet);
+      const nlohmann::json latency =
+          r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();
+      out["latency"].push_back(
+          {{"mix", mix.name},
+           {"secure", secure},
+           {"success", r.is_object() && r.value("success", false) && (!secure || !fleet.empty())},
+           {"p50_ms", number(latency, "p50")},
+           {"p99_ms", number(latency, "p99")},
+           {"samples", latency.value("samples", 0)}});
+    }
   }
   for (const char* scenario : {"scenario2", "scenario4"}) {
     std::vector<std::string> flags = {"--dds", "ugv*=cyclone"};
@@ -66,9 +110,9 @@ int run(const std::vector<std::string>& args) {
     std::printf(
         "sensor-to-command latency, realtime Scenario 2 (relative state out -> command in)\n");
     for (const auto& l : out["latency"]) {
-      std::printf("  %-8s p50 %.3f ms  p99 %.3f ms  (%d samples)%s\n",
-                  l["mix"].get<std::string>().c_str(), l["p50_ms"].get<double>(),
-                  l["p99_ms"].get<double>(), l["samples"].get<int>(),
+      std::printf("  %-8s %-6s p50 %.3f ms  p99 %.3f ms  (%d samples)%s\n",
+                  l["mix"].get<std::string>().c_str(), l["secure"].get<bool>() ? "secure" : "plain",
+                  l["p50_ms"].get<double>(), l["p99_ms"].get<double>(), l["samples"].get<int>(),
                   l["success"].get<bool>() ? "" : "  MISSION FAILED");
     }
     std::printf("lockstep (UGV agents on Cyclone, the rest on Fast DDS)\n");

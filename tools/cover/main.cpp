@@ -5,6 +5,7 @@
 
 #include "cover/dds/cli_options.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "security_commands.hpp"
 #include "task_commands.hpp"
 #include "topic_commands.hpp"
 
@@ -80,6 +81,35 @@ int main(int argc, char** argv) {
   abort->add_option("id", task_id, "task id")->required();
   abort->add_option("--reason", abort_reason, "recorded with the abort");
   add_task_flags(abort);
+  // DDS-Security fleet directories (docs/security.md).
+  auto* security = app.add_subcommand("security", "Make and check DDS-Security fleet directories");
+  security->require_subcommand(1);
+  cover::cli::SecurityInitRequest init_request;
+  auto* security_init = security->add_subcommand(
+      "init", "Make a CA, one identity per process, signed governance and permissions");
+  security_init->add_option("dir", init_request.directory, "new fleet directory")->required();
+  security_init->add_option("--ugvs", init_request.fleet.ugvs, "UGV agents")->capture_default_str();
+  security_init->add_option("--uavs", init_request.fleet.uavs, "UAV agents")->capture_default_str();
+  security_init
+      ->add_option("--ground-stations", init_request.fleet.ground_stations, "ground stations")
+      ->capture_default_str();
+  security_init
+      ->add_option("--days", init_request.days, "validity of every certificate and permission")
+      ->capture_default_str();
+  security_init
+      ->add_option("--vendor", init_request.vendor,
+                   "the DDS vendor every process of the fleet runs: fastdds | cyclone")
+      ->capture_default_str();
+  std::string check_directory;
+  bool check_json = false;
+  auto* security_check = security->add_subcommand(
+      "check", "Per identity: what it may publish and subscribe, when it expires");
+  security_check->add_option("dir", check_directory, "fleet directory")->required();
+  security_check->add_flag("--json", check_json, "one JSON object");
+  security->footer(
+      "init exits 0 when made, 2 on a bad request or an existing directory, 3 when openssl "
+      "fails; check exits 0 when every identity is valid, 1 when one is broken, expired or "
+      "mis-signed, 2 when DIR is not a fleet directory.");
   app.footer(
       "Task commands exit 0 when accepted / found / succeeded, 1 when rejected, unknown or not\n"
       "succeeded, 2 on a bad file or usage, 3 when no task manager answers within --timeout.");
@@ -92,6 +122,8 @@ int main(int argc, char** argv) {
                                      : topics_markdown ? TopicsFormat::Markdown
                                                        : TopicsFormat::Table);
     }
+    if (*security_init) return cover::cli::security_init(init_request);
+    if (*security_check) return cover::cli::security_check(check_directory, check_json);
     if (*echo) return cover::cli::echo(echo_dds.resolve("cover-echo"), echo_request);
     if (*pub) return cover::cli::publish(pub_dds.resolve("cover-pub"), pub_request);
     const auto station = [&] { return task_dds.resolve("cover-station"); };

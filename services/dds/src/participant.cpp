@@ -3,6 +3,7 @@
 #include <thread>
 
 #include "cover/dds/dds_error.hpp"
+#include "cover/dds/security_check.hpp"
 #include "cyclone/cyclone_backend.hpp"
 #include "fastdds/fastdds_backend.hpp"
 
@@ -10,6 +11,7 @@ namespace cover::dds {
 
 Participant::Participant(const ParticipantOptions& options) : options_(options) {
   options_.validate();
+  check_participant_security(options_);
   backend_ = options_.vendor == Vendor::FastDds ? make_fastdds_participant(options_)
                                                 : make_cyclone_participant(options_);
 }

@@ -18,6 +18,8 @@ void ParticipantOptions::validate() const {
     throw DdsError("invalid announcement_period_s " + std::to_string(announcement_period_s) +
                    " (valid: 0 = vendor default, or up to 3600 s)");
   }
+  // Not security.validate(): a file or profile may leave the identity to --identity;
+  // check_participant_security checks the complete options before a participant exists.
   for (const auto& peer : peers) {
     in_addr address{};
     if (inet_pton(AF_INET, peer.c_str(), &address) != 1) {
@@ -28,12 +30,17 @@ void ParticipantOptions::validate() const {
 
 namespace {
 
-// The network keys, which the top level and every profile share.
+// The network and security keys, which the top level and every profile share.
 void read_network_keys(config::YamlReader& reader, ParticipantOptions& options) {
   reader.optional("interface", options.interface_name);
   reader.optional("peers", options.peers);
   reader.optional("fastdds_shared_memory", options.fastdds_shared_memory);
   reader.optional("announcement_period_s", options.announcement_period_s);
+  config::YamlReader security = reader.child("security");
+  security.optional("enabled", options.security.enabled);
+  security.optional("directory", options.security.directory);
+  security.optional("identity", options.security.identity);
+  security.reject_unknown_keys();
 }
 
 // Applies profile `name` of `profiles` on top of `options`; every profile is checked for
@@ -88,6 +95,13 @@ ParticipantOptions apply_environment(ParticipantOptions options) {
     const long value = std::strtol(domain, &end, 10);
     if (*end != '\0') throw DdsError(std::string("COVER_DDS_DOMAIN is not a number: ") + domain);
     options.domain_id = static_cast<int>(value);
+  }
+  if (const char* directory = std::getenv(kSecurityEnvironment); directory && *directory) {
+    options.security.enabled = true;
+    options.security.directory = directory;
+  }
+  if (const char* identity = std::getenv(kIdentityEnvironment); identity && *identity) {
+    options.security.identity = identity;
   }
   return options;
 }

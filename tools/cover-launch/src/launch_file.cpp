@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/dds/security_options.hpp"
 #include "cover/launch/dds_override.hpp"
 #include "cover/launch/placeholders.hpp"
 
@@ -37,6 +38,7 @@ ProcessSpec parse_process(const YAML::Node& node, const std::string& context) {
   process.optional("dds", spec.dds);
   process.optional("env", spec.env);
   process.optional("netns", spec.netns);
+  process.optional("identity", spec.identity);
   process.optional("ends_run", spec.ends_run);
   process.optional("respawn", spec.respawn.enabled);
   process.optional("respawn_delay_s", spec.respawn.delay_s);
@@ -83,6 +85,8 @@ void validate_process(const ProcessSpec& spec, const std::set<std::string>& know
     config::check(is_identifier(key), context, "env: bad variable name '" + key + "'");
     config::check(key != "COVER_DDS" && key != "COVER_DDS_DOMAIN", context,
                   "env: " + key + " is set by the launcher (use dds: / --domain)");
+    config::check(key != dds::kSecurityEnvironment && key != dds::kIdentityEnvironment, context,
+                  "env: " + key + " is set by the launcher (use launch.security / identity:)");
   }
   validate_respawn(spec, context);
   validate_arguments(spec, known);
@@ -132,6 +136,7 @@ LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& con
   launch.require("name", file.name);
   launch.optional("grace_period_s", file.grace_period_s);
   launch.optional("variables", file.variables);
+  launch.optional("security", file.security);
   YAML::Node processes;
   launch.require("processes", processes);
   launch.reject_unknown_keys();

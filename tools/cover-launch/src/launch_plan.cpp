@@ -4,8 +4,10 @@
 #include <stdexcept>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/dds/security_options.hpp"
 #include "cover/launch/placeholders.hpp"
 #include "cover/launch/run_naming.hpp"
+#include "cover/launch/security_identity.hpp"
 
 namespace cover::launch {
 namespace {
@@ -23,8 +25,8 @@ void apply_variables(LaunchFile& file, const std::map<std::string, std::string>&
   }
 }
 
-PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& values,
-                            int domain_id) {
+PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& values, int domain_id,
+                            const std::string& security_directory) {
   PlannedProcess planned;
   planned.name = spec.name;
   planned.executable = spec.executable;
@@ -36,6 +38,11 @@ PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& va
   for (const auto& [key, value] : spec.env) planned.env.push_back(key + "=" + value);
   planned.env.push_back("COVER_DDS=" + spec.dds);
   planned.env.push_back("COVER_DDS_DOMAIN=" + std::to_string(domain_id));
+  if (!security_directory.empty()) {
+    planned.identity = launch_identity(spec.name, spec.executable, planned.args, spec.identity);
+    planned.env.push_back(std::string(dds::kSecurityEnvironment) + "=" + security_directory);
+    planned.env.push_back(std::string(dds::kIdentityEnvironment) + "=" + planned.identity);
+  }
   return planned;
 }
 
@@ -57,6 +64,13 @@ LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options) {
   plan.launch_dir = file.directory;
   plan.domain_id = options.domain_id;
   plan.grace_period_s = file.grace_period_s;
+  namespace fs = std::filesystem;
+  if (!options.security_directory.empty()) {
+    plan.security_directory = fs::absolute(options.security_directory).lexically_normal().string();
+  } else if (!file.security.empty()) {
+    plan.security_directory =
+        (fs::path(file.directory) / file.security).lexically_normal().string();
+  }
 
   PlaceholderValues values(file.variables.begin(), file.variables.end());
   values["run_dir"] = plan.run_dir;
@@ -64,7 +78,8 @@ LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options) {
   values["domain"] = std::to_string(options.domain_id);
   values["config_dir"] = config::default_config_dir();
   for (const auto& spec : file.processes) {
-    plan.processes.push_back(plan_process(spec, values, options.domain_id));
+    plan.processes.push_back(
+        plan_process(spec, values, options.domain_id, plan.security_directory));
   }
   return plan;
 }

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "cover/config/config_error.hpp"
+#include "cover/dds/security_check.hpp"
 #include "cover/launch/exit_codes.hpp"
 #include "cover/launch/launch_plan.hpp"
 #include "cover/launch/run_naming.hpp"
@@ -25,6 +26,7 @@ Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
     name: NAME               run folder runs/NAME_<date-time>, run id NAME_<pid>
     grace_period_s: 3.0      per signal when stopping: SIGINT, SIGTERM, then SIGKILL
     variables: {clock: lockstep, seed: ""}
+    security: DIR            DDS-Security fleet directory (relative to the file; --security)
     processes:               started in order, stopped in reverse order
       - name: sim            log: <run_dir>/sim.log
         executable: cover-sim            bare: beside cover-launch, then $PATH
@@ -32,6 +34,7 @@ Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
         dds: fastdds         fastdds | cyclone, given as $COVER_DDS
         env: {KEY: value}
         netns: cwifi-sim     run in this network namespace (ip netns exec; root)
+        identity: sim        DDS-Security identity when secure (default: by role)
         ends_run: true       exactly one process: its exit ends the run
         respawn: false       restart it when it dies (not with ends_run)
         respawn_delay_s: 1.0 wait before each restart (>= 0)
@@ -61,6 +64,7 @@ struct Flags {
   std::string clock;
   std::string seed;
   std::string run_dir;
+  std::string security;
   int domain_id = -1;
   bool json = false;
 };
@@ -78,6 +82,9 @@ void add_flags(CLI::App& app, Flags& flags) {
                  "DDS domain 0..232, given as $COVER_DDS_DOMAIN and {domain} "
                  "(default: $COVER_DDS_DOMAIN or 0)");
   app.add_option("--run-dir", flags.run_dir, "Run folder (default: runs/NAME_YYYYmmdd-HHMMSS)");
+  app.add_option("--security", flags.security,
+                 "DDS-Security fleet directory (cover security init): each process runs secure "
+                 "with its identity by role (default: the file's launch.security, else plain)");
   app.add_flag("--json", flags.json,
                "Print result.json plus processes, run_dir and exit_code as one JSON object");
 }
@@ -109,8 +116,25 @@ LaunchOptions make_options(const Flags& flags, const LaunchFile& file) {
                         ? flags.run_dir
                         : default_run_dir(std::filesystem::current_path().string(), file.name,
                                           std::chrono::system_clock::now());
+  options.security_directory = flags.security;
   options.launcher_pid = getpid();
   return options;
+}
+
+// A secure launch checks every process's identity, and that each runs the fleet's vendor,
+// before starting any: one clear error instead of a process dying at start.
+void check_security(const LaunchPlan& plan) {
+  if (plan.security_directory.empty()) return;
+  for (const auto& process : plan.processes) {
+    cover::dds::ParticipantOptions options;
+    options.vendor = cover::dds::parse_vendor(process.dds);
+    options.security = {true, plan.security_directory, process.identity};
+    try {
+      cover::dds::check_participant_security(options);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("process '" + process.name + "': " + e.what());
+    }
+  }
 }
 
 // Creates the run folder with launch.log, and removes a result.json of an earlier run
@@ -123,8 +147,9 @@ void prepare_run_dir(const LaunchPlan& plan) {
 }
 
 int run(const LaunchPlan& plan, bool json) {
-  spdlog::info("launch {}: run id {}, run dir {}, domain {}", plan.name, plan.run_id, plan.run_dir,
-               plan.domain_id);
+  spdlog::info("launch {}: run id {}, run dir {}, domain {}, DDS-Security {}", plan.name,
+               plan.run_id, plan.run_dir, plan.domain_id,
+               plan.security_directory.empty() ? "off" : plan.security_directory);
   const RunOutcome outcome = supervise(plan);
   if (json) {
     std::cout << make_report(plan, outcome).dump() << std::endl;
@@ -153,6 +178,7 @@ int main(int argc, char** argv) {
   try {
     const LaunchFile file = LaunchFile::load_file(flags.file);
     plan = make_plan(file, make_options(flags, file));
+    check_security(plan);
     prepare_run_dir(plan);
   } catch (const std::exception& e) {
     std::cerr << "cover-launch: " << e.what() << "\n";

@@ -49,6 +49,33 @@ std::string cyclone_config(const ParticipantOptions& options) {
   return xml;
 }
 
+// The participant QoS: the DDS-Security plugins and the identity's files when security
+// is on (checked beforehand by check_participant_security), else nothing.
+dds_qos_t* participant_qos(const SecurityOptions& security) {
+  if (!security.enabled) return nullptr;
+  const SecurityFiles files = SecurityFiles::of(security.directory, security.identity);
+  dds_qos_t* qos = dds_create_qos();
+  const auto set = [qos](const std::string& name, const std::string& value) {
+    dds_qset_prop(qos, name.c_str(), value.c_str());
+  };
+  const auto plugin = [&](const std::string& kind, const std::string& library,
+                          const std::string& suffix) {
+    set("dds.sec." + kind + ".library.path", library);
+    set("dds.sec." + kind + ".library.init", "init_" + suffix);
+    set("dds.sec." + kind + ".library.finalize", "finalize_" + suffix);
+  };
+  plugin("auth", "dds_security_auth", "authentication");
+  plugin("crypto", "dds_security_crypto", "crypto");
+  plugin("access", "dds_security_ac", "access_control");
+  set("dds.sec.auth.identity_ca", "file:" + files.identity_ca);
+  set("dds.sec.auth.identity_certificate", "file:" + files.certificate);
+  set("dds.sec.auth.private_key", "file:" + files.private_key);
+  set("dds.sec.access.permissions_ca", "file:" + files.permissions_ca);
+  set("dds.sec.access.governance", "file:" + files.governance);
+  set("dds.sec.access.permissions", "file:" + files.permissions);
+  return qos;
+}
+
 dds_qos_t* make_qos(const QosProfile& profile) {
   dds_qos_t* qos = dds_create_qos();
   dds_qset_reliability(qos,
@@ -93,10 +120,15 @@ class CycloneCore {
       }
       if (created > 0) domain_ = created;
     }
-    participant_ = dds_create_participant(domain, nullptr, nullptr);
+    dds_qos_t* qos = participant_qos(options.security);
+    participant_ = dds_create_participant(domain, qos, nullptr);
+    if (qos) dds_delete_qos(qos);
     if (participant_ < 0) {
       throw DdsError("Cyclone DDS: cannot create a participant on domain " +
-                     std::to_string(options.domain_id) + ": " + describe(participant_));
+                     std::to_string(options.domain_id) +
+                     (options.security.enabled ? " with identity " + options.security.identity
+                                               : std::string()) +
+                     ": " + describe(participant_));
     }
   }
   ~CycloneCore() {

@@ -62,6 +62,25 @@ std::string interface_address(const std::string& name) {
   return address;
 }
 
+// The builtin DDS-Security plugins, given the identity's files (checked beforehand by
+// check_participant_security).
+void add_security(const SecurityOptions& security, fdds::DomainParticipantQos& qos) {
+  const SecurityFiles files = SecurityFiles::of(security.directory, security.identity);
+  const auto uri = [](const std::string& path) { return "file://" + path; };
+  const std::string auth = "dds.sec.auth.builtin.PKI-DH.";
+  const std::string access = "dds.sec.access.builtin.Access-Permissions.";
+  auto& properties = qos.properties().properties();
+  properties.emplace_back("dds.sec.auth.plugin", "builtin.PKI-DH");
+  properties.emplace_back(auth + "identity_ca", uri(files.identity_ca));
+  properties.emplace_back(auth + "identity_certificate", uri(files.certificate));
+  properties.emplace_back(auth + "private_key", uri(files.private_key));
+  properties.emplace_back("dds.sec.access.plugin", "builtin.Access-Permissions");
+  properties.emplace_back(access + "permissions_ca", uri(files.permissions_ca));
+  properties.emplace_back(access + "governance", uri(files.governance));
+  properties.emplace_back(access + "permissions", uri(files.permissions));
+  properties.emplace_back("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
 fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
   // Starting from the factory default keeps a user's XML default profile in effect.
   fdds::DomainParticipantQos qos = fdds::PARTICIPANT_QOS_DEFAULT;
@@ -102,6 +121,7 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
     eprosima::fastrtps::rtps::IPLocator::setIPv4(locator, peer);
     qos.wire_protocol().builtin.initialPeersList.push_back(locator);
   }
+  if (options.security.enabled) add_security(options.security, qos);
   return qos;
 }
 
@@ -134,7 +154,10 @@ class FastCore {
     participant_ = factory->create_participant(options.domain_id, participant_qos(options));
     if (!participant_) {
       throw DdsError("Fast DDS: cannot create a participant on domain " +
-                     std::to_string(options.domain_id) + " (see the Fast DDS log above)");
+                     std::to_string(options.domain_id) +
+                     (options.security.enabled ? " with identity " + options.security.identity
+                                               : std::string()) +
+                     " (see the Fast DDS log above)");
     }
     publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
     subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
@@ -191,7 +214,10 @@ class FastWriter final : public WriterBackend {
     // A 100 ms heartbeat (default 3 s) stops the loss of early reliable samples.
     qos.reliable_writer_qos().times.heartbeatPeriod = to_duration(0.1);
     writer_ = core_->publisher()->create_datawriter(core_->topic(type, topic), qos);
-    if (!writer_) throw DdsError("Fast DDS: cannot create a writer on '" + topic + "'");
+    if (!writer_) {
+      throw DdsError("Fast DDS: cannot create a writer on '" + topic +
+                     "' (with security on: this identity's permissions do not allow it)");
+    }
   }
   ~FastWriter() override { core_->publisher()->delete_datawriter(writer_); }
   bool write(const void* neutral) override {
@@ -238,7 +264,10 @@ class FastReader final : public ReaderBackend, private fdds::DataReaderListener 
     apply_common(profile, qos);
     reader_ = core_->subscriber()->create_datareader(core_->topic(type, topic), qos, this,
                                                      fdds::StatusMask::all());
-    if (!reader_) throw DdsError("Fast DDS: cannot create a reader on '" + topic + "'");
+    if (!reader_) {
+      throw DdsError("Fast DDS: cannot create a reader on '" + topic +
+                     "' (with security on: this identity's permissions do not allow it)");
+    }
   }
   ~FastReader() override {
     reader_->set_listener(nullptr);

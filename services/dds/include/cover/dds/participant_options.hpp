@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "cover/dds/security_options.hpp"
 #include "cover/dds/vendor.hpp"
 
 namespace cover::dds {
@@ -30,6 +31,8 @@ struct ParticipantOptions {
   // by one period: a UAV agent that discovers a UGV's IMU writer late fails its stage.
   double announcement_period_s = 0.0;
   std::string participant_name = "cover";
+  // DDS-Security (authentication, access control, encryption); off by default.
+  SecurityOptions security;
 
   void validate() const;  // throws DdsError naming the bad field
   // Reads `dds:` of `path`, then, when `profile` is not empty, the network keys of
@@ -43,7 +46,8 @@ inline constexpr int kMaxDomainId = 232;
 // $COVER_DDS_PROFILE when set and not empty, else `fallback`.
 std::string profile_from_environment(const std::string& fallback);
 
-// Applies $COVER_DDS and $COVER_DDS_DOMAIN on top of `options`.
+// Applies $COVER_DDS, $COVER_DDS_DOMAIN, $COVER_DDS_SECURITY (a fleet directory: turns
+// security on) and $COVER_DDS_IDENTITY on top of `options`.
 ParticipantOptions apply_environment(ParticipantOptions options);
 
 }  // namespace cover::dds

@@ -20,6 +20,9 @@ struct ProcessSpec {
   // A Linux network namespace (`ip netns`) to run in, e.g. one of scripts/wifi-sim's;
   // empty: the launcher's own network.
   std::string netns;
+  // The DDS-Security identity when the launch is secure; empty: by role (see
+  // security_identity.hpp).
+  std::string identity;
   bool ends_run = false;  // exactly one process ends the run when it exits
   RespawnPolicy respawn;  // keys respawn, respawn_delay_s, max_respawns
 };
@@ -30,6 +33,9 @@ struct LaunchFile {
   double grace_period_s = 3.0;
   std::map<std::string, std::string> variables;  // placeholder defaults
   std::vector<ProcessSpec> processes;            // start order; stopped in reverse
+  // A DDS-Security fleet directory (cover security init): every process runs secure with
+  // its own identity. Relative to the launch file's folder; empty: plain DDS.
+  std::string security;
   std::string directory;  // the launch file's folder, for relative executable paths
 
   // Throws ConfigError naming the offending process, key or argument.

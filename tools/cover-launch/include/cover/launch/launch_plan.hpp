@@ -18,6 +18,9 @@ struct LaunchOptions {
   std::map<std::string, std::string> variables;  // override the file's variables
   int domain_id = 0;                             // 0..232
   std::string run_dir;                           // absolute or relative to the cwd
+  // A DDS-Security fleet directory (absolute or relative to the cwd); replaces the file's
+  // launch.security. Empty: the file's.
+  std::string security_directory;
   pid_t launcher_pid = 0;
 };
 
@@ -27,8 +30,11 @@ struct PlannedProcess {
   std::string executable;  // as in the file
   std::vector<std::string> args;
   std::string dds;
-  std::string netns;             // empty: the launcher's network namespace
-  std::vector<std::string> env;  // "KEY=value": the file's env, COVER_DDS, COVER_DDS_DOMAIN
+  std::string netns;  // empty: the launcher's network namespace
+  // "KEY=value": the file's env, COVER_DDS, COVER_DDS_DOMAIN, and when secure
+  // COVER_DDS_SECURITY and COVER_DDS_IDENTITY.
+  std::vector<std::string> env;
+  std::string identity;  // DDS-Security identity; empty: plain DDS
   bool ends_run = false;
   RespawnPolicy respawn;
 };
@@ -39,6 +45,7 @@ struct LaunchPlan {
   std::string run_dir;
   std::string launch_dir;
   int domain_id = 0;
+  std::string security_directory;  // absolute; empty: plain DDS
   double grace_period_s = 3.0;
   std::vector<PlannedProcess> processes;
 };

@@ -12,20 +12,24 @@ class Option;
 namespace cover::dds {
 
 // The DDS flags every COVER command line shares: --dds, --domain, --dds-config,
-// --dds-profile. Precedence: flag > environment ($COVER_DDS, $COVER_DDS_DOMAIN,
-// $COVER_DDS_PROFILE) > config file.
+// --dds-profile, --security, --identity. Precedence: flag > environment ($COVER_DDS,
+// $COVER_DDS_DOMAIN, $COVER_DDS_PROFILE, $COVER_DDS_SECURITY, $COVER_DDS_IDENTITY) >
+// config file.
 // In its own library (cover_dds_cli) so that users of the DDS layer do not compile
 // CLI11 or the YAML reader.
 struct DdsCliOptions {
   std::string vendor;
   int domain_id = 0;
-  std::string config_path;  // default: config/dds.yaml of the shipped configuration
-  std::string profile;      // a `dds.profiles` entry of config_path; empty: none
+  std::string config_path;         // default: config/dds.yaml of the shipped configuration
+  std::string profile;             // a `dds.profiles` entry of config_path; empty: none
+  std::string security_directory;  // a fleet directory: turns DDS-Security on
+  std::string identity;            // this process's identity in it
 
   DdsCliOptions();
   void add_to(CLI::App& app);
 
-  // Throws ConfigError / DdsError with a clear message.
+  // Throws ConfigError with a clear message, also when security is on and the identity's
+  // files are missing, unreadable, expired or mis-signed (checked here, at start-up).
   ParticipantOptions resolve(const std::string& participant_name) const;
 
  private:

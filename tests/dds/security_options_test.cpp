@@ -1,0 +1,152 @@
+// DDS-Security settings and the access rules the permissions are made from (no
+// certificates here: tests/integration/security_test.cpp runs real secure processes).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <string>
+
+#include "cover/config/config_error.hpp"
+#include "cover/dds/access_rules.hpp"
+#include "cover/dds/dds_error.hpp"
+#include "cover/dds/participant.hpp"
+#include "cover/dds/participant_options.hpp"
+#include "cover/dds/security_check.hpp"
+#include "cover/dds/topics.hpp"
+#include "dds_test_support.hpp"
+
+namespace cover::dds {
+namespace {
+
+using cover::test::message_of;
+using cover::test::write_temp_yaml;
+
+bool contains(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+TEST(SecurityOptions, OffByDefaultAndInTheShippedConfig) {
+  EXPECT_FALSE(ParticipantOptions{}.security.enabled);
+  const auto shipped =
+      ParticipantOptions::load_file(std::string(COVER_SOURCE_DIR) + "/config/dds.yaml");
+  EXPECT_FALSE(shipped.security.enabled);
+  const auto field =
+      ParticipantOptions::load_file(std::string(COVER_SOURCE_DIR) + "/config/dds.yaml", "field");
+  EXPECT_TRUE(field.security.enabled);
+  EXPECT_FALSE(field.security.directory.empty());
+  EXPECT_EQ(field.interface_name, "wlan0");
+}
+
+TEST(SecurityOptions, LoadRejectsUnknownKeysAndNamesMissingOnes) {
+  const auto typo = write_temp_yaml("sec_typo.yaml", "dds:\n  security:\n    directroy: /x\n");
+  EXPECT_NE(message_of([&] { ParticipantOptions::load_file(typo); }).find("directroy"),
+            std::string::npos);
+  // The identity may come from the command line: the file alone need not name it, but a
+  // participant without one is refused.
+  const auto no_identity =
+      write_temp_yaml("sec_noid.yaml", "dds:\n  security:\n    enabled: true\n    directory: /x\n");
+  const ParticipantOptions without = ParticipantOptions::load_file(no_identity);
+  EXPECT_NE(message_of([&] { check_participant_security(without); }).find("no identity"),
+            std::string::npos);
+  const auto no_dir = write_temp_yaml("sec_nodir.yaml",
+                                      "dds:\n  security:\n    enabled: true\n    identity: sim\n");
+  const ParticipantOptions no_directory = ParticipantOptions::load_file(no_dir);
+  EXPECT_NE(
+      message_of([&] { check_participant_security(no_directory); }).find("no fleet directory"),
+      std::string::npos);
+  const auto in_profile = write_temp_yaml(
+      "sec_profile.yaml",
+      "dds:\n  profiles:\n    secure:\n      security: {enabled: true, directory: /f, "
+      "identity: sim}\n    other:\n      security: {enabeld: true}\n");
+  EXPECT_NE(message_of([&] { ParticipantOptions::load_file(in_profile); }).find("enabeld"),
+            std::string::npos);
+}
+
+TEST(SecurityOptions, EnvironmentTurnsItOn) {
+  setenv("COVER_DDS_SECURITY", "/fleet", 1);
+  setenv("COVER_DDS_IDENTITY", "uav-agent-3", 1);
+  const ParticipantOptions options = apply_environment(ParticipantOptions{});
+  unsetenv("COVER_DDS_SECURITY");
+  unsetenv("COVER_DDS_IDENTITY");
+  EXPECT_TRUE(options.security.enabled);
+  EXPECT_EQ(options.security.directory, "/fleet");
+  EXPECT_EQ(options.security.identity, "uav-agent-3");
+  const SecurityFiles files = SecurityFiles::of("/fleet", "uav-agent-3");
+  EXPECT_EQ(files.certificate, "/fleet/identities/uav-agent-3/cert.pem");
+  EXPECT_EQ(files.governance, "/fleet/governance.p7s");
+}
+
+// A secure participant whose files are missing is never made plain: creation throws.
+TEST(SecurityOptions, MissingFleetIsAnErrorNotAPlainParticipant) {
+  for (const Vendor vendor : {Vendor::FastDds, Vendor::Cyclone}) {
+    ParticipantOptions options;
+    options.vendor = vendor;
+    options.domain_id = 180;
+    options.security = {true, testing::TempDir() + "/no_such_fleet", "sim"};
+    const std::string message = message_of([&] { Participant participant(options); });
+    EXPECT_NE(message.find("no_such_fleet/fleet.yaml"), std::string::npos) << message;
+    options.domain_id = 231;
+    EXPECT_NE(message_of([&] { check_participant_security(options); }).find("0..230"),
+              std::string::npos);
+  }
+}
+
+TEST(Identities, NamesRoundTripAndOthersAreRefused) {
+  for (const Identity identity : fleet_identities(Fleet{3, 2, 2})) {
+    const auto parsed = parse_identity(identity_name(identity));
+    ASSERT_TRUE(parsed) << identity_name(identity);
+    EXPECT_EQ(*parsed, identity);
+  }
+  EXPECT_EQ(identity_name({Role::UavAgent, 4}), "uav-agent-4");
+  for (const char* bad : {"", "uav-agent-", "uav-agent-x", "uav-agent-01", "sim0", "root",
+                          "ground-station--1", "uav-agent-1234567"}) {
+    EXPECT_FALSE(parse_identity(bad)) << bad;
+  }
+  EXPECT_EQ(fleet_identities(Fleet{2, 1, 1}).size(), 6u);
+}
+
+// Least privilege, from the catalogue: every catalogued topic of the fleet has exactly
+// the writers the issue names, and somebody reads it.
+TEST(AccessRules, LeastPrivilegeOverTheWholeCatalogue) {
+  const Fleet fleet{2, 2, 1};
+  std::set<std::string> published, subscribed;
+  const auto writers = [&](const std::string& topic) {
+    std::set<std::string> who;
+    for (const auto& identity : fleet_identities(fleet)) {
+      if (contains(topic_access(identity, fleet).publish, topic))
+        who.insert(identity_name(identity));
+    }
+    return who;
+  };
+  for (const auto& identity : fleet_identities(fleet)) {
+    const TopicAccess access = topic_access(identity, fleet);
+    published.insert(access.publish.begin(), access.publish.end());
+    subscribed.insert(access.subscribe.begin(), access.subscribe.end());
+    for (const auto& topic : access.publish) EXPECT_TRUE(find_topic(topic)) << topic;
+  }
+  using Names = std::set<std::string>;
+  EXPECT_EQ(writers(topics::uav_command(1).name()), Names{"uav-agent-1"});
+  EXPECT_EQ(writers(topics::task_request().name()), Names{"task-manager"});
+  EXPECT_EQ(writers(topics::manager_request().name()), Names{"ground-station-0"});
+  EXPECT_EQ(writers(topics::relative_state(1, 0).name()), Names{"sim"});
+  EXPECT_EQ(writers(topics::ugv_imu(1).name()), Names{"ugv-agent-1"});
+  // Every catalogue pattern is published and subscribed by someone in the fleet.
+  for (const auto& info : topic_catalog()) {
+    const auto has = [&](const std::set<std::string>& names) {
+      return std::any_of(names.begin(), names.end(),
+                         [&](const std::string& n) { return find_topic(n) == &info; });
+    };
+    EXPECT_TRUE(has(published)) << info.pattern;
+    EXPECT_TRUE(has(subscribed)) << info.pattern;
+  }
+  // A UAV agent reads only its own relative states.
+  const TopicAccess uav0 = topic_access({Role::UavAgent, 0}, fleet);
+  EXPECT_TRUE(contains(uav0.subscribe, topics::relative_state(0, 1).name()));
+  EXPECT_FALSE(contains(uav0.subscribe, topics::relative_state(1, 1).name()));
+}
+
+}  // namespace
+}  // namespace cover::dds

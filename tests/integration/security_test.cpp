@@ -1,0 +1,441 @@
+// DDS-Security with real processes: a participant without an identity, an identity
+// without the permission, another CA and forged permissions are all refused, counted on
+// the receiving side (a secure `cover echo`, whose printed samples are the count); a secure
+// Scenario 2 flies on each vendor; a mixed-vendor secure fleet is refused at start-up.
+// Domains 120..129 (apart from every other test: tests run in parallel).
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cover/process/child_process.hpp"
+#include "process_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using cover::process::ChildProcess;
+using cover::process::SpawnOptions;
+
+// This test process's folder for fleet directories (private keys) and logs, removed at
+// exit.
+const fs::path& scratch() {
+  struct Scratch {
+    fs::path dir = fs::path(::testing::TempDir()) / ("cover_sec_" + std::to_string(getpid()));
+    Scratch() { fs::create_directories(dir); }
+    ~Scratch() { fs::remove_all(dir); }
+  };
+  static const Scratch folder;
+  return folder.dir;
+}
+
+std::string log_path(const std::string& name) {
+  return (scratch() / name).string();
+}
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out;  // stdout
+  std::string log;  // stderr
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+// Runs `cover ARGS` to its end; stdout captured, stderr in a log file.
+Outcome cover_cli(const std::vector<std::string>& args, const std::string& log_name,
+                  std::chrono::seconds timeout = std::chrono::seconds(60)) {
+  std::vector<std::string> argv{COVER_CLI};
+  argv.insert(argv.end(), args.begin(), args.end());
+  SpawnOptions options;
+  options.capture_stdout = true;
+  options.log_file = log_path(log_name);
+  ChildProcess child(argv, options);
+  Outcome outcome;
+  while (const auto line = child.read_line(timeout)) outcome.out += *line + "\n";
+  outcome.exit_code = child.wait(timeout).value_or(-1);
+  outcome.log = read_text(options.log_file);
+  return outcome;
+}
+
+// A fleet directory made by `cover security init` in the test's temp folder.
+fs::path make_fleet(const std::string& name, const std::vector<std::string>& flags = {}) {
+  const fs::path dir = scratch() / ("fleet_" + name);
+  fs::remove_all(dir);
+  std::vector<std::string> args{"security", "init", dir.string()};
+  args.insert(args.end(), flags.begin(), flags.end());
+  const Outcome init = cover_cli(args, "init_" + name + ".log");
+  EXPECT_EQ(init.exit_code, 0) << init.log;
+  return dir;
+}
+
+std::vector<std::string> secure(const fs::path& fleet, const std::string& identity) {
+  return {"--security", fleet.string(), "--identity", identity};
+}
+
+std::vector<std::string> on(const std::string& vendor, int domain, std::vector<std::string> args) {
+  args.insert(args.end(), {"--dds", vendor, "--domain", std::to_string(domain)});
+  return args;
+}
+
+std::vector<std::string> operator+(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// One sample of each kind an attacker would want to inject.
+struct Injection {
+  std::string topic;
+  std::string json;
+  std::string allowed_identity;  // who may publish it (the positive control)
+};
+const std::vector<Injection> kInjections{
+    {"cover/task/request", R"({"task_id": "evil", "uav_id": 0})", "task-manager"},
+    {"cover/uav/0/cmd", R"({"uav_id": 0, "thrust_m_s2": 30.0, "armed": true})", "uav-agent-0"},
+    {"cover/ugv/0/imu", R"({"ugv_id": 0, "specific_force_m_s2": {"x": 50.0}})", "ugv-agent-0"},
+};
+
+// A secure `cover echo` (ground-station-0 of `fleet`) on `topic`, started before the
+// publisher and stopped by its timeout: its printed lines are the samples it took.
+std::unique_ptr<ChildProcess> start_echo(const fs::path& fleet, const std::string& vendor,
+                                         int domain, const std::string& topic,
+                                         const std::string& log) {
+  std::vector<std::string> argv{COVER_CLI};
+  argv = argv +
+         on(vendor, domain,
+            std::vector<std::string>{"echo", topic, "--json", "--count", "1000", "--timeout", "7"} +
+                secure(fleet, "ground-station-0"));
+  SpawnOptions options;
+  options.capture_stdout = true;
+  options.log_file = log_path(log);
+  return std::make_unique<ChildProcess>(argv, options);
+}
+
+int samples_taken(ChildProcess& echo) {
+  int samples = 0;
+  // Only JSON objects are samples: a vendor's log lines may share stdout.
+  while (const auto line = echo.read_line(std::chrono::seconds(20))) {
+    const auto sample = nlohmann::json::parse(*line, nullptr, false);
+    if (sample.is_object()) ++samples;
+  }
+  echo.wait(std::chrono::seconds(20));
+  return samples;
+}
+
+// `cover ARGS` started in the background, its output in a log file.
+std::unique_ptr<ChildProcess> start_cover(const std::vector<std::string>& args,
+                                          const std::string& log) {
+  std::vector<std::string> argv{COVER_CLI};
+  SpawnOptions options;
+  options.log_file = log_path(log);
+  return std::make_unique<ChildProcess>(argv + args, options);
+}
+
+class Security : public ::testing::TestWithParam<std::string> {};
+
+// Plain participants publish a task, a command and an IMU sample: the secure readers
+// take none. Then the permitted identities publish the same: the readers take them,
+// which shows the readers would have counted the plain samples had they arrived.
+TEST_P(Security, UnauthenticatedParticipantIsIgnored) {
+  const std::string vendor = GetParam();
+  const int domain = vendor == "fastdds" ? 120 : 121;
+  const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
+  for (const bool authenticated : {false, true}) {
+    std::vector<std::unique_ptr<ChildProcess>> echoes;
+    for (const auto& injection : kInjections) {
+      echoes.push_back(start_echo(fleet, vendor, domain, injection.topic,
+                                  "echo_" + injection.topic.substr(6, 3) + ".log"));
+    }
+    std::vector<std::unique_ptr<ChildProcess>>
+        publishers;  // at once, so all fit in the readers' time
+    for (const auto& injection : kInjections) {
+      const auto flags =
+          authenticated ? secure(fleet, injection.allowed_identity) : std::vector<std::string>{};
+      publishers.push_back(
+          start_cover(on(vendor, domain,
+                         std::vector<std::string>{"pub", injection.topic, injection.json, "--rate",
+                                                  "50", "--count", "80", "--wait", "2"} +
+                             flags),
+                      "pub_" + injection.topic.substr(6, 3) + ".log"));
+    }
+    for (auto& publisher : publishers) {
+      EXPECT_EQ(publisher->wait(std::chrono::seconds(30)), 0);
+    }
+    for (std::size_t i = 0; i < echoes.size(); ++i) {
+      const int taken = samples_taken(*echoes[i]);
+      SCOPED_TRACE(kInjections[i].topic + (authenticated ? " (permitted identity)" : " (plain)"));
+      if (authenticated) {
+        EXPECT_GT(taken, 10);
+      } else {
+        EXPECT_EQ(taken, 0);
+      }
+    }
+  }
+}
+
+// A ground station may not command a UAV: its writer is refused locally, with a message.
+TEST_P(Security, IdentityWithoutPermissionCannotWrite) {
+  const std::string vendor = GetParam();
+  const int domain = vendor == "fastdds" ? 122 : 123;
+  const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
+  for (const std::string topic : {"cover/uav/0/cmd", "cover/task/request", "cover/ugv/0/imu"}) {
+    const Outcome pub = cover_cli(on(vendor, domain,
+                                     std::vector<std::string>{"pub", topic, "{}", "--wait", "0"} +
+                                         secure(fleet, "ground-station-0")),
+                                  "gs_pub.log");
+    EXPECT_EQ(pub.exit_code, 2) << topic;
+    EXPECT_NE(pub.log.find("cannot create a writer on '" + topic + "'"), std::string::npos)
+        << pub.log;
+  }
+  // UAV agent 0 may not command UAV 1.
+  const fs::path two = make_fleet(vendor + "_two", {"--vendor", vendor, "--uavs", "2"});
+  const Outcome other =
+      cover_cli(on(vendor, domain,
+                   std::vector<std::string>{"pub", "cover/uav/1/cmd", "{}", "--wait", "0"} +
+                       secure(two, "uav-agent-0")),
+                "uav0_pub.log");
+  EXPECT_EQ(other.exit_code, 2) << other.log;
+}
+
+// Replaces the first `from` in `path` by `to`.
+void edit(const fs::path& path, const std::string& from, const std::string& to) {
+  std::string text = read_text(path);
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from << " not in " << path;
+  text.replace(at, from.size(), to);
+  write_text(path, text);
+}
+
+void sign(const fs::path& document, const fs::path& signed_document, const fs::path& ca_dir) {
+  const std::string command = "openssl smime -sign -in '" + document.string() + "' -text -out '" +
+                              signed_document.string() + "' -signer '" +
+                              (ca_dir / "permissions_ca.pem").string() + "' -inkey '" +
+                              (ca_dir / "ca.key").string() + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+}
+
+// A participant of another fleet (its own CA), with the permission there, and a ground
+// station whose permissions were widened and re-signed by another CA: the fleet's
+// readers take nothing from either.
+TEST_P(Security, ForeignCaAndForgedPermissionsAreIgnored) {
+  const std::string vendor = GetParam();
+  const int domain = vendor == "fastdds" ? 124 : 125;
+  const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
+  const fs::path foreign = make_fleet(vendor + "_foreign", {"--vendor", vendor});
+  // Forged: the fleet's own ground-station-0 certificate and key, permissions that allow
+  // it to command UAV 0, signed by the foreign CA, which the forger trusts locally.
+  const fs::path forged = scratch() / ("forged_" + vendor);
+  fs::remove_all(forged);
+  fs::copy(fleet, forged, fs::copy_options::recursive);
+  fs::copy_file(foreign / "permissions_ca.pem", forged / "permissions_ca.pem",
+                fs::copy_options::overwrite_existing);
+  fs::copy_file(foreign / "governance.p7s", forged / "governance.p7s",
+                fs::copy_options::overwrite_existing);
+  const fs::path station = forged / "identities" / "ground-station-0";
+  edit(station / "permissions.xml", "<publish>\n          <topics>\n",
+       "<publish>\n          <topics>\n            <topic>cover/uav/0/cmd</topic>\n");
+  sign(station / "permissions.xml", station / "permissions.p7s", foreign);
+  // The forger's own check passes for the forged identity: the refusal below is the
+  // receivers'.
+  const Outcome forged_check = cover_cli({"security", "check", forged.string()}, "forged.log");
+  EXPECT_NE(forged_check.out.find("ground-station-0: valid"), std::string::npos)
+      << forged_check.out;
+
+  const auto echo = start_echo(fleet, vendor, domain, "cover/uav/0/cmd", "echo_cmd.log");
+  std::vector<std::unique_ptr<ChildProcess>> publishers;
+  for (const auto& flags : {secure(foreign, "uav-agent-0"), secure(forged, "ground-station-0")}) {
+    publishers.push_back(start_cover(
+        on(vendor, domain,
+           std::vector<std::string>{"pub", "cover/uav/0/cmd", R"({"thrust_m_s2": 30.0})", "--rate",
+                                    "50", "--count", "80", "--wait", "2"} +
+               flags),
+        "forged_pub_" + std::to_string(publishers.size()) + ".log"));
+  }
+  // Both start: they are permitted by what they trust locally; the receivers refuse them.
+  for (auto& publisher : publishers) EXPECT_EQ(publisher->wait(std::chrono::seconds(30)), 0);
+  EXPECT_EQ(samples_taken(*echo), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Vendors, Security, ::testing::Values("fastdds", "cyclone"),
+                         [](const auto& info) { return info.param; });
+
+// `cover security check`: least privilege from the catalogue, expiry, private key modes.
+TEST(SecurityFleet, CheckReportsLeastPrivilegeAndExpiry) {
+  const fs::path fleet = make_fleet("check", {"--uavs", "2", "--days", "30"});
+  const Outcome check = cover_cli({"security", "check", fleet.string(), "--json"}, "check.log");
+  ASSERT_EQ(check.exit_code, 0) << check.out << check.log;
+  const auto report = nlohmann::json::parse(check.out);
+  ASSERT_EQ(report["identities"].size(), 7u);  // sim, task-manager, 2 UGVs, 2 UAVs, 1 station
+  const auto publishes = [&](const std::string& topic) {
+    std::vector<std::string> who;
+    for (const auto& identity : report["identities"]) {
+      for (const auto& t : identity["publish"]) {
+        if (t == topic) who.push_back(identity["identity"]);
+      }
+    }
+    return who;
+  };
+  using Names = std::vector<std::string>;
+  EXPECT_EQ(publishes("cover/uav/0/cmd"), Names{"uav-agent-0"});
+  EXPECT_EQ(publishes("cover/uav/1/cmd"), Names{"uav-agent-1"});
+  EXPECT_EQ(publishes("cover/task/request"), Names{"task-manager"});
+  EXPECT_EQ(publishes("cover/manager/request"), Names{"ground-station-0"});
+  EXPECT_EQ(publishes("cover/uav/1/rel/0"), Names{"sim"});
+  EXPECT_EQ(publishes("cover/ugv/1/imu"), Names{"ugv-agent-1"});
+  for (const auto& identity : report["identities"]) {
+    EXPECT_TRUE(identity["valid"].get<bool>());
+    const auto left = identity["seconds_to_expiry"].get<long>();
+    EXPECT_GT(left, 29 * 86400);
+    EXPECT_LE(left, 30 * 86400);
+    const fs::path key = fleet / "identities" / identity["identity"].get<std::string>() / "key.pem";
+    struct stat info {};
+    ASSERT_EQ(stat(key.c_str(), &info), 0);
+    EXPECT_EQ(info.st_mode & 0777, 0600u) << key;
+  }
+  // No key material in what init and check print.
+  EXPECT_EQ(check.out.find("PRIVATE KEY"), std::string::npos);
+  // A fleet directory is never overwritten.
+  const Outcome again = cover_cli({"security", "init", fleet.string()}, "again.log");
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_NE(again.log.find("not empty"), std::string::npos) << again.log;
+}
+
+// Broken files: check names each, and a process refuses to start (exit 2) instead of
+// running as a plain participant.
+TEST(SecurityFleet, BrokenExpiredOrExposedFilesStopAProcess) {
+  const fs::path fleet = make_fleet("broken");
+  const auto pub_as = [&](const std::string& identity, const std::string& tag) {
+    return cover_cli(on("fastdds", 126,
+                        std::vector<std::string>{"pub", "cover/task/abort", "{}", "--wait", "0"} +
+                            secure(fleet, identity)),
+                     "broken_" + tag + ".log");
+  };
+  const auto expect_refused = [&](const std::string& identity, const std::string& why) {
+    const Outcome pub = pub_as(identity, identity);
+    EXPECT_EQ(pub.exit_code, 2) << pub.log;
+    EXPECT_NE(pub.log.find(why), std::string::npos) << pub.log;
+    const Outcome check = cover_cli({"security", "check", fleet.string()}, "check.log");
+    EXPECT_EQ(check.exit_code, 1);
+    EXPECT_NE(check.out.find(identity + ": INVALID"), std::string::npos) << check.out;
+  };
+  ASSERT_EQ(pub_as("ground-station-0", "ok").exit_code, 0);
+
+  // Tampered permissions (a topic added after signing).
+  const fs::path tm = fleet / "identities" / "task-manager" / "permissions.p7s";
+  edit(tm, "<topic>cover/task/request</topic>", "<topic>cover/uav/0/cmd</topic>");
+  expect_refused("task-manager", "signature not accepted");
+  // Expired permissions, properly signed.
+  const fs::path gs = fleet / "identities" / "ground-station-0";
+  std::string xml = read_text(gs / "permissions.xml");
+  xml = std::regex_replace(xml, std::regex("<not_after>[^<]*</not_after>"),
+                           "<not_after>2020-01-01T00:00:00</not_after>");
+  write_text(gs / "permissions.xml", xml);
+  sign(gs / "permissions.xml", gs / "permissions.p7s", fleet);
+  expect_refused("ground-station-0", "permissions expired on 2020-01-01");
+  // A private key others can read.
+  fs::permissions(fleet / "identities" / "sim" / "key.pem", fs::perms::others_read,
+                  fs::perm_options::add);
+  expect_refused("sim", "chmod 600");
+  // A certificate of another CA.
+  const fs::path other = make_fleet("broken_other");
+  fs::copy_file(other / "identities" / "uav-agent-0" / "cert.pem",
+                fleet / "identities" / "uav-agent-0" / "cert.pem",
+                fs::copy_options::overwrite_existing);
+  expect_refused("uav-agent-0", "certificate not accepted");
+  // A missing file, an unknown identity, no identity at all.
+  fs::remove(fleet / "identities" / "ugv-agent-1" / "cert.pem");
+  expect_refused("ugv-agent-1", "cannot read");
+  const Outcome unknown = pub_as("uav-agent-7", "unknown");
+  EXPECT_EQ(unknown.exit_code, 2);
+  const Outcome none =
+      cover_cli({"pub", "cover/task/abort", "{}", "--security", fleet.string()}, "none.log");
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.log.find("no identity"), std::string::npos) << none.log;
+}
+
+struct LaunchOutcome {
+  int exit_code = -1;
+  nlohmann::json result;
+  std::string text;
+};
+
+LaunchOutcome launch(const std::vector<std::string>& flags, int domain) {
+  const fs::path run_dir = fs::temp_directory_path() / ("cover_sec_run_" + std::to_string(domain));
+  fs::remove_all(run_dir);
+  std::vector<std::string> argv{COVER_LAUNCH,
+                                std::string(COVER_CONFIG_DIR) + "/launch/scenario2.yaml",
+                                "--json",
+                                "--domain",
+                                std::to_string(domain),
+                                "--run-dir",
+                                run_dir.string()};
+  argv = argv + flags;
+  SpawnOptions options;
+  options.capture_stdout = true;
+  options.log_file = log_path("launch_" + std::to_string(domain) + ".log");
+  ChildProcess child(argv, options);
+  LaunchOutcome outcome;
+  while (const auto line = child.read_line(std::chrono::seconds(300))) outcome.text += *line + "\n";
+  outcome.exit_code = child.wait(std::chrono::seconds(300)).value_or(-1);
+  outcome.text += read_text(options.log_file);
+  outcome.result =
+      nlohmann::json::parse(outcome.text.substr(0, outcome.text.find('\n')), nullptr, false);
+  if (outcome.exit_code == 0) fs::remove_all(run_dir);
+  return outcome;
+}
+
+// Scenario 2 as real processes, every one with its own identity (cover-launch by role).
+TEST_P(Security, SecureScenarioTwoLands) {
+  const std::string vendor = GetParam();
+  const int domain = vendor == "fastdds" ? 127 : 128;
+  const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
+  const auto before = cover::test::shm_entries();
+  const LaunchOutcome run = launch({"--security", fleet.string(), "--dds", "*=" + vendor}, domain);
+  ASSERT_EQ(run.exit_code, 0) << run.text;
+  EXPECT_TRUE(run.result["success"].get<bool>()) << run.result.dump(2);
+  EXPECT_LE(run.result["landing_error_m"].get<double>(), 0.05);
+  for (const auto& name : cover::test::shm_entries()) {
+    if (!before.count(name)) {
+      EXPECT_TRUE(name.rfind("cover_sim_", 0) != 0) << name;
+    }
+  }
+}
+
+// Fast DDS 2.9 and Cyclone 0.10 do not reliably finish the security handshake with each
+// other: a secure launch that mixes them is refused before anything starts.
+TEST(SecurityFleet, MixedVendorSecureLaunchIsRefused) {
+  const fs::path fleet = make_fleet("mixed");  // a Fast DDS fleet
+  const LaunchOutcome run = launch({"--security", fleet.string(), "--dds", "ugv*=cyclone"}, 129);
+  EXPECT_EQ(run.exit_code, 2) << run.text;
+  EXPECT_NE(run.text.find("process 'ugv0'"), std::string::npos) << run.text;
+  EXPECT_NE(run.text.find("a secure fleet runs one vendor"), std::string::npos) << run.text;
+  const Outcome alone =
+      cover_cli(on("cyclone", 129,
+                   std::vector<std::string>{"pub", "cover/task/abort", "{}", "--wait", "0"} +
+                       secure(fleet, "ground-station-0")),
+                "mixed.log");
+  EXPECT_EQ(alone.exit_code, 2);
+  EXPECT_NE(alone.log.find("runs fastdds, this process cyclone"), std::string::npos) << alone.log;
+}
+
+}  // namespace
