@@ -5,8 +5,8 @@
 #include <chrono>
 
 #include "cover/clock/clock.hpp"
-#include "cover/task_manager/flyability.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "cover/task_manager/flyability.hpp"
 #include "cover/wire/task.hpp"
 #include "managed_task_msg.hpp"
 

@@ -7,11 +7,11 @@
 //    meaningfully NaN, and an infinite one is a unit mistake.
 #include <yaml-cpp/yaml.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "cover/config/config_error.hpp"
@@ -43,7 +43,8 @@ struct Loader {
 
 const std::vector<Loader>& loaders() {
   static const std::vector<Loader> all = {
-      {"sampc", "sampc.yaml", [](const std::string& p) { cover::sampc::SampcParams::load_file(p); }},
+      {"sampc", "sampc.yaml",
+       [](const std::string& p) { cover::sampc::SampcParams::load_file(p); }},
       {"planner", "planner.yaml",
        [](const std::string& p) { cover::planner::PlannerParams::load_file(p); }},
       {"mission", "mission.yaml",
@@ -75,7 +76,8 @@ const std::vector<Loader>& loaders() {
 // (`task_file: ../tasks/scenario2.yaml`) resolve as they would from config/.
 const fs::path& work_dir() {
   static const fs::path dir = [] {
-    const fs::path d = fs::temp_directory_path() / ("cover-fuzz-config-" + std::to_string(getpid()));
+    const fs::path d =
+        fs::temp_directory_path() / ("cover-fuzz-config-" + std::to_string(getpid()));
     fs::create_directories(d / "fuzz");
     for (const auto& entry : fs::directory_iterator(COVER_CONFIG_DIR)) {
       const fs::path link = d / entry.path().filename();
@@ -134,9 +136,21 @@ void hostile_value(const Loader& loader, cover::fuzz::FuzzInput& in) {
   if (scalars.empty()) return;
   YAML::Node target = scalars[static_cast<std::size_t>(in.range(0, 1 << 20)) % scalars.size()];
   const bool was_number = is_number(target);
-  static const std::vector<std::string> values = {
-      ".nan", ".inf", "-.inf", "1e308", "-1e308", "-1", "0", "-0.0", "4294967296",
-      "-2147483649", "99999999999999999999", "1e-320", "", "~", "'x'"};
+  static const std::vector<std::string> values = {".nan",
+                                                  ".inf",
+                                                  "-.inf",
+                                                  "1e308",
+                                                  "-1e308",
+                                                  "-1",
+                                                  "0",
+                                                  "-0.0",
+                                                  "4294967296",
+                                                  "-2147483649",
+                                                  "99999999999999999999",
+                                                  "1e-320",
+                                                  "",
+                                                  "~",
+                                                  "'x'"};
   const std::size_t pick = in.byte() % (values.size() + 2);
   if (pick < values.size()) {
     target = YAML::Load(values[pick].empty() ? "''" : values[pick]);

@@ -41,7 +41,8 @@ void same_values(const nlohmann::json& given, const cover::dds::json_detail::Jso
     require(encoded.is_number_integer() && given.dump() == encoded.dump(),
             path + ": " + given.dump() + " became " + encoded.dump());
   } else {
-    require(given.dump() == encoded.dump(), path + ": " + given.dump() + " became " + encoded.dump());
+    require(given.dump() == encoded.dump(),
+            path + ": " + given.dump() + " became " + encoded.dump());
   }
 }
 
@@ -70,12 +71,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   nlohmann::json given;
   try {
     given = nlohmann::json::parse(in.rest());
-  } catch (const nlohmann::json::parse_error&) {
-    return 0;  // cover pub: "invalid JSON: ..."
+  } catch (const nlohmann::json::exception&) {
+    return 0;  // cover pub: "invalid JSON: ..." (a syntax error, or a number beyond double)
   }
-  const bool known = cover::msg::with_type(topic.type_name, [&](auto tag) {
-    check<typename decltype(tag)::type>(given);
-  });
+  const bool known = cover::msg::with_type(
+      topic.type_name, [&](auto tag) { check<typename decltype(tag)::type>(given); });
   require(known, "catalogued type without type support: " + topic.type_name);
   return 0;
 }

@@ -21,12 +21,14 @@ namespace {
 using cover::fuzz::FuzzInput;
 using cover::fuzz::require;
 namespace msg = cover::msg;
-namespace tm = cover::task_manager;
+namespace tmg = cover::task_manager;
 
 constexpr int kUavs = 3;
 constexpr int kUgvs = 3;
 
-msg::Vector3 vec(FuzzInput& in) { return {in.real(), in.real(), in.real()}; }
+msg::Vector3 vec(FuzzInput& in) {
+  return {in.real(), in.real(), in.real()};
+}
 
 msg::UavStatus uav_status(FuzzInput& in, int topic) {
   msg::UavStatus s;
@@ -58,11 +60,11 @@ msg::UgvImu ugv_imu(FuzzInput& in, int topic) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   FuzzInput in(data, size);
-  tm::TaskStore store(":memory:");
-  const tm::TaskLimits limits;
-  tm::Dispatcher dispatcher(store, limits);
-  tm::FleetIntake intake(kUavs, kUgvs);
-  std::map<std::string, tm::TaskState> finals;
+  tmg::TaskStore store(":memory:");
+  const tmg::TaskLimits limits;
+  tmg::Dispatcher dispatcher(store, limits);
+  tmg::FleetIntake intake(kUavs, kUgvs);
+  std::map<std::string, tmg::TaskState> finals;
   double now_s = 1000.0;
   std::uint64_t refused = 0;
   while (!in.empty()) {
@@ -83,7 +85,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const auto why = intake.on_ugv_imu(imu, topic, now_s);
         refused += why.has_value();
         if (why) {
-          require(intake.view().ugv_imu_heard_s == before, "a refused IMU sample marked a UGV heard");
+          require(intake.view().ugv_imu_heard_s == before,
+                  "a refused IMU sample marked a UGV heard");
         } else {
           require(imu.ugv_id == static_cast<std::uint32_t>(topic) && topic < kUgvs,
                   "a UGV heard from another's topic");
@@ -92,7 +95,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       case 3: {
         const cover::mission::Task task = cover::wire::from_msg(cover::fuzz::transition_task(in));
-        if (!tm::why_not_recordable(task, "ops", "req")) {
+        if (!tmg::why_not_recordable(task, "ops", "req")) {
           dispatcher.submit(task, "ops", "req", intake.view(), now_s);
         }
         break;
@@ -101,26 +104,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         dispatcher.abort(cover::fuzz::task_id(in), in.text(20), now_s);
         break;
       default: {
-        const tm::LiveView live = intake.view();
-        const tm::Actions actions = dispatcher.step(live, now_s);
-        for (const tm::Dispatch& d : actions.dispatch) {
+        const tmg::LiveView live = intake.view();
+        const tmg::Actions actions = dispatcher.step(live, now_s);
+        for (const tmg::Dispatch& d : actions.dispatch) {
           const auto agent = live.agents.find(d.uav_id);
           require(agent != live.agents.end() &&
                       now_s - agent->second.heard_s <= limits.heartbeat_timeout_s,
                   "dispatched to an agent that is not up");
-          require(agent->second.task_state != tm::AgentReport::AgentTask::Pending &&
-                      agent->second.task_state != tm::AgentReport::AgentTask::Running,
+          require(agent->second.task_state != tmg::AgentReport::AgentTask::Pending &&
+                      agent->second.task_state != tmg::AgentReport::AgentTask::Running,
                   "dispatched to a busy agent");
         }
         break;
       }
     }
-    for (const tm::TaskRecord& r : store.list(true)) {
+    for (const tmg::TaskRecord& r : store.list(true)) {
       const auto seen = finals.find(r.task_id);
       if (seen != finals.end()) require(seen->second == r.state, "a final task changed state");
-      if (tm::is_final(r.state)) finals[r.task_id] = r.state;
+      if (tmg::is_final(r.state)) finals[r.task_id] = r.state;
     }
-    require(intake.remembered_messages() <= tm::FleetIntake::kRememberedMessages,
+    require(intake.remembered_messages() <= tmg::FleetIntake::kRememberedMessages,
             "the agents' messages grow without bound");
   }
   require(intake.rejections().total() == refused, "a refusal was not counted");

@@ -5,6 +5,7 @@
 // Contract: what the loop receives is finite, in range, addressed to this UAV and UGV,
 // never stamped beyond the clock's tolerance when taken, never older than what it got
 // before; a state the ladder calls usable is one of those.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -37,10 +38,14 @@ std::uint32_t id(FuzzInput& in, std::uint32_t expected) {
   }
 }
 
-msg::Vector3 vec(FuzzInput& in) { return {in.real(), in.real(), in.real()}; }
+msg::Vector3 vec(FuzzInput& in) {
+  return {in.real(), in.real(), in.real()};
+}
 
 std::int64_t stamp(FuzzInput& in, double now_s) {
-  const std::int64_t now_ns = wire::to_stamp_ns(std::isfinite(now_s) ? now_s : 0.0);
+  // Offsets from a clock within +-30 years (a hostile stamp of any value comes from case 0).
+  const std::int64_t now_ns =
+      wire::to_stamp_ns(std::isfinite(now_s) ? std::clamp(now_s, -1e9, 1e9) : 0.0);
   switch (in.byte() % 8) {
     case 0:
       return in.raw<std::int64_t>();  // anything, INT64_MIN..MAX
@@ -49,7 +54,7 @@ std::int64_t stamp(FuzzInput& in, double now_s) {
     case 2:
       return now_ns - in.range(0, 10'000'000'000LL);  // up to 10 s old
     default:
-      return now_ns + in.range(-20'000'000, 20'000'000);  // within +-20 ms
+      return now_ns + in.range(-20'000'000, 20'000'000);  // within +-20 ms of a finite clock
   }
 }
 
@@ -99,7 +104,8 @@ void check_state(const msg::RelativeState& s, double now_s, const wire::IntakeLi
 void check_imu(const msg::UgvImu& s, const wire::IntakeLimits& limits) {
   require(s.ugv_id == kUgv, "a foreign IMU sample got through");
   const auto imu = wire::from_msg(s);
-  require(imu.motion.specific_force_m_s2.allFinite() && imu.motion.angular_velocity_rad_s.allFinite() &&
+  require(imu.motion.specific_force_m_s2.allFinite() &&
+              imu.motion.angular_velocity_rad_s.allFinite() &&
               imu.motion.angular_acceleration_rad_s2.allFinite() &&
               std::isfinite(imu.motion.speed_m_s) && std::isfinite(imu.stamp_s),
           "a non-finite IMU sample got through");

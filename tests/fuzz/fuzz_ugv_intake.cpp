@@ -44,7 +44,9 @@ void csv(const std::string& text) {
   }
 }
 
-Eigen::Vector3d vec(FuzzInput& in) { return {in.real(), in.real(), in.real()}; }
+Eigen::Vector3d vec(FuzzInput& in) {
+  return {in.real(), in.real(), in.real()};
+}
 
 void stream(FuzzInput& in) {
   const ugv::ImuFilterParams params;

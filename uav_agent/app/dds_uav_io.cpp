@@ -25,8 +25,8 @@ void DdsUavInputs::set_now(double now_s) {
 void DdsUavInputs::reject(wire::Rejection reason, const std::string& topic) {
   rejections_.add(reason);
   if (rejections_.log_due(reason, clock::monotonic_ns() * 1e-9, limits_.log_period_s)) {
-    spdlog::warn("dropped a sample on {}: {} (rejected so far: {})", topic,
-                 wire::to_string(reason), rejections_.summary());
+    spdlog::warn("dropped a sample on {}: {} (rejected so far: {})", topic, wire::to_string(reason),
+                 rejections_.summary());
   }
 }
 
@@ -40,12 +40,13 @@ void DdsUavInputs::subscribe(const std::vector<int>& ugvs) {
     const auto imu_topic = dds::topics::ugv_imu(ugv);
     r->state_topic = state_topic.name();
     r->imu_topic = imu_topic.name();
-    r->state = participant_.make_reader(state_topic, [this, slots, ugv](const msg::RelativeState& s) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      const auto why = wire::check_content(s, uav_id_, ugv, limits_);
-      if (why) return reject(*why, slots->state_topic);
-      slots->state_slot.offer(s);
-    });
+    r->state =
+        participant_.make_reader(state_topic, [this, slots, ugv](const msg::RelativeState& s) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          const auto why = wire::check_content(s, uav_id_, ugv, limits_);
+          if (why) return reject(*why, slots->state_topic);
+          slots->state_slot.offer(s);
+        });
     r->imu = participant_.make_reader(imu_topic, [this, slots, ugv](const msg::UgvImu& s) {
       std::lock_guard<std::mutex> lock(mutex_);
       const auto why = wire::check_content(s, ugv, limits_);

@@ -57,7 +57,7 @@ class DdsUavInputs : public uav::UavInputs {
   };
   template <typename T>
   std::optional<T> take_accepted(wire::SampleSlot<T>& slot, const std::string& topic);
-  void reject(wire::Rejection reason, const std::string& topic);              // mutex_ held
+  void reject(wire::Rejection reason, const std::string& topic);  // mutex_ held
 
   dds::Participant& participant_;
   std::uint32_t uav_id_;

@@ -63,12 +63,11 @@ void IntakeLimits::validate() const {
   config::check(positive(max_speed_m_s), ctx + ".max_speed_m_s", "must be > 0");
   config::check(positive(attitude_norm_tolerance) && attitude_norm_tolerance < 0.5,
                 ctx + ".attitude_norm_tolerance", "must be in (0, 0.5)");
-  config::check(positive(max_specific_force_m_s2), ctx + ".max_specific_force_m_s2",
-                "must be > 0");
+  config::check(positive(max_specific_force_m_s2), ctx + ".max_specific_force_m_s2", "must be > 0");
   config::check(positive(max_angular_velocity_rad_s), ctx + ".max_angular_velocity_rad_s",
                 "must be > 0");
-  config::check(positive(max_angular_acceleration_rad_s2),
-                ctx + ".max_angular_acceleration_rad_s2", "must be > 0");
+  config::check(positive(max_angular_acceleration_rad_s2), ctx + ".max_angular_acceleration_rad_s2",
+                "must be > 0");
   config::check(positive(future_tolerance_s) && future_tolerance_s <= 10.0,
                 ctx + ".future_tolerance_s", "must be in (0, 10]");
   config::check(positive(log_period_s) && log_period_s <= 3600.0, ctx + ".log_period_s",

@@ -30,8 +30,8 @@ bool is_known_method(const std::string& method) {
 // The method as it is when printable ASCII, else only its length: a name from the wire
 // goes into logs and the task store, where control bytes must not.
 std::string unknown_method_message(const std::string& method) {
-  const bool printable = std::all_of(method.begin(), method.end(),
-                                     [](char c) { return c >= 0x20 && c < 0x7f; });
+  const bool printable =
+      std::all_of(method.begin(), method.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
   const std::string shown =
       printable && method.size() <= 64
           ? "'" + method + "'"

@@ -27,18 +27,18 @@ const char* to_string(Rejection reason);
 // Bounds of a plausible sample (config/intake.yaml, section `intake`); far above anything
 // a real flight produces, so only corrupt or hostile samples meet them.
 struct IntakeLimits {
-  double max_position_m = 1000.0;               // |relative position|
-  double max_speed_m_s = 50.0;                  // |relative velocity|
-  double attitude_norm_tolerance = 0.1;         // | |q| - 1 |
-  double max_specific_force_m_s2 = 160.0;       // |UGV specific force| (16 g)
-  double max_angular_velocity_rad_s = 35.0;     // |UGV angular velocity| (2000 deg/s)
+  double max_position_m = 1000.0;            // |relative position|
+  double max_speed_m_s = 50.0;               // |relative velocity|
+  double attitude_norm_tolerance = 0.1;      // | |q| - 1 |
+  double max_specific_force_m_s2 = 160.0;    // |UGV specific force| (16 g)
+  double max_angular_velocity_rad_s = 35.0;  // |UGV angular velocity| (2000 deg/s)
   double max_angular_acceleration_rad_s2 = 1000.0;
   double future_tolerance_s = 0.5;  // a stamp this far ahead of the receiver's clock is refused
   double log_period_s = 1.0;        // at most one log line per reason and period
 
   static IntakeLimits load(config::YamlReader& reader);
   static IntakeLimits load_file(const std::string& path);  // section `intake`, optional
-  void validate() const;                                    // throws ConfigError naming the key
+  void validate() const;                                   // throws ConfigError naming the key
 };
 
 // Content checks, needing no clock: finite, in range, addressed to (uav_id, ugv_id).
