@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -129,8 +130,21 @@ bool is_number(const YAML::Node& scalar) {
   return scalar.Tag() != "!" && YAML::convert<double>::decode(scalar, value);
 }
 
+// The shipped file, parsed once; each input edits a deep copy.
+YAML::Node shipped_copy(const Loader& loader) {
+  static std::map<std::string, YAML::Node> parsed;
+  auto found = parsed.find(loader.name);
+  if (found == parsed.end()) {
+    found = parsed
+                .emplace(loader.name,
+                         YAML::LoadFile(std::string(COVER_CONFIG_DIR) + "/" + loader.shipped))
+                .first;
+  }
+  return YAML::Clone(found->second);
+}
+
 void hostile_value(const Loader& loader, cover::fuzz::FuzzInput& in) {
-  YAML::Node root = YAML::LoadFile(std::string(COVER_CONFIG_DIR) + "/" + loader.shipped);
+  YAML::Node root = shipped_copy(loader);
   std::vector<YAML::Node> scalars;
   collect_scalars(root, scalars);
   if (scalars.empty()) return;

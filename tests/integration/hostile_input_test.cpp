@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -224,6 +225,8 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
       std::this_thread::sleep_for(50ms);
     }
     EXPECT_TRUE(succeeded);
+    std::cout << "hostile samples sent " << sent << ", rejected (agent's count) " << rejected
+              << ", commands " << commands.count() << ", bad commands " << commands.bad() << "\n";
     EXPECT_GT(commands.count(), 1000u);
     EXPECT_EQ(commands.bad(), 0u) << "non-finite or out-of-box commands";
   }
