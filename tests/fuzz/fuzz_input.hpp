@@ -72,7 +72,8 @@ class FuzzInput {
   }
 
   std::string text(std::size_t max_length) {
-    const std::size_t n = std::min<std::size_t>(byte() % (max_length + 1), left());
+    const std::size_t wanted = byte() % (max_length + 1);  // before left(): it consumes
+    const std::size_t n = std::min(wanted, left());
     std::string s(reinterpret_cast<const char*>(data_ + pos_), n);
     pos_ += n;
     return s;
