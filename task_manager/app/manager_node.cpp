@@ -6,6 +6,7 @@
 
 #include "cover/clock/clock.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "cover/task_manager/flyability.hpp"
 #include "cover/wire/task.hpp"
 #include "managed_task_msg.hpp"
 
@@ -115,6 +116,10 @@ void ManagerNode::handle(const msg::ManagerRequest& request, double now_s) {
 
 msg::ManagerReply ManagerNode::submit(const msg::ManagerRequest& request, double now_s) {
   const mission::Task task = wire::from_msg(request.task);
+  if (auto why = why_not_recordable(task, request.submitter, request.request_id)) {
+    spdlog::warn("a submission was refused unrecorded: {}", *why);
+    return reply_to(request, false, "rejected: " + *why);
+  }
   const TaskStore::SubmitResult result =
       dispatcher_.submit(task, request.submitter, request.request_id, fleet_.view(), now_s);
   const TaskRecord& r = result.record;

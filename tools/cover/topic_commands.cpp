@@ -140,7 +140,7 @@ int publish(const dds::ParticipantOptions& options, const PubRequest& request) {
   nlohmann::json parsed;
   try {
     parsed = nlohmann::json::parse(request.json);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // a syntax error, or a number beyond double
     throw std::runtime_error(std::string("invalid JSON: ") + e.what());
   }
   dds::Participant participant(options);

@@ -2,53 +2,103 @@
 
 #include <spdlog/spdlog.h>
 
+#include "cover/clock/clock.hpp"
 #include "cover/wire/control.hpp"
 #include "cover/wire/sensors.hpp"
 
 namespace cover::uav_agent {
 
-DdsUavInputs::DdsUavInputs(dds::Participant& participant, std::uint32_t uav_id, int ugv_count)
-    : participant_(participant), uav_id_(uav_id), readers_(static_cast<std::size_t>(ugv_count)) {}
+DdsUavInputs::DdsUavInputs(dds::Participant& participant, std::uint32_t uav_id, int ugv_count,
+                           wire::IntakeLimits limits)
+    : participant_(participant),
+      uav_id_(uav_id),
+      limits_(limits),
+      readers_(static_cast<std::size_t>(ugv_count)) {
+  limits_.validate();
+}
+
+void DdsUavInputs::set_now(double now_s) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  now_s_ = now_s;
+}
+
+void DdsUavInputs::reject(wire::Rejection reason, const std::string& topic) {
+  rejections_.add(reason);
+  if (rejections_.log_due(reason, clock::monotonic_ns() * 1e-9, limits_.log_period_s)) {
+    spdlog::warn("dropped a sample on {}: {} (rejected so far: {})", topic, wire::to_string(reason),
+                 rejections_.summary());
+  }
+}
 
 void DdsUavInputs::subscribe(const std::vector<int>& ugvs) {
   for (const int k : ugvs) {
     if (k < 0 || k >= static_cast<int>(readers_.size()) || readers_[k]) continue;
     auto r = std::make_unique<UgvReaders>();
+    UgvReaders* slots = r.get();
     const auto ugv = static_cast<std::uint32_t>(k);
-    r->state = participant_.make_reader(dds::topics::relative_state(uav_id_, ugv));
-    r->imu = participant_.make_reader(dds::topics::ugv_imu(ugv));
+    const auto state_topic = dds::topics::relative_state(uav_id_, ugv);
+    const auto imu_topic = dds::topics::ugv_imu(ugv);
+    r->state_topic = state_topic.name();
+    r->imu_topic = imu_topic.name();
+    r->state =
+        participant_.make_reader(state_topic, [this, slots, ugv](const msg::RelativeState& s) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          const auto why = wire::check_content(s, uav_id_, ugv, limits_);
+          if (why) return reject(*why, slots->state_topic);
+          slots->state_slot.offer(s);
+        });
+    r->imu = participant_.make_reader(imu_topic, [this, slots, ugv](const msg::UgvImu& s) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const auto why = wire::check_content(s, ugv, limits_);
+      if (why) return reject(*why, slots->imu_topic);
+      slots->imu_slot.offer(s);
+    });
+    std::lock_guard<std::mutex> lock(mutex_);
     readers_[k] = std::move(r);
   }
 }
 
+template <typename T>
+std::optional<T> DdsUavInputs::take_accepted(wire::SampleSlot<T>& slot, const std::string& topic) {
+  if (const auto why = slot.settle(now_s_, limits_)) reject(*why, topic);
+  return slot.accepted();
+}
+
 bool DdsUavInputs::relative_state(int ugv, mission::RelativeMeasurement& out) {
+  std::lock_guard<std::mutex> lock(mutex_);
   if (ugv < 0 || ugv >= static_cast<int>(readers_.size()) || !readers_[ugv]) return false;
-  const auto received = readers_[ugv]->state.latest();
-  if (!received) return false;
-  const auto state = wire::from_msg(received->sample);
+  const auto sample = take_accepted(readers_[ugv]->state_slot, readers_[ugv]->state_topic);
+  if (!sample) return false;
+  const auto state = wire::from_msg(*sample);
   if (!state) return false;  // the estimator lost this UGV: treated as missing
   out = *state;
   return true;
 }
 
 bool DdsUavInputs::ugv_imu(int ugv, mission::UgvImuMeasurement& out) {
+  std::lock_guard<std::mutex> lock(mutex_);
   if (ugv < 0 || ugv >= static_cast<int>(readers_.size()) || !readers_[ugv]) return false;
-  const auto received = readers_[ugv]->imu.latest();
-  if (!received) return false;
-  out = wire::from_msg(received->sample);
+  const auto sample = take_accepted(readers_[ugv]->imu_slot, readers_[ugv]->imu_topic);
+  if (!sample) return false;
+  out = wire::from_msg(*sample);
   return true;
 }
 
 std::int64_t DdsUavInputs::relative_stamp_ns(int ugv) const {
+  std::lock_guard<std::mutex> lock(mutex_);
   if (ugv < 0 || ugv >= static_cast<int>(readers_.size()) || !readers_[ugv]) return -1;
-  const auto received = readers_[ugv]->state.latest();
-  return received ? received->sample.stamp_ns : -1;
+  return readers_[ugv]->state_slot.newest_stamp_ns();
 }
 
 std::int64_t DdsUavInputs::imu_stamp_ns(int ugv) const {
+  std::lock_guard<std::mutex> lock(mutex_);
   if (ugv < 0 || ugv >= static_cast<int>(readers_.size()) || !readers_[ugv]) return -1;
-  const auto received = readers_[ugv]->imu.latest();
-  return received ? received->sample.stamp_ns : -1;
+  return readers_[ugv]->imu_slot.newest_stamp_ns();
+}
+
+wire::RejectionCounts DdsUavInputs::rejections() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return rejections_;
 }
 
 bool DdsUavInputs::wait_for_writers(std::chrono::milliseconds timeout) const {

@@ -4,19 +4,29 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/uav/uav_io.hpp"
+#include "cover/wire/intake.hpp"
 
 namespace cover::uav_agent {
 
 // The loop's inputs from DDS: the latest relative state and UGV IMU per UGV the task
-// names (subscribed when a task is accepted).
+// names (subscribed when a task is accepted). Every sample passes the intake checks
+// (wire/intake.hpp) first: one that fails is counted, logged and dropped, and the loop
+// keeps the last accepted one (which ages into the failsafe ladder's stale input).
 class DdsUavInputs : public uav::UavInputs {
  public:
-  DdsUavInputs(dds::Participant& participant, std::uint32_t uav_id, int ugv_count);
+  DdsUavInputs(dds::Participant& participant, std::uint32_t uav_id, int ugv_count,
+               wire::IntakeLimits limits = {});
+
+  // The clock the next pulls are checked against (future stamps); call before each step.
+  void set_now(double now_s);
 
   // Subscribes to the relative states and IMU of `ugvs` (each once; kept afterwards).
   void subscribe(const std::vector<int>& ugvs);
@@ -33,13 +43,28 @@ class DdsUavInputs : public uav::UavInputs {
   // The reference UGV's relative-state reader: realtime mode steps on its fresh samples.
   dds::Reader<msg::RelativeState>* relative_reader(int ugv);
 
+  // Samples refused so far, by reason.
+  wire::RejectionCounts rejections() const;
+
  private:
   struct UgvReaders {
-    dds::Reader<msg::RelativeState> state;
+    wire::SampleSlot<msg::RelativeState> state_slot;
+    wire::SampleSlot<msg::UgvImu> imu_slot;
+    std::string state_topic;
+    std::string imu_topic;
+    dds::Reader<msg::RelativeState> state;  // last: their callbacks fill the slots
     dds::Reader<msg::UgvImu> imu;
   };
+  template <typename T>
+  std::optional<T> take_accepted(wire::SampleSlot<T>& slot, const std::string& topic);
+  void reject(wire::Rejection reason, const std::string& topic);  // mutex_ held
+
   dds::Participant& participant_;
   std::uint32_t uav_id_;
+  wire::IntakeLimits limits_;
+  mutable std::mutex mutex_;  // the slots, the clock and the counts
+  std::optional<double> now_s_;
+  wire::RejectionCounts rejections_;
   std::vector<std::unique_ptr<UgvReaders>> readers_;  // by UGV id; null: not subscribed
 };
 

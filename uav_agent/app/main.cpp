@@ -59,6 +59,7 @@ cover::uav_agent::AgentOptions agent_options(const CommandLine& cli) {
   options.clock = *cover::uav_agent::parse_clock_mode(cli.clock);
   if (!cli.task_file.empty())
     options.task = cover::mission::load_task_file(cli.task_file, cli.ugv_count);
+  options.intake = cover::wire::IntakeLimits::load_file(cli.config_dir + "/intake.yaml");
   return options;
 }
 

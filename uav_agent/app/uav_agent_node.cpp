@@ -51,7 +51,7 @@ UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
                            uav::ControllerConfig config)
     : options_(std::move(options)),
       loop_(options_.uav_id, options_.ugv_count, std::move(config)),
-      inputs_(participant, options_.uav_id, options_.ugv_count),
+      inputs_(participant, options_.uav_id, options_.ugv_count, options_.intake),
       command_(participant, options_.uav_id),
       status_writer_(participant.make_writer(dds::topics::uav_status(options_.uav_id))),
       task_status_writer_(participant.make_writer(dds::topics::task_status())),
@@ -156,6 +156,7 @@ void UavAgentNode::run_realtime() {
 void UavAgentNode::step(double now_s) {
   last_step_s_ = now_s;
   take_requests(now_s);
+  inputs_.set_now(now_s);
   loop_.step(now_s, inputs_, command_);
   publish_reference_if_replanned();
   log_changes();
@@ -221,6 +222,7 @@ void UavAgentNode::publish_status(double now_s) {
   in.stamp_s = now_s;
   in.state = loop_.task_state();
   in.output = &loop_.output();
+  in.rejected_samples = inputs_.rejections().total();
   if (const mission::Task* task = loop_.task()) {
     in.task_id = task->task_id;
     in.process_count = static_cast<std::uint32_t>(task->processes.size());

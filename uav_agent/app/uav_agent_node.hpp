@@ -7,6 +7,7 @@
 #include "agent_clock.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/uav/uav_loop.hpp"
+#include "cover/wire/intake.hpp"
 #include "dds_uav_io.hpp"
 #include "task_intake.hpp"
 
@@ -25,6 +26,7 @@ struct AgentOptions {
   double silence_warning_s = 2.0;
   // Lockstep: before answering the first tick, wait this long for the inputs' publishers.
   double connect_timeout_s = 20.0;
+  wire::IntakeLimits intake;  // config/intake.yaml
 };
 
 // The UAV agent: DDS inputs -> UavLoop -> DDS command, trace, status, task status.

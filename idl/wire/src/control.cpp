@@ -1,5 +1,8 @@
 #include "cover/wire/control.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/enums.hpp"
 
@@ -83,6 +86,8 @@ msg::UavStatus to_status(const UavStatusInputs& in) {
   m.payload_attached = in.payload_attached;
   m.distance_to_stage_point_m = (in.position_m - status.stage.target_point_m).norm();
   m.speed_m_s = in.velocity_m_s.norm();
+  m.rejected_samples = static_cast<std::uint32_t>(
+      std::min<std::uint64_t>(in.rejected_samples, std::numeric_limits<std::uint32_t>::max()));
   return m;
 }
 

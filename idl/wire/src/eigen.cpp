@@ -1,6 +1,7 @@
 #include "cover/wire/eigen.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "cover/clock/clock.hpp"
 
@@ -23,7 +24,12 @@ Eigen::Quaterniond to_eigen(const msg::Quaternion& q) {
 }
 
 std::int64_t to_stamp_ns(double seconds) {
-  return std::isfinite(seconds) ? clock::s_to_ns(seconds) : 0;
+  if (!std::isfinite(seconds)) return 0;
+  // Beyond +-292 years llround's result is unspecified: saturate instead.
+  constexpr double kLimit_s = 9.2e9;
+  if (seconds >= kLimit_s) return std::numeric_limits<std::int64_t>::max();
+  if (seconds <= -kLimit_s) return std::numeric_limits<std::int64_t>::min();
+  return clock::s_to_ns(seconds);
 }
 
 double to_seconds(std::int64_t stamp_ns) {

@@ -1,6 +1,7 @@
 #include "cover/config/yaml_reader.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 namespace cover::config {
@@ -11,6 +12,12 @@ std::string default_config_dir() {
 }
 
 YAML::Node load_yaml_file(const std::string& path) {
+  // A directory opens as a stream on Linux, and reading it throws: say what it is instead
+  // (an empty `task_file:` resolves to the folder it is relative to).
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw ConfigError(path + ": is a directory, not a YAML file");
+  }
   std::ifstream stream(path);
   if (!stream) throw ConfigError(path + ": cannot open file");
   try {
@@ -18,6 +25,8 @@ YAML::Node load_yaml_file(const std::string& path) {
   } catch (const YAML::Exception& e) {
     throw ConfigError(path + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
                       ": " + e.msg);
+  } catch (const std::ios_base::failure& e) {
+    throw ConfigError(path + ": cannot read file (" + e.what() + ")");
   }
 }
 
@@ -46,7 +55,11 @@ bool YamlReader::has(const std::string& key) const {
 void YamlReader::reject_unknown_keys() const {
   if (!node_.IsMap()) return;
   for (const auto& entry : node_) {
-    const auto key = entry.first.as<std::string>();
+    // A list or a mapping used as a key (`{[0, 0, 1]: x}`, often a stray comma) names nothing.
+    if (!entry.first.IsScalar()) {
+      throw ConfigError(context_ + ": a key that is not a name" + line_of(entry.first));
+    }
+    const auto key = entry.first.Scalar();
     if (std::find(read_keys_.begin(), read_keys_.end(), key) == read_keys_.end()) {
       throw ConfigError(context_ + ": unknown key '" + key + "'" + line_of(entry.first));
     }

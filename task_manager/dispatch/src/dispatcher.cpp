@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <set>
+#include <stdexcept>
 
 #include "cover/task_manager/flyability.hpp"
 
@@ -37,6 +38,7 @@ Dispatcher::Dispatcher(TaskStore& store, TaskLimits limits)
 TaskStore::SubmitResult Dispatcher::submit(const mission::Task& task, const std::string& submitter,
                                            const std::string& request_id, const LiveView& live,
                                            double now_s) {
+  if (auto why = why_not_recordable(task, submitter, request_id)) throw std::invalid_argument(*why);
   if (auto existing = store_.find(task.task_id)) return {false, std::move(*existing)};
   if (auto why = why_not_flyable(task, live, limits_, now_s)) {
     return store_.submit(task, submitter, request_id, TaskState::Rejected, *why, now_s);

@@ -116,6 +116,28 @@ std::optional<std::string> check_ugvs(const mission::Task& task, const LiveView&
 }
 }  // namespace
 
+std::optional<std::string> why_not_recordable(const mission::Task& task,
+                                              const std::string& submitter,
+                                              const std::string& request_id) {
+  if (!mission::is_valid_task_id(task.task_id)) {
+    return "task_id must be 1.." + std::to_string(mission::kMaxTaskIdLength) +
+           " characters of A-Z a-z 0-9 _ - . : @ / +";
+  }
+  const auto readable = [](const std::string& text) {
+    if (text.empty() || text.size() > kMaxSubmitterLength) return false;
+    return std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+  };
+  if (!readable(submitter)) {
+    return "submitter must be 1.." + std::to_string(kMaxSubmitterLength) +
+           " printable ASCII characters";
+  }
+  if (!readable(request_id)) {
+    return "request_id must be 1.." + std::to_string(kMaxSubmitterLength) +
+           " printable ASCII characters";
+  }
+  return std::nullopt;
+}
+
 std::optional<std::string> why_not_flyable(const mission::Task& task, const LiveView& live,
                                            const TaskLimits& limits, double now_s) {
   for (std::size_t i = 0; i < task.processes.size(); ++i) {

@@ -77,7 +77,10 @@ mission::TransitionProcess process_from_json(const json& j) {
 std::string task_to_json(const mission::Task& task) {
   json processes = json::array();
   for (const auto& p : task.processes) processes.push_back(process_to_json(p));
-  return json{{"task_id", task.task_id}, {"uav_id", task.uav_id}, {"processes", processes}}.dump();
+  // A string from the wire need not be UTF-8 (such a method is rejected, but recorded):
+  // invalid bytes are stored as U+FFFD rather than failing the submission.
+  return json{{"task_id", task.task_id}, {"uav_id", task.uav_id}, {"processes", processes}}.dump(
+      -1, ' ', false, json::error_handler_t::replace);
 }
 
 mission::Task task_from_json(const std::string& text) {

@@ -87,9 +87,12 @@ void insert_record(sqlite3* db, const TaskRecord& r) {
 // Connection settings are per connection, so they are set on every open. WAL lets readers
 // (the ground station, the CLI) read while the manager writes; synchronous=FULL makes a
 // committed transaction durable across a power cut, not only a process crash.
-void configure(sqlite3* db) {
+// An in-memory store (path ":memory:", for tests and fuzzing) has no file to journal to:
+// SQLite keeps its journal in memory, and there is nothing to make durable.
+void configure(sqlite3* db, bool in_memory) {
   sqlite3_busy_timeout(db, kBusyTimeout_ms);
   sqlite::exec(db, "PRAGMA foreign_keys = ON");
+  if (in_memory) return;
   sqlite::Statement journal(db, "PRAGMA journal_mode = WAL");
   if (!journal.step() || journal.text(0) != "wal") {
     sqlite::fail(db, "cannot switch to WAL journal (got '" + journal.text(0) + "')");
@@ -103,7 +106,7 @@ TaskStore::TaskStore(const std::string& path) : path_(path) {
       sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr);
   try {
     if (rc != SQLITE_OK) sqlite::fail(db_, "cannot open");
-    configure(db_);
+    configure(db_, path == ":memory:");
     schema::migrate(db_, kSchemaVersion);
   } catch (const StoreError& e) {
     sqlite3_close(db_);

@@ -1,5 +1,6 @@
 #include "cover/mission/task.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 
@@ -26,8 +27,16 @@ bool is_known_method(const std::string& method) {
   return method.empty() || sampc::parse_mode(method).has_value();
 }
 
+// The method as it is when printable ASCII, else only its length: a name from the wire
+// goes into logs and the task store, where control bytes must not.
 std::string unknown_method_message(const std::string& method) {
-  return "'" + method + "' is not one of " + sampc::mode_names(" | ");
+  const bool printable =
+      std::all_of(method.begin(), method.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+  const std::string shown =
+      printable && method.size() <= 64
+          ? "'" + method + "'"
+          : "a " + std::to_string(method.size()) + "-byte name that is no method";
+  return shown + " is not one of " + sampc::mode_names(" | ");
 }
 
 // The task's or the process's `method:` key, checked where it is written.

@@ -33,6 +33,7 @@ struct UavStatusInputs {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
   bool payload_attached = false;
+  std::uint64_t rejected_samples = 0;  // the intake's count (saturates on the wire)
 };
 msg::UavStatus to_status(const UavStatusInputs& in);
 

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -52,6 +53,18 @@ Json encode(const T& value) {
   }
 }
 
+// Whether the JSON integer is a value of T: get<T>() would silently wrap one that is not.
+template <typename T, typename J>
+bool fits(const J& json) {
+  using Max = unsigned long long;
+  if (json.is_number_unsigned()) {
+    return json.template get<Max>() <= static_cast<Max>(std::numeric_limits<T>::max());
+  }
+  const long long v = json.template get<long long>();
+  if (v >= 0) return static_cast<Max>(v) <= static_cast<Max>(std::numeric_limits<T>::max());
+  return std::is_signed_v<T> && v >= static_cast<long long>(std::numeric_limits<T>::min());
+}
+
 template <typename J, typename T>
 void decode_struct(const J& json, T& value, const std::string& path) {
   if (!json.is_object()) throw JsonError(path + ": expected an object");
@@ -85,9 +98,10 @@ void decode(const J& json, T& value, const std::string& path) {
     if (!json.is_number()) throw JsonError(path + ": expected a number, got " + json.dump());
     if constexpr (std::is_integral_v<T>) {
       if (!json.is_number_integer()) throw JsonError(path + ": expected an integer");
-      if (std::is_unsigned_v<T> && json.template get<long long>() < 0 &&
-          !json.is_number_unsigned()) {
-        throw JsonError(path + ": expected a non-negative integer");
+      if (!fits<T>(json)) {
+        throw JsonError(path + ": " + json.dump() + " is out of range (" +
+                        std::to_string(std::numeric_limits<T>::min()) + ".." +
+                        std::to_string(std::numeric_limits<T>::max()) + ")");
       }
     }
     value = json.template get<T>();

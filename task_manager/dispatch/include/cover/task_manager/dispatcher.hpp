@@ -36,6 +36,8 @@ class Dispatcher {
 
   // Validates (why_not_flyable) and stores: Queued, or Rejected with the reason. Idempotent
   // by task id: a repeat returns the stored record, created = false, whatever the live view.
+  // A submission that cannot be recorded (why_not_recordable) throws std::invalid_argument
+  // and stores nothing: check it first.
   TaskStore::SubmitResult submit(const mission::Task& task, const std::string& submitter,
                                  const std::string& request_id, const LiveView& live, double now_s);
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -14,6 +15,16 @@ namespace cover::task_manager {
 // mission::Task::validate's message, "UAV 1 is not up (no heartbeat for 3.2 s)",
 // "UGV 3 is not publishing its IMU". The task's own faults come first: they do not go away
 // by waiting, while a UAV or UGV that is down may come up.
+// nullopt when the submission can be recorded at all (queued or rejected); else why not: a
+// task id no task can have (mission::is_valid_task_id), a submitter or request id that is
+// empty, longer than kMaxSubmitterLength or not printable ASCII. Such a submission is
+// answered but not stored, and not echoed into a log: the store and the logs keep only what
+// a person can read back, and a flood of junk ids cannot fill the database.
+inline constexpr std::size_t kMaxSubmitterLength = 512;
+std::optional<std::string> why_not_recordable(const mission::Task& task,
+                                              const std::string& submitter,
+                                              const std::string& request_id);
+
 std::optional<std::string> why_not_flyable(const mission::Task& task, const LiveView& live,
                                            const TaskLimits& limits, double now_s);
 

@@ -25,6 +25,7 @@ class TaskStore {
 
   // Opens or creates the file and creates or migrates its schema. Throws StoreError (with
   // SQLite's message and the path) when it cannot, or when a newer version wrote the file.
+  // ":memory:" is a store in memory only (tests, fuzzing): nothing survives the process.
   explicit TaskStore(const std::string& path);
   ~TaskStore();
   TaskStore(const TaskStore&) = delete;
