@@ -43,8 +43,8 @@ void read_network_keys(config::YamlReader& reader, ParticipantOptions& options) 
   security.reject_unknown_keys();
 }
 
-// Applies profile `name` of `profiles` on top of `options`; every profile is checked for
-// unknown keys, so that a typo in one not selected today still fails loudly.
+// Applies profile `name` of `profiles` on top of `options`; every profile is checked (keys and
+// values), so that a typo in one not selected today still fails loudly.
 void apply_profile(config::YamlReader profiles, const std::string& name,
                    ParticipantOptions& options) {
   bool found = name.empty();
@@ -57,6 +57,12 @@ void apply_profile(config::YamlReader profiles, const std::string& name,
       config::YamlReader profile = profiles.child(key);
       read_network_keys(profile, key == name ? options : scratch);
       profile.reject_unknown_keys();
+      // A profile not selected today is still checked: it is what the field will run.
+      try {
+        scratch.validate();
+      } catch (const DdsError& e) {
+        throw config::ConfigError(profile.context() + ": " + e.what());
+      }
       found = found || key == name;
     }
   }
