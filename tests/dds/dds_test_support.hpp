@@ -10,14 +10,23 @@
 #include <string>
 #include <thread>
 
+#include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant_options.hpp"
 
 namespace cover::test {
 
-// A domain id and topic prefix of this test process's own, so that test binaries run in
-// parallel by ctest never see each other's samples.
+// Domains 1..110 are the DDS tests' own: the integration tests and the benchmarks use
+// fixed domains from 120 up.
+constexpr int kFirstPrivateDomain = 1;
+constexpr int kLastPrivateDomain = 110;
+
+// A domain id of this test process's own, held for its lifetime (DomainClaim), so that
+// test binaries run in parallel by ctest, or by two suites at once, never see each
+// other's samples.
 inline int private_domain_id() {
-  return 1 + static_cast<int>(getpid() % 200);
+  static const cover::dds::DomainClaim claim =
+      cover::dds::DomainClaim::claim_any(kFirstPrivateDomain, kLastPrivateDomain);
+  return claim.domain();
 }
 inline std::string private_prefix(const std::string& name) {
   return "cover_test/" + name + "/p" + std::to_string(getpid());

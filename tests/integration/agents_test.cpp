@@ -53,6 +53,7 @@ bool wait_for_world(cover::shm::SeqlockReader<SharedWorld>& world,
 }
 
 struct System {
+  cover::dds::DomainClaim claim;  // first: held until every child has stopped
   int domain;
   std::string run_id;
   std::unique_ptr<ChildProcess> sim;
@@ -60,7 +61,7 @@ struct System {
 
   System(int domain_id, const std::string& scenario, const std::string& clock = "realtime",
          const std::vector<std::string>& sim_args = {})
-      : domain(domain_id) {
+      : claim(cover::test::claim_domain(domain_id)), domain(domain_id) {
     run_id = "it_" + std::to_string(getpid()) + "_" + std::to_string(domain);
     std::vector<std::string> argv{bin("cover-sim"), "--scenario", scenario, "--clock", clock,
                                   "--run-id",       run_id};
@@ -282,6 +283,57 @@ TEST(AgentsAndSimulator, LockstepStallNamesTheMissingAgent) {
   kill(uav.pid(), SIGCONT);
   EXPECT_EQ(uav.terminate(10s, SIGINT), 0);
   for (auto& ugv : system.ugvs) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
+}
+
+// The simulator publishes a lockstep tick again until it hears the answer; an answer can
+// be lost (written before the agent's command writer matched the simulator's reader).
+// Here the "simulator" is the test: a command reader that joins after tick 0 was answered
+// must still get tick 0's command when the tick comes again, the same one (not a second
+// step), and tick 1 is then stepped as usual.
+TEST(AgentsAndSimulator, ALockstepTickPublishedAgainIsAnsweredAgain) {
+  const auto claim = cover::test::claim_domain(177);
+  cover::dds::ParticipantOptions options;
+  options.domain_id = claim.domain();
+  cover::dds::Participant simulator(options);
+  auto clock = simulator.make_writer(cover::dds::topics::sim_clock());
+  auto trace = simulator.make_reader(cover::dds::topics::uav_trace(0));
+  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--clock", "lockstep", "--ugv-count", "2"},
+                   quiet("cyclone", claim.domain(), "answer_again_uav.log"));
+  ASSERT_TRUE(clock.wait_for_readers(1, 30s));
+  auto tick = [](std::uint64_t n) {
+    cover::msg::SimClock t;
+    t.tick = n;
+    t.stamp_ns = static_cast<std::int64_t>(n) * 10'000'000;
+    t.period_s = 0.01;
+    t.mode = cover::msg::ClockMode::CLOCK_MODE_LOCKSTEP;
+    t.imu_stamp_ns = -1;
+    t.relative_stamp_ns = -1;
+    return t;
+  };
+  // Publishes tick `n` every 20 ms until `answered` holds (10 s at most), as the simulator does.
+  auto publish_until = [&](std::uint64_t n, const std::function<bool()>& answered) {
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while (!answered() && std::chrono::steady_clock::now() < deadline) {
+      clock.write(tick(n));
+      std::this_thread::sleep_for(20ms);  // the simulator's republish period, not a sync
+    }
+    return answered();
+  };
+  auto stamped = [](const auto& reader, std::int64_t stamp_ns) {
+    const auto last = reader.latest();
+    return last && last->sample.stamp_ns == stamp_ns;
+  };
+  ASSERT_TRUE(publish_until(0, [&] { return stamped(trace, 0); })) << "tick 0 never answered";
+
+  auto command = simulator.make_reader(cover::dds::topics::uav_command(0));
+  ASSERT_TRUE(command.wait_for_writers(1, 30s));
+  ASSERT_TRUE(publish_until(0, [&] { return stamped(command, 0); }))
+      << "tick 0 published again was not answered again";
+  EXPECT_EQ(command.latest()->sample.seq, 0u) << "tick 0 was stepped twice";
+
+  ASSERT_TRUE(publish_until(1, [&] { return stamped(command, 10'000'000); }));
+  EXPECT_EQ(command.latest()->sample.seq, 1u);
+  EXPECT_EQ(uav.terminate(10s, SIGINT), 0);
 }
 
 }  // namespace

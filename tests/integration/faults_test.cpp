@@ -46,7 +46,8 @@ const std::string kTask = std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml
 // The simulator (realtime) and both UGV agents on their own domain.
 class FaultSystem {
  public:
-  FaultSystem(int domain, const std::vector<std::string>& sim_args) : domain_(domain) {
+  FaultSystem(int domain, const std::vector<std::string>& sim_args)
+      : claim_(cover::test::claim_domain(domain)), domain_(domain) {
     run_id_ = "ft_" + std::to_string(getpid()) + "_" + std::to_string(domain);
     std::vector<std::string> argv{bin("cover-sim"), "--clock", "realtime", "--run-id", run_id_};
     argv.insert(argv.end(), sim_args.begin(), sim_args.end());
@@ -90,6 +91,7 @@ class FaultSystem {
   void close_world() { world_.reset(); }
 
  private:
+  cover::dds::DomainClaim claim_;  // first: held until every child has stopped
   int domain_;
   std::string run_id_;
   std::unique_ptr<ChildProcess> sim_;

@@ -148,6 +148,7 @@ std::size_t count_of(const std::string& text, const std::string& needle) {
 }
 
 TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
+  const auto claim = cover::test::claim_domain(kDomain);
   const std::string run_id = "hi_" + std::to_string(getpid());
   ChildProcess sim(
       {bin("cover-sim"), "--scenario", "scenario2", "--clock", "realtime", "--run-id", run_id},

@@ -32,6 +32,7 @@ struct LaunchRun {
 
 // Each test on its own DDS domain and run folder.
 LaunchRun launch(const std::string& file, std::vector<std::string> flags, int domain) {
+  const auto claim = cover::test::claim_domain(domain);
   const fs::path run_dir = fs::temp_directory_path() / ("cover_it_" + std::to_string(domain));
   fs::remove_all(run_dir);
   std::vector<std::string> argv = {COVER_LAUNCH,

@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <set>
 #include <string>
 
+#include "cover/dds/domain_claim.hpp"
 #include "cover/process/child_process.hpp"
 
 // What the integration tests share to start COVER's processes and check what they leave.
@@ -22,6 +24,13 @@ inline process::SpawnOptions quiet(const std::string& vendor, int domain, const 
   options.extra_env = {"COVER_DDS=" + vendor, "COVER_DDS_DOMAIN=" + std::to_string(domain)};
   options.log_file = ::testing::TempDir() + log;
   return options;
+}
+
+// Holds `domain` (fixed per test, from 120 up; the DDS tests take 1..110) for the test:
+// a second suite or a benchmark running at the same time waits instead of mixing its
+// processes' samples with this test's.
+inline dds::DomainClaim claim_domain(int domain) {
+  return dds::DomainClaim::claim(domain, std::chrono::minutes(10));
 }
 
 // The names in /dev/shm now.

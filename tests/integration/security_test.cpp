@@ -159,6 +159,7 @@ class Security : public ::testing::TestWithParam<std::string> {};
 TEST_P(Security, UnauthenticatedParticipantIsIgnored) {
   const std::string vendor = GetParam();
   const int domain = vendor == "fastdds" ? 120 : 121;
+  const auto claim = cover::test::claim_domain(domain);
   const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
   for (const bool authenticated : {false, true}) {
     std::vector<std::unique_ptr<ChildProcess>> echoes;
@@ -197,6 +198,7 @@ TEST_P(Security, UnauthenticatedParticipantIsIgnored) {
 TEST_P(Security, IdentityWithoutPermissionCannotWrite) {
   const std::string vendor = GetParam();
   const int domain = vendor == "fastdds" ? 122 : 123;
+  const auto claim = cover::test::claim_domain(domain);
   const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
   for (const std::string topic : {"cover/uav/0/cmd", "cover/task/request", "cover/ugv/0/imu"}) {
     const Outcome pub = cover_cli(on(vendor, domain,
@@ -240,6 +242,7 @@ void sign(const fs::path& document, const fs::path& signed_document, const fs::p
 TEST_P(Security, ForeignCaAndForgedPermissionsAreIgnored) {
   const std::string vendor = GetParam();
   const int domain = vendor == "fastdds" ? 124 : 125;
+  const auto claim = cover::test::claim_domain(domain);
   const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
   const fs::path foreign = make_fleet(vendor + "_foreign", {"--vendor", vendor});
   // Forged: the fleet's own ground-station-0 certificate and key, permissions that allow
@@ -380,6 +383,7 @@ struct LaunchOutcome {
 };
 
 LaunchOutcome launch(const std::vector<std::string>& flags, int domain) {
+  const auto claim = cover::test::claim_domain(domain);
   const fs::path run_dir = fs::temp_directory_path() / ("cover_sec_run_" + std::to_string(domain));
   fs::remove_all(run_dir);
   std::vector<std::string> argv{COVER_LAUNCH,

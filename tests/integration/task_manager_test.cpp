@@ -43,7 +43,9 @@ class StandingSystem {
  public:
   StandingSystem(int domain, const std::string& manager_vendor,
                  const std::string& clock = "realtime", int uavs = 1)
-      : domain_(domain), manager_vendor_(manager_vendor) {
+      : claim_(cover::test::claim_domain(domain)),
+        domain_(domain),
+        manager_vendor_(manager_vendor) {
     run_id_ = "tm_" + std::to_string(getpid()) + "_" + std::to_string(domain);
     db_ = ::testing::TempDir() + run_id_ + ".db";
     fs::remove(db_);
@@ -132,6 +134,7 @@ class StandingSystem {
                                           quiet(vendor, domain_, run_id_ + "_" + name + ".log"));
   }
 
+  cover::dds::DomainClaim claim_;  // first: held until every child has stopped
   int domain_;
   std::string manager_vendor_;
   std::string run_id_;

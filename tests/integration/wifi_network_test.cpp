@@ -60,6 +60,7 @@ class WifiNetwork : public ::testing::Test {
 
   // cover-launch with config/launch/scenario2_wifi.yaml in realtime; its --json report.
   nlohmann::json fly(const std::vector<std::string>& dds_flags, int domain) {
+    const auto claim = cover::test::claim_domain(domain);
     const fs::path run_dir = fs::temp_directory_path() / ("cover_wifi_" + std::to_string(domain));
     fs::remove_all(run_dir);
     std::vector<std::string> argv = {COVER_LAUNCH,

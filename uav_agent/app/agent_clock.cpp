@@ -1,9 +1,15 @@
 #include "agent_clock.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include "cover/clock/clock.hpp"
 #include "cover/wire/eigen.hpp"
 
 namespace cover::uav_agent {
+
+namespace {
+constexpr std::int64_t kClockBackLogPeriodNs = 1'000'000'000;
+}  // namespace
 
 std::optional<ClockMode> parse_clock_mode(const std::string& text) {
   if (text == "lockstep") return ClockMode::Lockstep;
@@ -21,19 +27,37 @@ AgentClock::AgentClock(dds::Participant& participant, ClockMode mode) : mode_(mo
 void AgentClock::on_tick(const msg::SimClock& tick) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    // The simulator repeats a tick until it is answered: take each one once.
-    const bool repeated = last_tick_ && tick.tick <= last_tick_->tick;
-    if (mode_ == ClockMode::Lockstep && !repeated) ticks_.push_back(tick);
+    if (mode_ == ClockMode::Lockstep) queue_lockstep(tick);
     last_tick_ = tick;
     last_tick_monotonic_ns_ = clock::monotonic_ns();
   }
   arrived_.notify_all();
 }
 
-std::optional<msg::SimClock> AgentClock::next_tick(std::chrono::milliseconds timeout) {
+void AgentClock::queue_lockstep(const msg::SimClock& tick) {
+  if (last_tick_ && tick.tick < last_tick_->tick) {
+    // Time going back is a simulator started again on this domain (or a second one on
+    // it): follow it; the intake then refuses samples older than the ones taken, and the
+    // failsafe ladder acts on the stale inputs.
+    const std::int64_t now_ns = clock::monotonic_ns();
+    if (!clock_back_logged_ns_ || now_ns - *clock_back_logged_ns_ >= kClockBackLogPeriodNs) {
+      spdlog::warn(
+          "simulator clock went back from tick {} to tick {}: a new simulator run, or two on "
+          "this domain",
+          last_tick_->tick, tick.tick);
+      clock_back_logged_ns_ = now_ns;
+    }
+  }
+  const bool again = last_tick_ && tick.tick == last_tick_->tick;
+  // A tick already waiting to be answered needs no second entry.
+  if (again && !ticks_.empty() && ticks_.back().tick.tick == tick.tick) return;
+  ticks_.push_back({tick, again});
+}
+
+std::optional<LockstepTick> AgentClock::next_tick(std::chrono::milliseconds timeout) {
   std::unique_lock<std::mutex> lock(mutex_);
   if (!arrived_.wait_for(lock, timeout, [this] { return !ticks_.empty(); })) return std::nullopt;
-  msg::SimClock tick = ticks_.front();
+  LockstepTick tick = ticks_.front();
   ticks_.pop_front();
   return tick;
 }

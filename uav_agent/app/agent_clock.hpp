@@ -20,27 +20,39 @@ namespace cover::uav_agent {
 enum class ClockMode { Lockstep, Realtime, System };
 std::optional<ClockMode> parse_clock_mode(const std::string& text);
 
+// A lockstep tick as the agent takes it. The simulator publishes a tick again until
+// every agent has answered it, so an agent meets the tick it just answered again when
+// its answer was lost (written before its command writer matched the simulator's
+// reader): it then answers again, without stepping twice.
+struct LockstepTick {
+  msg::SimClock tick;
+  bool answered_before = false;
+};
+
 class AgentClock {
  public:
   AgentClock(dds::Participant& participant, ClockMode mode);
 
   ClockMode mode() const { return mode_; }
-  // Lockstep: the next tick not yet taken, waiting up to `timeout`.
-  std::optional<msg::SimClock> next_tick(std::chrono::milliseconds timeout);
+  // Lockstep: the next tick to act on (a new one, or the last one published again),
+  // waiting up to `timeout`.
+  std::optional<LockstepTick> next_tick(std::chrono::milliseconds timeout);
   // Now on the clock the measurements are stamped with, s; nullopt before the simulator's
   // first tick (realtime) .
   std::optional<double> now_s() const;
 
  private:
   void on_tick(const msg::SimClock& tick);
+  void queue_lockstep(const msg::SimClock& tick);  // mutex_ held
 
   ClockMode mode_;
   mutable std::mutex mutex_;
   std::condition_variable arrived_;
-  std::deque<msg::SimClock> ticks_;
+  std::deque<LockstepTick> ticks_;
   std::optional<msg::SimClock> last_tick_;
   std::int64_t last_tick_monotonic_ns_ = 0;
-  dds::Reader<msg::SimClock> reader_;  // last: its callback uses the members above
+  std::optional<std::int64_t> clock_back_logged_ns_;  // the last "clock went back" line
+  dds::Reader<msg::SimClock> reader_;                 // last: its callback uses the members above
 };
 
 }  // namespace cover::uav_agent

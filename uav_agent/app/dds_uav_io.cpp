@@ -129,9 +129,16 @@ DdsCommandOutput::DdsCommandOutput(dds::Participant& participant, std::uint32_t 
       command_(participant.make_writer(dds::topics::uav_command(uav_id))) {}
 
 void DdsCommandOutput::write(const uav::StepOutput& step) {
-  trace_.write(wire::to_trace(step.output->status, step.uav_id, step.stamp_s));
-  command_.write(wire::to_msg(step.output->command, step.uav_id, step.stamp_s,
-                              step.measurement_stamp_s, seq_++));
+  last_trace_ = wire::to_trace(step.output->status, step.uav_id, step.stamp_s);
+  last_command_ = wire::to_msg(step.output->command, step.uav_id, step.stamp_s,
+                               step.measurement_stamp_s, seq_++);
+  write_again();
+}
+
+void DdsCommandOutput::write_again() {
+  if (!last_trace_ || !last_command_) return;
+  trace_.write(*last_trace_);
+  command_.write(*last_command_);
 }
 
 }  // namespace cover::uav_agent

@@ -74,10 +74,15 @@ class DdsCommandOutput : public uav::CommandOutput {
  public:
   DdsCommandOutput(dds::Participant& participant, std::uint32_t uav_id);
   void write(const uav::StepOutput& step) override;
+  // The last step's trace and command once more, unchanged (a lockstep answer that was
+  // lost); nothing before the first step.
+  void write_again();
 
  private:
   dds::Writer<msg::ControlTrace> trace_;
   dds::Writer<msg::UavCommand> command_;
+  std::optional<msg::ControlTrace> last_trace_;
+  std::optional<msg::UavCommand> last_command_;
   std::uint32_t seq_ = 0;
 };
 

@@ -67,6 +67,10 @@ int UavAgentNode::run() {
   } else {
     run_realtime();
   }
+  if (answers_repeated_ > 0) {
+    spdlog::info("{} lockstep answer(s) written again for ticks published again",
+                 answers_repeated_);
+  }
   spdlog::info("shutting down: {}", loop_.describe());
   return 0;
 }
@@ -89,14 +93,19 @@ void UavAgentNode::run_lockstep() {
       continue;
     }
     last_tick = std::chrono::steady_clock::now();
+    if (tick->answered_before) {
+      command_.write_again();
+      ++answers_repeated_;
+      continue;
+    }
     // Answer the first tick only once the task's inputs are connected: samples published
     // before that are lost, and the run would start later than the in-process one.
     if (!connected && loop_.task()) {
       connected = inputs_.wait_for_writers(clock::to_milliseconds(options_.connect_timeout_s));
       if (connected) spdlog::info("inputs connected");
     }
-    wait_for_inputs(*tick);
-    step(wire::to_seconds(tick->stamp_ns));
+    wait_for_inputs(tick->tick);
+    step(wire::to_seconds(tick->tick.stamp_ns));
   }
 }
 

@@ -59,8 +59,9 @@ class UavAgentNode {
   AgentClock clock_;
   double next_status_s_ = 0.0;
   double last_step_s_ = 0.0;  // time of the last control step (the status stamp between steps)
-  std::string reported_key_;  // task id, state, process, stage of the last TaskStatus
-  std::string logged_stage_;  // stage line last logged
+  std::uint64_t answers_repeated_ = 0;  // lockstep ticks answered again (a lost answer)
+  std::string reported_key_;            // task id, state, process, stage of the last TaskStatus
+  std::string logged_stage_;            // stage line last logged
   mission::Failsafe logged_failsafe_ = mission::Failsafe::WaitingForInputs;
   bool logged_handover_ = false;
   std::string failsafe_event_;  // the last failsafe entry or exit, with its cause
