@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "cover/process/child_process.hpp"
+#include "cover/test/scratch_dir.hpp"
 
 namespace {
 
@@ -73,16 +74,10 @@ std::vector<int> started_pids(const std::string& launch_log, const std::string& 
 
 class LaunchProcess : public ::testing::Test {
  protected:
+  // The test's scratch folder: kept for a look when the test fails.
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("cover-launch-" + std::to_string(getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = cover::test::scratch_dir();
     run_dir_ = dir_ / "run";
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);  // kept for a look when a test fails
   }
 
   std::string write_launch(const std::string& yaml) {
