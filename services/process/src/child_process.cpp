@@ -134,9 +134,10 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const SpawnOpti
   setup.parent = getpid();
   pid_ = fork();
   if (pid_ == 0) become_child(setup);
+  const int fork_error = errno;
   close_all({stdout_fds[1], error_fds[1]});
   stdout_fd_ = stdout_fds[0];
-  const int error = pid_ < 0 ? errno : child_exec_error(error_fds[0]);
+  const int error = pid_ < 0 ? fork_error : child_exec_error(error_fds[0]);
   close(error_fds[0]);
   if (error != 0) {
     if (pid_ > 0) waitpid(pid_, nullptr, 0);
