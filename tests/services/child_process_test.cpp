@@ -17,6 +17,7 @@
 #include <string>
 #include <thread>
 
+#include "cover/test/process_alive.hpp"
 #include "cover/test/scratch_dir.hpp"
 
 namespace {
@@ -25,24 +26,14 @@ using cover::process::ChildProcess;
 using cover::process::SpawnOptions;
 using namespace std::chrono_literals;
 
-// True while `pid` runs: not gone, not a zombie waiting for its new parent to reap it.
-bool running(pid_t pid) {
-  if (kill(pid, 0) != 0) return errno != ESRCH;
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string line;
-  std::getline(stat, line);
-  const auto state_at = line.rfind(')');  // the name in parentheses may hold spaces
-  return state_at != std::string::npos && state_at + 2 < line.size() && line[state_at + 2] != 'Z';
-}
-
 // Polls `pid` until it no longer runs or `timeout` passes; whether it ended.
 bool ends_within(pid_t pid, std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < deadline) {
-    if (!running(pid)) return true;
+    if (!cover::test::process_alive(pid)) return true;
     std::this_thread::sleep_for(5ms);
   }
-  return !running(pid);
+  return !cover::test::process_alive(pid);
 }
 
 // Reads one pid from `fd` within `timeout`; -1 if none came.
@@ -118,7 +109,7 @@ TEST(ChildProcess, DiesWhenItsParentIsKilled) {
   const pid_t grandchild = read_pid(report[0], 10s);
   close(report[0]);
   ASSERT_GT(grandchild, 0) << "the helper never reported its child";
-  EXPECT_TRUE(running(grandchild));
+  EXPECT_TRUE(cover::test::process_alive(grandchild));
   kill(helper, SIGKILL);
   int status = 0;
   ASSERT_EQ(waitpid(helper, &status, 0), helper);
