@@ -33,7 +33,9 @@ TEST(ScratchDir, IsTheTestsOwnEmptyFolderAndTheEnvironmentPointsThere) {
 TEST(ScratchDir, APassedTestsFolderIsGone) {
   const fs::path dir = cover::test::scratch_dir();
   EXPECT_NE(dir, g_first_dir);
-  if (!g_first_dir.empty()) EXPECT_FALSE(fs::exists(g_first_dir)) << g_first_dir;
+  if (!g_first_dir.empty()) {
+    EXPECT_FALSE(fs::exists(g_first_dir)) << g_first_dir;
+  }
   // The binary's root holds only the running test's folder.
   for (const auto& entry : fs::directory_iterator(dir.parent_path())) {
     EXPECT_EQ(entry.path(), dir);
