@@ -12,6 +12,7 @@
 
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant_options.hpp"
+#include "cover/test/scratch_dir.hpp"
 
 namespace cover::test {
 
@@ -52,7 +53,7 @@ inline std::string message_of(const std::function<void()>& action) {
 
 // Writes `text` to a file `name` in the test's temp folder; its path.
 inline std::string write_temp_yaml(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + "/" + name;
+  const std::string path = cover::test::scratch_path(name);
   std::ofstream(path) << text;
   return path;
 }

@@ -16,6 +16,7 @@
 #include "cover/dds/participant_options.hpp"
 #include "cover/dds/security_check.hpp"
 #include "cover/dds/topics.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "dds_test_support.hpp"
 
 namespace cover::dds {
@@ -85,7 +86,7 @@ TEST(SecurityOptions, MissingFleetIsAnErrorNotAPlainParticipant) {
     ParticipantOptions options;
     options.vendor = vendor;
     options.domain_id = 180;
-    options.security = {true, testing::TempDir() + "/no_such_fleet", "sim"};
+    options.security = {true, cover::test::scratch_path("no_such_fleet"), "sim"};
     const std::string message = message_of([&] { Participant participant(options); });
     EXPECT_NE(message.find("no_such_fleet/fleet.yaml"), std::string::npos) << message;
     options.domain_id = 231;

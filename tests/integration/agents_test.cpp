@@ -21,68 +21,25 @@
 #include "cover/dds/topics.hpp"
 #include "cover/mission/task.hpp"
 #include "cover/process/child_process.hpp"
-#include "cover/shm/segment_name.hpp"
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "cover/wire/task.hpp"
 #include "process_support.hpp"
+#include "sim_system.hpp"
 
 namespace {
 
 using cover::test::bin;
 using cover::test::quiet;
 using cover::test::shm_entries;
+using cover::test::SimSystem;
 
 using namespace std::chrono_literals;
 using cover::process::ChildProcess;
 using cover::sim::OffboardState;
 using cover::sim::SharedWorld;
-
-// Polls the simulator's world (ground truth) until `condition` holds or `timeout` passes.
-bool wait_for_world(cover::shm::SeqlockReader<SharedWorld>& world,
-                    const std::function<bool(const SharedWorld&)>& condition,
-                    std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  auto copy = std::make_unique<SharedWorld>();
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (world.read(*copy) && condition(*copy)) return true;
-    std::this_thread::sleep_for(5ms);
-  }
-  return false;
-}
-
-struct System {
-  cover::dds::DomainClaim claim;  // first: held until every child has stopped
-  int domain;
-  std::string run_id;
-  std::unique_ptr<ChildProcess> sim;
-  std::vector<std::unique_ptr<ChildProcess>> ugvs;
-
-  System(int domain_id, const std::string& scenario, const std::string& clock = "realtime",
-         const std::vector<std::string>& sim_args = {})
-      : claim(cover::test::claim_domain(domain_id)), domain(domain_id) {
-    run_id = "it_" + std::to_string(getpid()) + "_" + std::to_string(domain);
-    std::vector<std::string> argv{bin("cover-sim"), "--scenario", scenario, "--clock", clock,
-                                  "--run-id",       run_id};
-    argv.insert(argv.end(), sim_args.begin(), sim_args.end());
-    sim = std::make_unique<ChildProcess>(argv, quiet("fastdds", domain, sim_log()));
-    for (int k = 0; k < 2; ++k) {
-      ugvs.push_back(std::make_unique<ChildProcess>(
-          std::vector<std::string>{bin("cover-ugv-agent"), "--id", std::to_string(k), "--run-id",
-                                   run_id},
-          quiet("cyclone", domain, run_id + "_ugv" + std::to_string(k) + ".log")));
-    }
-  }
-  std::string sim_log() const { return run_id + "_sim.log"; }
-  cover::shm::SeqlockReader<SharedWorld> world() const {
-    return cover::shm::SeqlockReader<SharedWorld>::open(
-        cover::shm::segment_name(domain, run_id), cover::sim::kWorldSegmentLayoutVersion, 10s);
-  }
-  std::string segment_path() const {
-    return cover::shm::segment_path(cover::shm::segment_name(domain, run_id));
-  }
-};
 
 // Nothing of ours is left in /dev/shm (the tests of this binary run serially).
 void expect_no_new_shm_entries(const std::set<std::string>& before) {
@@ -93,27 +50,24 @@ void expect_no_new_shm_entries(const std::set<std::string>& before) {
 
 TEST(AgentsAndSimulator, OffboardLossLevelsDescendsAndDisarms) {
   const auto shm_before = shm_entries();
-  System system(167, "scenario2");
-  auto world = system.world();
+  SimSystem system(167, "it", {"--scenario", "scenario2"});
   // On Cyclone DDS: it is killed, and a killed Fast DDS process leaves its shared-memory
   // transport files behind (dds-interop.md).
-  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--task",
+  auto uav =
+      system.spawn({bin("cover-uav-agent"), "--id", "0", "--task",
                     std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml", "--clock", "realtime"},
-                   quiet("cyclone", system.domain, system.run_id + "_uav.log"));
+                   "uav");
   // In the air, climbing through 1 m above the ground, under the agent's command.
-  ASSERT_TRUE(wait_for_world(
-      world,
+  ASSERT_TRUE(system.wait_for_world(
       [](const SharedWorld& w) {
         return w.uavs[0].offboard == OffboardState::Offboard && w.uavs[0].state.position_m.z > 1.0;
       },
       30s));
-  kill(uav.pid(), SIGKILL);  // the agent dies: no more commands
-  EXPECT_TRUE(wait_for_world(
-      world, [](const SharedWorld& w) { return w.uavs[0].offboard == OffboardState::LossDescent; },
-      3s));
+  kill(uav->pid(), SIGKILL);  // the agent dies: no more commands
+  EXPECT_TRUE(system.wait_for_world(
+      [](const SharedWorld& w) { return w.uavs[0].offboard == OffboardState::LossDescent; }, 3s));
   double lowest_tilt_cos = 1.0;
-  EXPECT_TRUE(wait_for_world(
-      world,
+  EXPECT_TRUE(system.wait_for_world(
       [&](const SharedWorld& w) {
         const auto q = w.uavs[0].state.attitude.eigen();
         lowest_tilt_cos = std::min(lowest_tilt_cos, (q * Eigen::Vector3d::UnitZ()).z());
@@ -121,13 +75,13 @@ TEST(AgentsAndSimulator, OffboardLossLevelsDescendsAndDisarms) {
       },
       20s));
   auto final_world = std::make_unique<SharedWorld>();
-  ASSERT_TRUE(world.read(*final_world));
+  ASSERT_TRUE(system.world().read(*final_world));
   EXPECT_TRUE(final_world->uavs[0].contact.resting);
   EXPECT_EQ(final_world->uavs[0].command.thrust_m_s2, 0.0);  // disarmed
   EXPECT_GT(lowest_tilt_cos, std::cos(0.5));                 // stayed near level
   // Interrupted, the simulator removes its world and the UGV agents end with it.
-  EXPECT_EQ(system.sim->terminate(10s, SIGINT), 130);
-  for (auto& ugv : system.ugvs) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
+  EXPECT_EQ(system.sim().terminate(10s, SIGINT), 130);
+  for (auto& ugv : system.ugvs()) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
   EXPECT_NE(access(system.segment_path().c_str(), F_OK), 0);
   expect_no_new_shm_entries(shm_before);
 }
@@ -163,12 +117,11 @@ class TaskStatusWatch {
 // The whole flight of that test, in a scope of its own: its participants and processes
 // are gone before the shared-memory check.
 void fly_task_over_dds_validate_and_abort() {
-  System system(168, "scenario2");
-  auto world = system.world();
-  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2"},
-                   quiet("cyclone", system.domain, system.run_id + "_uav.log"));
+  SimSystem system(168, "it", {"--scenario", "scenario2"});
+  auto uav = system.spawn(
+      {bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2"}, "uav");
   cover::dds::ParticipantOptions options;
-  options.domain_id = system.domain;
+  options.domain_id = system.domain();
   cover::dds::Participant station(options);  // the ground station
   TaskStatusWatch statuses(station);
   auto requests = station.make_writer(cover::dds::topics::task_request());
@@ -199,8 +152,8 @@ void fly_task_over_dds_validate_and_abort() {
         return s.task_id == "scenario2" && s.state == cover::msg::TaskState::TASK_RUNNING;
       },
       10s, [&] { requests.write(cover::wire::to_msg(task, 0.0)); }));
-  ASSERT_TRUE(wait_for_world(
-      world, [](const SharedWorld& w) { return w.uavs[0].state.position_m.z > 1.0; }, 20s));
+  ASSERT_TRUE(system.wait_for_world(
+      [](const SharedWorld& w) { return w.uavs[0].state.position_m.z > 1.0; }, 20s));
   // The ground station sees the flight: 10 Hz status and the stage's reference.
   ASSERT_TRUE(uav_status.wait_for_sample(5s));
   ASSERT_TRUE(reference.wait_for_sample(5s));
@@ -221,7 +174,7 @@ void fly_task_over_dds_validate_and_abort() {
   for (std::uint32_t k = 0; k < 2; ++k) {
     ASSERT_TRUE(ugv_imu[k].wait_for_sample(5s));
     const cover::msg::UgvImu imu = ugv_imu[k].latest()->sample;
-    ASSERT_TRUE(world.read(*truth));
+    ASSERT_TRUE(system.world().read(*truth));
     EXPECT_EQ(imu.speed_source, cover::msg::SpeedSource::SPEED_SOURCE_WHEEL_ODOMETRY) << k;
     EXPECT_NEAR(imu.speed_m_s, cover::sim::true_forward_speed_m_s(truth->ugvs[k]), 0.1) << k;
   }
@@ -244,17 +197,16 @@ void fly_task_over_dds_validate_and_abort() {
       },
       10s, [&] { aborts.write(abort); }));
   // Hold, then land where it was: on the ground or a deck, disarmed by the agent itself.
-  EXPECT_TRUE(wait_for_world(
-      world,
+  EXPECT_TRUE(system.wait_for_world(
       [](const SharedWorld& w) {
         return w.uavs[0].contact.resting && w.uavs[0].command.thrust_m_s2 == 0.0 &&
                w.uavs[0].offboard == OffboardState::Offboard;
       },
       30s));
   // The aborted task has ended: the simulator ends the run (not a success) by itself.
-  EXPECT_EQ(system.sim->wait(30s), std::optional<int>(1));
-  EXPECT_EQ(uav.terminate(10s, SIGINT), 0);
-  for (auto& ugv : system.ugvs) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
+  EXPECT_EQ(system.sim().wait(30s), std::optional<int>(1));
+  EXPECT_EQ(uav->terminate(10s, SIGINT), 0);
+  for (auto& ugv : system.ugvs()) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
 }
 
 TEST(AgentsAndSimulator, TaskOverDdsIsValidatedRunsAndAborts) {
@@ -266,23 +218,21 @@ TEST(AgentsAndSimulator, TaskOverDdsIsValidatedRunsAndAborts) {
 // Lockstep waits for every UAV agent; one that stops answering (here: SIGSTOP) stalls the
 // run, and the simulator ends it after stall_timeout_s naming the missing agent.
 TEST(AgentsAndSimulator, LockstepStallNamesTheMissingAgent) {
-  const std::string params = ::testing::TempDir() + "stall_params.yaml";
+  const std::string params = cover::test::scratch_path("stall_params.yaml");
   std::ofstream(params) << "sim_process:\n  stall_timeout_s: 1.0\n";
-  System system(169, "scenario2", "lockstep", {"--params", params});
-  auto world = system.world();
-  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--task",
-                    std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml"},
-                   quiet("cyclone", system.domain, system.run_id + "_uav.log"));
-  ASSERT_TRUE(wait_for_world(
-      world, [](const SharedWorld& w) { return w.tick > 50; }, 30s));
-  kill(uav.pid(), SIGSTOP);
-  EXPECT_EQ(system.sim->wait(10s), std::optional<int>(4));
-  std::ifstream log(::testing::TempDir() + system.sim_log());
+  SimSystem system(169, "it", {"--scenario", "scenario2", "--params", params}, "lockstep");
+  auto uav = system.spawn({bin("cover-uav-agent"), "--id", "0", "--task",
+                           std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml"},
+                          "uav");
+  ASSERT_TRUE(system.wait_for_world([](const SharedWorld& w) { return w.tick > 50; }, 30s));
+  kill(uav->pid(), SIGSTOP);
+  EXPECT_EQ(system.sim().wait(10s), std::optional<int>(4));
+  std::ifstream log(system.log_path("sim"));
   const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("no command from UAV 0 (cover-uav-agent --id 0"), std::string::npos) << text;
-  kill(uav.pid(), SIGCONT);
-  EXPECT_EQ(uav.terminate(10s, SIGINT), 0);
-  for (auto& ugv : system.ugvs) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
+  kill(uav->pid(), SIGCONT);
+  EXPECT_EQ(uav->terminate(10s, SIGINT), 0);
+  for (auto& ugv : system.ugvs()) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
 }
 
 // The simulator publishes a lockstep tick again until it hears the answer; an answer can

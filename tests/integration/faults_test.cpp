@@ -22,17 +22,18 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
-#include "cover/shm/segment_name.hpp"
-#include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "cover/task_manager/task_store.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "process_support.hpp"
+#include "sim_system.hpp"
 
 namespace {
 
 using cover::test::bin;
 using cover::test::quiet;
 using cover::test::shm_entries;
+using cover::test::SimSystem;
 
 using namespace std::chrono_literals;
 using cover::msg::FailsafeState;
@@ -43,61 +44,14 @@ using Clock = std::chrono::steady_clock;
 
 const std::string kTask = std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml";
 
-// The simulator (realtime) and both UGV agents on their own domain.
-class FaultSystem {
- public:
-  FaultSystem(int domain, const std::vector<std::string>& sim_args)
-      : claim_(cover::test::claim_domain(domain)), domain_(domain) {
-    run_id_ = "ft_" + std::to_string(getpid()) + "_" + std::to_string(domain);
-    std::vector<std::string> argv{bin("cover-sim"), "--clock", "realtime", "--run-id", run_id_};
-    argv.insert(argv.end(), sim_args.begin(), sim_args.end());
-    sim_ = std::make_unique<ChildProcess>(argv, quiet("fastdds", domain, run_id_ + "_sim.log"));
-    for (int k = 0; k < 2; ++k) {
-      ugvs_.push_back(
-          spawn({bin("cover-ugv-agent"), "--id", std::to_string(k), "--run-id", run_id_},
-                "ugv" + std::to_string(k)));
-    }
-    world_.emplace(cover::shm::SeqlockReader<SharedWorld>::open(
-        cover::shm::segment_name(domain, run_id_), cover::sim::kWorldSegmentLayoutVersion, 20s));
-  }
-  // The UAV agent on Cyclone DDS: a killed Fast DDS process leaves its transport files
-  // in /dev/shm (dds-interop.md).
-  std::unique_ptr<ChildProcess> uav_agent(bool with_task) {
-    std::vector<std::string> argv{bin("cover-uav-agent"), "--id", "0", "--clock", "realtime",
-                                  "--ugv-count",          "2"};
-    if (with_task) argv.insert(argv.end(), {"--task", kTask});
-    return spawn(argv, "uav");
-  }
-  std::unique_ptr<ChildProcess> spawn(const std::vector<std::string>& argv, const std::string& name,
-                                      const std::string& vendor = "cyclone") {
-    return std::make_unique<ChildProcess>(argv,
-                                          quiet(vendor, domain_, run_id_ + "_" + name + ".log"));
-  }
-  // Polls the world until `condition` holds or `timeout` passes.
-  bool wait_for_world(const std::function<bool(const SharedWorld&)>& condition,
-                      std::chrono::milliseconds timeout) {
-    const auto deadline = Clock::now() + timeout;
-    auto copy = std::make_unique<SharedWorld>();
-    while (Clock::now() < deadline) {
-      if (world_->read(*copy) && condition(*copy)) return true;
-      std::this_thread::sleep_for(2ms);
-    }
-    return false;
-  }
-  int domain() const { return domain_; }
-  const std::string& run_id() const { return run_id_; }
-  ChildProcess& sim() { return *sim_; }
-  ChildProcess& ugv(int k) { return *ugvs_[k]; }
-  void close_world() { world_.reset(); }
-
- private:
-  cover::dds::DomainClaim claim_;  // first: held until every child has stopped
-  int domain_;
-  std::string run_id_;
-  std::unique_ptr<ChildProcess> sim_;
-  std::vector<std::unique_ptr<ChildProcess>> ugvs_;
-  std::optional<cover::shm::SeqlockReader<SharedWorld>> world_;
-};
+// The UAV agent on Cyclone DDS (a killed Fast DDS process leaves its transport files in
+// /dev/shm, dds-interop.md), flying the task from the start or waiting for one.
+std::unique_ptr<ChildProcess> uav_agent(SimSystem& system, bool with_task) {
+  std::vector<std::string> argv{bin("cover-uav-agent"), "--id", "0", "--clock", "realtime",
+                                "--ugv-count",          "2"};
+  if (with_task) argv.insert(argv.end(), {"--task", kTask});
+  return system.spawn(argv, "uav");
+}
 
 // The UAV's touch-down: vertical speed just before contact, and whether it stayed level.
 struct Touchdown {
@@ -107,7 +61,7 @@ struct Touchdown {
 };
 
 // Follows UAV 0 from now until it rests disarmed (`disarmed` tells how the test knows).
-Touchdown watch_touchdown(FaultSystem& system,
+Touchdown watch_touchdown(SimSystem& system,
                           const std::function<bool(const SharedWorld&)>& disarmed,
                           std::chrono::milliseconds timeout) {
   Touchdown t;
@@ -189,9 +143,9 @@ void expect_nothing_left_in_shm(const std::string& run_id) {
 // SIGKILL of the UAV agent in the transition stage: the flight controller's offboard-loss
 // failsafe lands it, and the task manager fails the task within 2 s, saying why.
 TEST(Faults, UavAgentKilledMidTransitionIsLandedAndItsTaskFails) {
-  FaultSystem system(181, {"--scenario", "scenario2", "--standing"});
-  auto uav = system.uav_agent(false);
-  const std::string db = ::testing::TempDir() + system.run_id() + ".db";
+  SimSystem system(181, "ft", {"--scenario", "scenario2", "--standing"});
+  auto uav = uav_agent(system, false);
+  const std::string db = cover::test::scratch_path(system.run_id() + ".db");
   std::remove(db.c_str());
   auto manager = system.spawn({bin("cover-task-manager"), "--db", db}, "manager");
   cover::dds::Participant probe(on_domain(system.domain()));
@@ -201,8 +155,7 @@ TEST(Faults, UavAgentKilledMidTransitionIsLandedAndItsTaskFails) {
   // Submitted as an operator does, once the manager has heard the fleet.
   std::optional<int> submitted;
   for (int attempt = 0; attempt < 20 && submitted != 0; ++attempt) {
-    cover::process::SpawnOptions o =
-        quiet("cyclone", system.domain(), system.run_id() + "_cover.log");
+    cover::process::SpawnOptions o = quiet("cyclone", system.domain(), system.log_name("cover"));
     ChildProcess cli({COVER_CLI, "submit", kTask, "--json", "--timeout", "20"}, o);
     submitted = cli.wait(60s);
     if (submitted != 0) std::this_thread::sleep_for(500ms);
@@ -265,7 +218,7 @@ TEST(Faults, UavAgentKilledMidTransitionIsLandedAndItsTaskFails) {
 TEST(Faults, UgvAgentKilledPutsTheUavInItsFailsafeAndItLands) {
   std::string run_id;
   {
-    FaultSystem system(182, {"--scenario", "scenario2"});
+    SimSystem system(182, "ft", {"--scenario", "scenario2"});
     run_id = system.run_id();
     cover::dds::Participant probe(on_domain(system.domain()));
     TraceLog trace(probe);
@@ -275,7 +228,7 @@ TEST(Faults, UgvAgentKilledPutsTheUavInItsFailsafeAndItLands) {
       std::lock_guard<std::mutex> lock(imu_mutex);
       last_imu_s = std::max(last_imu_s, m.stamp_ns * 1e-9);
     });
-    auto uav = system.uav_agent(true);
+    auto uav = uav_agent(system, true);
     // Climbing in G0's frame (the initial stage), above 0.8 m.
     ASSERT_TRUE(system.wait_for_world(
         [](const SharedWorld& w) {
@@ -312,10 +265,10 @@ TEST(Faults, UgvAgentKilledPutsTheUavInItsFailsafeAndItLands) {
 // Relative states withheld for 0.5 s mid-flight: emergency hover, then the stage resumes
 // replanned and the task completes.
 TEST(Faults, RelativeStatesBackAfterAGapResumeAndComplete) {
-  FaultSystem system(183, {"--scenario", "scenario2", "--relative-gap", "6.0", "0.5"});
+  SimSystem system(183, "ft", {"--scenario", "scenario2", "--relative-gap", "6.0", "0.5"});
   cover::dds::Participant probe(on_domain(system.domain()));
   TraceLog trace(probe);
-  auto uav = system.uav_agent(true);
+  auto uav = uav_agent(system, true);
   EXPECT_EQ(system.sim().wait(120s), std::optional<int>(0));  // every task succeeded
   // On a loaded host a late sample can put it in the hover earlier too: the gap's is the
   // first one from its start.
@@ -330,10 +283,10 @@ TEST(Faults, RelativeStatesBackAfterAGapResumeAndComplete) {
 // Relative states gone for good mid-flight: the agent hovers, then hands the blind landing
 // to the flight controller (its own height sensing), which lands the UAV softly and level.
 TEST(Faults, RelativeStatesLostForGoodAreLandedByTheFlightController) {
-  FaultSystem system(186, {"--scenario", "scenario2", "--relative-gap", "6.0", "1000"});
+  SimSystem system(186, "ft", {"--scenario", "scenario2", "--relative-gap", "6.0", "1000"});
   cover::dds::Participant probe(on_domain(system.domain()));
   TraceLog trace(probe);
-  auto uav = system.uav_agent(true);
+  auto uav = uav_agent(system, true);
   double descent_s = -1.0;
   ASSERT_TRUE(system.wait_for_world(
       [&](const SharedWorld& w) {
@@ -361,8 +314,7 @@ TEST(Faults, RelativeStatesLostForGoodAreLandedByTheFlightController) {
 
 // Motion-capture dropouts (10 % of samples) and corrupted IMU samples: the mission succeeds.
 TEST(Faults, MocapDropoutsAndImuFaultsStillSucceed) {
-  const std::string scenario =
-      ::testing::TempDir() + "faults_dropouts_" + std::to_string(getpid()) + ".yaml";
+  const std::string scenario = cover::test::scratch_path("faults_dropouts.yaml");
   std::ifstream in(std::string(COVER_CONFIG_DIR) + "/scenarios/scenario2.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   text.replace(text.find("../tasks/scenario2.yaml"), 23, kTask);
@@ -370,8 +322,8 @@ TEST(Faults, MocapDropoutsAndImuFaultsStillSucceed) {
                "world: {seed: 2}\n  relative_sensor: {dropout_probability: 0.1}\n"
                "  imu: {fault_probability: 0.01}");
   std::ofstream(scenario) << text;
-  FaultSystem system(184, {"--scenario", scenario});
-  auto uav = system.uav_agent(true);
+  SimSystem system(184, "ft", {"--scenario", scenario});
+  auto uav = uav_agent(system, true);
   EXPECT_EQ(system.sim().wait(120s), std::optional<int>(0));
   EXPECT_EQ(uav->terminate(10s, SIGINT), 0);
 }
@@ -382,11 +334,11 @@ TEST(Faults, MocapDropoutsAndImuFaultsStillSucceed) {
 TEST(Faults, SimulatorKilledEveryAgentNoticesAndNothingIsLeft) {
   std::string run_id;
   {
-    FaultSystem system(185, {"--scenario", "scenario2"});
+    SimSystem system(185, "ft", {"--scenario", "scenario2"});
     run_id = system.run_id();
     cover::dds::Participant probe(on_domain(system.domain()));
     TraceLog trace(probe);
-    auto uav = system.uav_agent(true);
+    auto uav = uav_agent(system, true);
     ASSERT_TRUE(system.wait_for_world(
         [](const SharedWorld& w) { return w.uavs[0].state.position_m.z > 0.8; }, 30s));
     system.close_world();

@@ -22,17 +22,15 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
-#include "cover/shm/segment_name.hpp"
-#include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "process_support.hpp"
+#include "sim_system.hpp"
 
 namespace {
 
 using cover::test::bin;
-using cover::test::quiet;
 using namespace std::chrono_literals;
-using cover::process::ChildProcess;
 using cover::sim::SharedWorld;
 using Clock = std::chrono::steady_clock;
 namespace msg = cover::msg;
@@ -148,25 +146,12 @@ std::size_t count_of(const std::string& text, const std::string& needle) {
 }
 
 TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
-  const auto claim = cover::test::claim_domain(kDomain);
-  const std::string run_id = "hi_" + std::to_string(getpid());
-  ChildProcess sim(
-      {bin("cover-sim"), "--scenario", "scenario2", "--clock", "realtime", "--run-id", run_id},
-      quiet("fastdds", kDomain, run_id + "_sim.log"));
-  std::vector<std::unique_ptr<ChildProcess>> ugvs;
-  for (int k = 0; k < 2; ++k) {
-    ugvs.push_back(std::make_unique<ChildProcess>(
-        std::vector<std::string>{bin("cover-ugv-agent"), "--id", std::to_string(k), "--run-id",
-                                 run_id},
-        quiet("cyclone", kDomain, run_id + "_ugv" + std::to_string(k) + ".log")));
-  }
-  auto world = cover::shm::SeqlockReader<SharedWorld>::open(
-      cover::shm::segment_name(kDomain, run_id), cover::sim::kWorldSegmentLayoutVersion,
-      scaled(20s));
-  const std::string uav_log = run_id + "_uav.log";
-  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2",
+  cover::test::SimSystem system(kDomain, "hi", {"--scenario", "scenario2"}, "realtime",
+                                scaled(20s));
+  auto uav =
+      system.spawn({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2",
                     "--task", std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml"},
-                   quiet("cyclone", kDomain, uav_log));
+                   "uav");
 
   cover::dds::ParticipantOptions options;
   options.domain_id = kDomain;
@@ -188,14 +173,14 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
     // Airborne under the agent's commands, then 3 s of hostile samples at ~500 Hz.
     auto copy = std::make_unique<SharedWorld>();
     const auto airborne_by = Clock::now() + scaled(30s);
-    while (!(world.read(*copy) && copy->uavs[0].state.position_m.z > 1.0)) {
+    while (!(system.world().read(*copy) && copy->uavs[0].state.position_m.z > 1.0)) {
       ASSERT_LT(Clock::now(), airborne_by) << "the UAV never took off";
       std::this_thread::sleep_for(10ms);
     }
     std::uint64_t sent = 0;
     const auto flood_end = Clock::now() + 3s;
     for (int i = 0; Clock::now() < flood_end; ++i) {
-      ASSERT_TRUE(world.read(*copy));
+      ASSERT_TRUE(system.world().read(*copy));
       const auto now_ns = static_cast<std::int64_t>(std::llround(copy->time_s * 1e9));
       const auto k = static_cast<std::uint32_t>(i % 2);
       states[k].write(hostile_state(i % 7, k, now_ns));
@@ -231,12 +216,12 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
     EXPECT_GT(commands.count(), 1000u);
     EXPECT_EQ(commands.bad(), 0u) << "non-finite or out-of-box commands";
   }
-  EXPECT_EQ(uav.terminate(scaled(10s), SIGINT), 0);
-  sim.terminate(scaled(10s), SIGINT);
-  for (auto& ugv : ugvs) ugv->wait(scaled(10s));
+  EXPECT_EQ(uav->terminate(scaled(10s), SIGINT), 0);
+  system.sim().terminate(scaled(10s), SIGINT);
+  for (auto& ugv : system.ugvs()) ugv->wait(scaled(10s));
   // Named by reason and topic, at most one line per reason per second (4 reasons here
   // per topic kind, ~40 s of flight at most): a flood of samples is not a flood of lines.
-  const std::string log = read_file(::testing::TempDir() + uav_log);
+  const std::string log = read_file(system.log_path("uav"));
   for (const char* reason : {"non-finite", "out-of-range", "unknown-id"}) {
     EXPECT_NE(log.find(std::string(": ") + reason + " (rejected so far"), std::string::npos)
         << reason << "\n"

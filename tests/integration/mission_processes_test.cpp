@@ -5,53 +5,36 @@
 #include <signal.h>
 
 #include <chrono>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "cover/process/child_process.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "cover/uav/controller_config.hpp"
+#include "launch_run.hpp"
 #include "process_support.hpp"
 
 namespace {
 
 using cover::test::shm_entries;
 
-namespace fs = std::filesystem;
 constexpr std::chrono::seconds kRunTimeout{300};
 
-struct LaunchRun {
-  int exit_code = -1;
-  nlohmann::json result;
-  std::string stdout_text;
-};
+using LaunchRun = cover::bench::LaunchOutcome;
 
-// Each test on its own DDS domain and run folder.
+// Each test on its own DDS domain and run folder (kept in the scratch folder when it fails).
 LaunchRun launch(const std::string& file, std::vector<std::string> flags, int domain) {
   const auto claim = cover::test::claim_domain(domain);
-  const fs::path run_dir = fs::temp_directory_path() / ("cover_it_" + std::to_string(domain));
-  fs::remove_all(run_dir);
-  std::vector<std::string> argv = {COVER_LAUNCH,
-                                   std::string(COVER_CONFIG_DIR) + "/launch/" + file,
-                                   "--json",
-                                   "--domain",
-                                   std::to_string(domain),
-                                   "--run-dir",
-                                   run_dir.string()};
-  argv.insert(argv.end(), flags.begin(), flags.end());
-  cover::process::SpawnOptions options;
-  options.capture_stdout = true;
-  cover::process::ChildProcess child(argv, options);
-  LaunchRun run;
-  while (const auto line = child.read_line(kRunTimeout)) run.stdout_text += *line + "\n";
-  run.exit_code = child.wait(kRunTimeout).value_or(-1);
-  run.result = nlohmann::json::parse(run.stdout_text, nullptr, false);
-  if (run.exit_code == 0) fs::remove_all(run_dir);
-  return run;
+  cover::bench::LaunchRequest request;
+  request.launch_file = std::string(COVER_CONFIG_DIR) + "/launch/" + file;
+  request.domain = domain;
+  request.run_dir = cover::test::scratch_dir() / ("cover_it_" + std::to_string(domain));
+  request.flags = std::move(flags);
+  return cover::bench::run_launcher(request, "", kRunTimeout);
 }
 
 cover::sim::ClosedLoopResult in_process(const std::string& scenario_name) {

@@ -9,6 +9,7 @@
 
 #include "cover/dds/domain_claim.hpp"
 #include "cover/process/child_process.hpp"
+#include "cover/test/scratch_dir.hpp"
 
 // What the integration tests share to start COVER's processes and check what they leave.
 namespace cover::test {
@@ -18,11 +19,11 @@ inline std::string bin(const std::string& name) {
   return std::string(COVER_BIN_DIR) + "/" + name;
 }
 
-// A child on `vendor` and `domain`, its output in a log file of the test's temp folder.
+// A child on `vendor` and `domain`, its output in a log file of the test's scratch folder.
 inline process::SpawnOptions quiet(const std::string& vendor, int domain, const std::string& log) {
   process::SpawnOptions options;
   options.extra_env = {"COVER_DDS=" + vendor, "COVER_DDS_DOMAIN=" + std::to_string(domain)};
-  options.log_file = ::testing::TempDir() + log;
+  options.log_file = scratch_path(log);
   return options;
 }
 

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "cover/process/child_process.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "process_support.hpp"
 
 namespace {
@@ -29,16 +30,10 @@ namespace fs = std::filesystem;
 using cover::process::ChildProcess;
 using cover::process::SpawnOptions;
 
-// This test process's folder for fleet directories (private keys) and logs, removed at
-// exit.
+// The running test's folder for fleet directories (private keys) and logs: removed when
+// the test passes.
 const fs::path& scratch() {
-  struct Scratch {
-    fs::path dir = fs::path(::testing::TempDir()) / ("cover_sec_" + std::to_string(getpid()));
-    Scratch() { fs::create_directories(dir); }
-    ~Scratch() { fs::remove_all(dir); }
-  };
-  static const Scratch folder;
-  return folder.dir;
+  return cover::test::scratch_dir();
 }
 
 std::string log_path(const std::string& name) {
@@ -384,7 +379,7 @@ struct LaunchOutcome {
 
 LaunchOutcome launch(const std::vector<std::string>& flags, int domain) {
   const auto claim = cover::test::claim_domain(domain);
-  const fs::path run_dir = fs::temp_directory_path() / ("cover_sec_run_" + std::to_string(domain));
+  const fs::path run_dir = cover::test::scratch_dir() / ("cover_sec_run_" + std::to_string(domain));
   fs::remove_all(run_dir);
   std::vector<std::string> argv{COVER_LAUNCH,
                                 std::string(COVER_CONFIG_DIR) + "/launch/scenario2.yaml",

@@ -23,9 +23,11 @@
 #include "cover/mission/task.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/task_manager/task_store.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "cover/wire/task.hpp"
 #include "manager_client.hpp"
 #include "process_support.hpp"
+#include "sim_system.hpp"
 
 namespace {
 
@@ -43,31 +45,23 @@ class StandingSystem {
  public:
   StandingSystem(int domain, const std::string& manager_vendor,
                  const std::string& clock = "realtime", int uavs = 1)
-      : claim_(cover::test::claim_domain(domain)),
-        domain_(domain),
+      : system_(domain, "tm",
+                {"--scenario", uavs == 1 ? "scenario1" : "fleet_two_uavs", "--standing"}, clock),
         manager_vendor_(manager_vendor) {
-    run_id_ = "tm_" + std::to_string(getpid()) + "_" + std::to_string(domain);
-    db_ = ::testing::TempDir() + run_id_ + ".db";
+    db_ = cover::test::scratch_path(system_.run_id() + ".db");
     fs::remove(db_);
-    const std::string scenario = uavs == 1 ? "scenario1" : "fleet_two_uavs";
-    children_.push_back(spawn({bin("cover-sim"), "--scenario", scenario, "--standing", "--clock",
-                               clock, "--run-id", run_id_},
-                              "fastdds", "sim"));
-    for (const char* k : {"0", "1"}) {
-      children_.push_back(spawn({bin("cover-ugv-agent"), "--id", k, "--run-id", run_id_}, "cyclone",
-                                std::string("ugv") + k));
-    }
     for (int u = 0; u < uavs; ++u) {
-      children_.push_back(spawn(
+      uavs_.push_back(system_.spawn(
           {bin("cover-uav-agent"), "--id", std::to_string(u), "--ugv-count", "2", "--clock", clock},
-          u == 0 ? "fastdds" : "cyclone", "uav" + std::to_string(u)));
+          "uav" + std::to_string(u), u == 0 ? "fastdds" : "cyclone"));
     }
     start_manager();
     wait_until_up(uavs);
   }
   ~StandingSystem() {
     manager_.reset();
-    for (auto it = children_.rbegin(); it != children_.rend(); ++it) (*it)->terminate(10s, SIGINT);
+    for (auto it = uavs_.rbegin(); it != uavs_.rend(); ++it) (*it)->terminate(10s, SIGINT);
+    system_.stop(10s);
   }
 
   // Until every UAV agent's heartbeat and both UGVs' IMU can be heard here (the manager,
@@ -75,7 +69,7 @@ class StandingSystem {
   void wait_until_up(int uavs) {
     cover::dds::ParticipantOptions options;
     options.vendor = cover::dds::Vendor::Cyclone;
-    options.domain_id = domain_;
+    options.domain_id = system_.domain();
     cover::dds::Participant probe(options);
     for (int u = 0; u < uavs; ++u) {
       auto status =
@@ -90,8 +84,8 @@ class StandingSystem {
 
   void start_manager() {
     ++manager_starts_;
-    manager_ = spawn({bin("cover-task-manager"), "--db", db_}, manager_vendor_,
-                     "manager" + std::to_string(manager_starts_));
+    manager_ = system_.spawn({bin("cover-task-manager"), "--db", db_},
+                             "manager" + std::to_string(manager_starts_), manager_vendor_);
   }
   void kill_manager() {
     kill(manager_->pid(), SIGKILL);
@@ -104,7 +98,8 @@ class StandingSystem {
                                        const std::string& vendor = "cyclone") {
     args.insert(args.begin(), COVER_CLI);
     args.insert(args.end(), {"--json", "--timeout", "20"});
-    cover::process::SpawnOptions options = quiet(vendor, domain_, run_id_ + "_cover.log");
+    cover::process::SpawnOptions options =
+        quiet(vendor, system_.domain(), system_.log_name("cover"));
     options.capture_stdout = true;
     ChildProcess cli(args, options);
     std::string last;
@@ -114,10 +109,10 @@ class StandingSystem {
     const int code = cli.wait(30s).value_or(-1);
     return {code, nlohmann::json::parse(last, nullptr, false)};
   }
-  int domain() const { return domain_; }
+  int domain() const { return system_.domain(); }
   std::string task_file(const std::string& id, const std::string& extra = "",
                         const std::string& vmax = "1.5") const {
-    const std::string path = ::testing::TempDir() + run_id_ + "_" + id + ".yaml";
+    const std::string path = cover::test::scratch_path(system_.run_id() + "_" + id + ".yaml");
     std::ofstream(path) << "task_id: " << id << "\nuav_id: 0\nprocesses:\n"
                         << "  - {from_ugv: 0, to_ugv: 1, initial_point_m: [0, 0, 1.0], "
                            "transition_point_m: [0, 0, 1.0], final_point_m: [0, 0, 0.05], "
@@ -128,18 +123,10 @@ class StandingSystem {
   const std::string& db() const { return db_; }
 
  private:
-  std::unique_ptr<ChildProcess> spawn(const std::vector<std::string>& argv,
-                                      const std::string& vendor, const std::string& name) {
-    return std::make_unique<ChildProcess>(argv,
-                                          quiet(vendor, domain_, run_id_ + "_" + name + ".log"));
-  }
-
-  cover::dds::DomainClaim claim_;  // first: held until every child has stopped
-  int domain_;
+  cover::test::SimSystem system_;  // first: its domain held until every child has stopped
   std::string manager_vendor_;
-  std::string run_id_;
   std::string db_;
-  std::vector<std::unique_ptr<ChildProcess>> children_;
+  std::vector<std::unique_ptr<ChildProcess>> uavs_;
   std::unique_ptr<ChildProcess> manager_;
   int manager_starts_ = 0;
 };

@@ -19,6 +19,8 @@
 
 #include "cover/process/child_process.hpp"
 #include "cover/process/scoped_setup.hpp"
+#include "cover/test/scratch_dir.hpp"
+#include "launch_run.hpp"
 #include "process_support.hpp"
 
 namespace {
@@ -38,12 +40,12 @@ class WifiNetwork : public ::testing::Test {
   void SetUp() override {
     if (geteuid() != 0) GTEST_SKIP() << "not root: network namespaces need root";
     const auto check = cover::process::run_command(
-        {COVER_WIFI_SIM, "check"}, ::testing::TempDir() + "wifi_check.log", kScriptTimeout);
+        {COVER_WIFI_SIM, "check"}, cover::test::scratch_path("wifi_check.log"), kScriptTimeout);
     if (check.exit_code == kSkipped) GTEST_SKIP() << check.output;
     ASSERT_EQ(check.exit_code, 0) << check.output;
     network_ = std::make_unique<cover::process::ScopedSetup>(
         std::vector<std::string>{COVER_WIFI_SIM, "up", "--loss-percent", "10"},
-        std::vector<std::string>{COVER_WIFI_SIM, "down"}, ::testing::TempDir() + "wifi_up.log");
+        std::vector<std::string>{COVER_WIFI_SIM, "down"}, cover::test::scratch_path("wifi_up.log"));
     ASSERT_TRUE(network_->ok()) << network_->up_result().output;
   }
 
@@ -61,28 +63,21 @@ class WifiNetwork : public ::testing::Test {
   // cover-launch with config/launch/scenario2_wifi.yaml in realtime; its --json report.
   nlohmann::json fly(const std::vector<std::string>& dds_flags, int domain) {
     const auto claim = cover::test::claim_domain(domain);
-    const fs::path run_dir = fs::temp_directory_path() / ("cover_wifi_" + std::to_string(domain));
-    fs::remove_all(run_dir);
-    std::vector<std::string> argv = {COVER_LAUNCH,
-                                     std::string(COVER_CONFIG_DIR) + "/launch/scenario2_wifi.yaml",
-                                     "--json",
-                                     "--clock",
-                                     "realtime",
-                                     "--domain",
-                                     std::to_string(domain),
-                                     "--run-dir",
-                                     run_dir.string()};
-    argv.insert(argv.end(), dds_flags.begin(), dds_flags.end());
+    cover::bench::LaunchRequest request;
+    request.launch_file = std::string(COVER_CONFIG_DIR) + "/launch/scenario2_wifi.yaml";
+    request.domain = domain;
+    request.run_dir = cover::test::scratch_dir() / ("cover_wifi_" + std::to_string(domain));
+    request.flags = {"--clock", "realtime"};
+    request.flags.insert(request.flags.end(), dds_flags.begin(), dds_flags.end());
     cover::process::SpawnOptions options;
     options.capture_stdout = true;
-    cover::process::ChildProcess launcher(argv, options);
+    cover::process::ChildProcess launcher(cover::bench::launch_argv(request), options);
     run_id_ = "scenario2_wifi_" + std::to_string(launcher.pid());
     std::string text;
     while (const auto line = launcher.read_line(kRunTimeout)) text += *line + "\n";
     exit_code_ = launcher.wait(kRunTimeout).value_or(-1);
     auto report = nlohmann::json::parse(text, nullptr, false);
-    EXPECT_FALSE(report.is_discarded()) << text << "\nlogs: " << run_dir;
-    if (exit_code_ == 0) fs::remove_all(run_dir);
+    EXPECT_FALSE(report.is_discarded()) << text << "\nlogs: " << request.run_dir;
     return report.is_discarded() ? nlohmann::json::object() : report;
   }
 

@@ -2,7 +2,6 @@
 // executable lookup, and the leftover-segment sweep.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include "cover/launch/run_naming.hpp"
 #include "cover/launch/security_identity.hpp"
 #include "cover/launch/shm_cleanup.hpp"
+#include "cover/test/scratch_dir.hpp"
 
 namespace cover::launch {
 namespace {
@@ -94,9 +94,7 @@ TEST(LaunchRunId, Sanitised) {
 }
 
 TEST(LaunchRunId, DefaultRunDirIsDatedAndNeverReused) {
-  const fs::path base =
-      fs::temp_directory_path() / ("cover-launch-rundir-" + std::to_string(getpid()));
-  fs::remove_all(base);
+  const fs::path base = cover::test::scratch_dir();
   std::tm when{};
   when.tm_year = 2026 - 1900;
   when.tm_mon = 11;
@@ -110,7 +108,6 @@ TEST(LaunchRunId, DefaultRunDirIsDatedAndNeverReused) {
   EXPECT_EQ(first, (base / "runs" / "s2_20261203-140509").string());
   fs::create_directories(first);
   EXPECT_EQ(default_run_dir(base.string(), "s2", now), first + "_2");
-  fs::remove_all(base);
 }
 
 TEST(LaunchPlan, ExpandsBuiltinsAndSetsEnvironment) {
@@ -234,7 +231,7 @@ TEST(LaunchPlan, CarriesTheNetworkNamespace) {
 }
 
 TEST(LaunchExecutable, BareNamesBesideSelfThenPath) {
-  const fs::path dir = fs::temp_directory_path() / ("cover-launch-exe-" + std::to_string(getpid()));
+  const fs::path dir = cover::test::scratch_dir();
   fs::create_directories(dir / "self");
   fs::create_directories(dir / "path");
   const auto make_exe = [](const fs::path& path) {
@@ -255,12 +252,10 @@ TEST(LaunchExecutable, BareNamesBesideSelfThenPath) {
             (dir / "path" / "other").string());
   EXPECT_EQ(resolve_executable((dir / "self" / "tool").string(), "/x", "", ""),
             (dir / "self" / "tool").string());
-  fs::remove_all(dir);
 }
 
 TEST(LaunchShm, RemovesOnlyEntriesOfTheRun) {
-  const fs::path dir = fs::temp_directory_path() / ("cover-launch-shm-" + std::to_string(getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = cover::test::scratch_dir();
   for (const char* name : {"cover_demo_12", "cover_demo_12_seg", "cover_demo_123", "other"}) {
     std::ofstream(dir / name) << "x";
   }
@@ -269,7 +264,6 @@ TEST(LaunchShm, RemovesOnlyEntriesOfTheRun) {
   EXPECT_TRUE(fs::exists(dir / "cover_demo_123"));
   EXPECT_TRUE(fs::exists(dir / "other"));
   EXPECT_TRUE(remove_leftover_segments("", dir.string()).empty());
-  fs::remove_all(dir);
 }
 
 }  // namespace

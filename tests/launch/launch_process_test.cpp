@@ -10,10 +10,14 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include "cover/process/child_process.hpp"
+#include "cover/test/process_alive.hpp"
+#include "cover/test/scratch_dir.hpp"
 
 namespace {
 
@@ -73,16 +77,10 @@ std::vector<int> started_pids(const std::string& launch_log, const std::string& 
 
 class LaunchProcess : public ::testing::Test {
  protected:
+  // The test's scratch folder: kept for a look when the test fails.
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("cover-launch-" + std::to_string(getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = cover::test::scratch_dir();
     run_dir_ = dir_ / "run";
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);  // kept for a look when a test fails
   }
 
   std::string write_launch(const std::string& yaml) {
@@ -309,6 +307,37 @@ launch:
   expect_all_gone(report);
   EXPECT_TRUE(contains(log_of("sim"), "got SIGINT"));
   EXPECT_TRUE(contains(read_text(run_dir_ / "launch.log"), "interrupted"));
+}
+
+// A launcher killed outright (SIGKILL: no handler, no ordered stop) takes its processes
+// with it: each dies with its parent (cover::process::ChildProcess).
+TEST_F(LaunchProcess, AKilledLauncherLeavesNoProcessRunning) {
+  const std::string file = write_launch(R"(
+launch:
+  name: killed
+  processes:
+    - {name: sim, executable: fake_process, args: ["--ready={run_dir}/sim.ready"], ends_run: true}
+    - {name: ugv0, executable: fake_process, args: ["--ready={run_dir}/ugv0.ready"]}
+)");
+  auto launcher = start({file, "--run-dir", run_dir_.string()});
+  ASSERT_TRUE(eventually([&] {
+    return fs::exists(run_dir_ / "sim.ready") && fs::exists(run_dir_ / "ugv0.ready");
+  })) << "the children never became ready";
+  std::vector<pid_t> pids;
+  for (const char* name : {"sim", "ugv0"}) {
+    const std::string log = log_of(name);  // "pid: N" first, flushed before the ready file
+    const auto at = log.find("pid: ");
+    ASSERT_NE(at, std::string::npos) << log;
+    pids.push_back(std::stoi(log.substr(at + 5)));
+    EXPECT_TRUE(cover::test::process_alive(pids.back())) << name;
+  }
+  kill(launcher->pid(), SIGKILL);
+  EXPECT_EQ(launcher->wait(milliseconds(5000)), std::optional<int>(128 + SIGKILL));
+  for (const pid_t pid : pids) {
+    const bool ended = eventually([&] { return !cover::test::process_alive(pid); });
+    if (!ended) kill(pid, SIGKILL);  // not left running by a failure either
+    EXPECT_TRUE(ended) << "pid " << pid << " outlived its launcher";
+  }
 }
 
 TEST_F(LaunchProcess, EscalatesToSigkillWithinTwoGracePeriods) {

@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <limits>
+#include <string>
+
+#include "cover/test/scratch_dir.hpp"
 
 using cover::mission::assess_inputs;
 using cover::mission::FailsafeCause;
@@ -249,6 +253,60 @@ TEST(FailsafeLadder, BlindLandingHandsOverToTheFlightController) {
   EXPECT_TRUE(ladder.handed_over());
   const RelativeState back = plant.measured(t);
   EXPECT_TRUE(ladder.command(&back, t + 0.01).handover);
+}
+
+// The hover's vertical control takes its gains from the params: 0.2 m below the held
+// height and sinking at 0.1 m/s, it asks for the acceleration the gains say, the integral
+// bounded by its limit.
+TEST(FailsafeLadder, VerticalGainsAreTheParams) {
+  const auto push_m_s2 = [](const MissionParams& params) {
+    FailsafeLadder ladder(params);
+    VerticalPlant plant;  // at 1.0 m, hovering
+    ladder.remember(plant.measured(0.0), kGravity_m_s2, hover_command(kGravity_m_s2), 0.0);
+    ladder.update(lost(), 0.01);
+    EXPECT_EQ(ladder.level(), LadderLevel::EmergencyHover);
+    RelativeState low = plant.measured(0.01);
+    low.position_m.z() = 0.8;
+    low.velocity_m_s.z() = -0.1;
+    return ladder.command(&low, 0.01).thrust_m_s2 - kGravity_m_s2;
+  };
+  MissionParams params;
+  params.emergency_integral_gain_1_s3 = 0.0;
+  EXPECT_NEAR(push_m_s2(params), 2.0 * 0.2 + 2.5 * 0.1, 1e-9);  // the defaults
+  params.emergency_height_gain_1_s2 = 4.0;
+  params.emergency_speed_gain_1_s = 5.0;
+  EXPECT_NEAR(push_m_s2(params), 4.0 * 0.2 + 5.0 * 0.1, 1e-9);
+  params.emergency_integral_gain_1_s3 = 10.0;  // one step: 10 * 0.2 m * 0.01 s = 0.02
+  params.emergency_integral_limit_m_s2 = 0.005;
+  EXPECT_NEAR(push_m_s2(params), 4.0 * 0.2 + 5.0 * 0.1 + 0.005, 1e-9);
+}
+
+TEST(FailsafeLadder, VerticalGainsAreReadFromYamlAndChecked) {
+  const MissionParams shipped =
+      MissionParams::load_file(cover::config::default_config_dir() + "/mission.yaml");
+  const MissionParams defaults;
+  EXPECT_EQ(shipped.emergency_height_gain_1_s2, defaults.emergency_height_gain_1_s2);
+  EXPECT_EQ(shipped.emergency_speed_gain_1_s, defaults.emergency_speed_gain_1_s);
+  EXPECT_EQ(shipped.emergency_integral_gain_1_s3, defaults.emergency_integral_gain_1_s3);
+  EXPECT_EQ(shipped.emergency_integral_limit_m_s2, defaults.emergency_integral_limit_m_s2);
+  const std::string path = cover::test::scratch_path("mission.yaml");
+  std::ofstream(path) << "mission:\n  emergency_height_gain_1_s2: 3.0\n"
+                         "  emergency_integral_gain_1_s3: 0\n";
+  const MissionParams read = MissionParams::load_file(path);
+  EXPECT_EQ(read.emergency_height_gain_1_s2, 3.0);
+  EXPECT_EQ(read.emergency_integral_gain_1_s3, 0.0);  // 0 disables the integral
+  for (const char* bad :
+       {"emergency_height_gain_1_s2: 0", "emergency_speed_gain_1_s: -1",
+        "emergency_integral_gain_1_s3: .nan", "emergency_integral_limit_m_s2: 100"}) {
+    std::ofstream(path) << "mission:\n  " << bad << "\n";
+    const std::string key = std::string(bad).substr(0, std::string(bad).find(':'));
+    try {
+      MissionParams::load_file(path);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const cover::config::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("mission." + key), std::string::npos) << e.what();
+    }
+  }
 }
 
 // The hover thrust comes from the flight itself: thrust along up against the change of

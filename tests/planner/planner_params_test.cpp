@@ -5,12 +5,13 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include "cover/test/scratch_dir.hpp"
 
 namespace cover::planner {
 namespace {
 
 std::string write_temp_yaml(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = cover::test::scratch_path(name);
   std::ofstream(path) << text;
   return path;
 }

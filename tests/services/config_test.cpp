@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/test/scratch_dir.hpp"
 
 using cover::config::ConfigError;
 using cover::config::YamlReader;
@@ -81,7 +82,7 @@ TEST(YamlFile, MissingFileAndSyntaxErrorAreClear) {
 }
 
 TEST(YamlFile, OpenSectionChecksTheTopLevel) {
-  const std::string path = testing::TempDir() + "/section.yaml";
+  const std::string path = cover::test::scratch_path("section.yaml");
   std::ofstream(path) << "planner:\n  rho: 2\nplaner:\n  rho: 3\n";
   EXPECT_THROW(cover::config::open_section(path, "planner", false), ConfigError);  // typo'd key
   std::ofstream(path) << "planner:\n  rho: 2\n";

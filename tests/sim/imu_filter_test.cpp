@@ -1,12 +1,11 @@
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <cmath>
 #include <fstream>
 #include <limits>
 
 #include "cover/model/angles.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "cover/ugv/imu_filter.hpp"
 
 namespace cover::ugv {
@@ -112,7 +111,7 @@ TEST(ImuFilter, ParamsRejectNonPositiveCutOff) {
 }
 
 TEST(ImuFilterParams, LoadFileReadsTheAgentSection) {
-  const std::string path = "/tmp/imu_filter_params_" + std::to_string(getpid()) + ".yaml";
+  const std::string path = cover::test::scratch_path("imu_filter_params.yaml");
   std::ofstream(path) << "ugv_agent:\n  status_rate_hz: 2\n  imu_filter:\n"
                          "    specific_force_cutoff_hz: 20\n";
   EXPECT_EQ(ImuFilterParams::load_file(path).specific_force_cutoff_hz, 20.0);

@@ -5,25 +5,23 @@
 #include <stdlib.h>
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "cover/mission/task.hpp"
 #include "cover/task_manager/live_view.hpp"
+#include "cover/test/scratch_dir.hpp"
 
 namespace cover::task_manager::testing {
 
-// A fresh directory per test, removed afterwards: every test runs on real SQLite files.
+// A fresh directory in the test's scratch folder (removed with it when the test passes,
+// kept for a look when it fails): every test runs on real SQLite files.
 class TempDir {
  public:
   TempDir() {
-    std::string pattern =
-        (std::filesystem::temp_directory_path() / "cover_task_manager_XXXXXX").string();
+    std::string pattern = (cover::test::scratch_dir() / "task_manager_XXXXXX").string();
     if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
     path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
   }
   std::string file(const std::string& name) const { return (path_ / name).string(); }
 

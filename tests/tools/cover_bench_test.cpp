@@ -19,6 +19,7 @@
 #include "cover/model/angles.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/sampc/sampc_params.hpp"
+#include "cover/test/scratch_dir.hpp"
 
 namespace {
 
@@ -45,11 +46,8 @@ std::string read_file(const std::filesystem::path& path) {
   return text.str();
 }
 
-std::filesystem::path temp_dir() {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("cover_bench_test_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+const std::filesystem::path& temp_dir() {
+  return cover::test::scratch_dir();
 }
 
 // `value` is a finite JSON number (not null, not a string, not a bool).
@@ -150,7 +148,6 @@ TEST(CoverBench, Table1PrintsEveryMethodAndPlotsEachRun) {
   for (const std::string& method : kMethods)
     EXPECT_NE(transitions.find(method + ": UAV"), std::string::npos) << method;
   EXPECT_NE(transitions.find("shortest path (bound)"), std::string::npos);
-  std::filesystem::remove_all(temp_dir());
 }
 
 std::vector<std::pair<double, double>> run_phases(const nlohmann::json& out) {

@@ -12,6 +12,7 @@
 
 #include "cover/shm/seqlock_writer.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "cover/ugv/imu_filter.hpp"
 
 namespace cover::test {
@@ -57,7 +58,7 @@ inline bool wait_until(const std::function<bool()>& condition, std::chrono::mill
 }
 
 inline std::string write_temp_file(const std::string& name, const std::string& text) {
-  const std::string path = "/tmp/" + std::to_string(getpid()) + "_" + name;
+  const std::string path = cover::test::scratch_path(name);
   std::ofstream(path) << text;
   return path;
 }

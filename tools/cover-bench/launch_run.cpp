@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <filesystem>
 #include <iostream>
 
 #include "cover/config/yaml_reader.hpp"
@@ -20,37 +19,47 @@ constexpr const char* kLaunch = "cover-launch";
 
 }  // namespace
 
-nlohmann::json run_launch(const std::string& launch_name, const std::vector<std::string>& flags,
-                          int domain, const std::string& who, std::chrono::minutes timeout) {
-  const std::filesystem::path run_dir =
-      std::filesystem::temp_directory_path() /
-      ("cover_bench_" + who + "_" + std::to_string(getpid()) + "_" + std::to_string(domain));
-  std::filesystem::remove_all(run_dir);
+std::vector<std::string> launch_argv(const LaunchRequest& request) {
   std::vector<std::string> argv = {
-      kLaunch,
-      cover::config::default_config_dir() + "/launch/" + launch_name + ".yaml",
-      "--json",
-      "--domain",
-      std::to_string(domain),
-      "--run-dir",
-      run_dir.string()};
-  argv.insert(argv.end(), flags.begin(), flags.end());
+      kLaunch,     request.launch_file,     "--json", "--domain", std::to_string(request.domain),
+      "--run-dir", request.run_dir.string()};
+  argv.insert(argv.end(), request.flags.begin(), request.flags.end());
+  return argv;
+}
+
+LaunchOutcome run_launcher(const LaunchRequest& request, const std::string& log_file,
+                           std::chrono::milliseconds timeout) {
   cover::process::SpawnOptions options;
   options.capture_stdout = true;
+  options.log_file = log_file;
+  cover::process::ChildProcess child(launch_argv(request), options);
+  LaunchOutcome outcome;
+  while (const auto line = child.read_line(timeout)) outcome.stdout_text += *line + "\n";
+  outcome.exit_code = child.wait(timeout).value_or(-1);
+  outcome.result = nlohmann::json::parse(outcome.stdout_text, nullptr, false);
+  return outcome;
+}
+
+nlohmann::json run_launch(const std::string& launch_name, const std::vector<std::string>& flags,
+                          int domain, const std::string& who, std::chrono::minutes timeout) {
+  LaunchRequest request;
+  request.launch_file = cover::config::default_config_dir() + "/launch/" + launch_name + ".yaml";
+  request.domain = domain;
+  request.run_dir =
+      std::filesystem::temp_directory_path() /
+      ("cover_bench_" + who + "_" + std::to_string(getpid()) + "_" + std::to_string(domain));
+  request.flags = flags;
+  std::filesystem::remove_all(request.run_dir);
   // The launcher's own log lines would bury the benchmark's output: keep them in a file.
-  options.log_file = run_dir.string() + ".log";
-  cover::process::ChildProcess child(argv, options);
-  std::string out;
-  while (const auto line = child.read_line(timeout)) out += *line + "\n";
-  child.wait(std::chrono::minutes(1));
-  const nlohmann::json result = nlohmann::json::parse(out, nullptr, false);
+  const std::string log_file = request.run_dir.string() + ".log";
+  const nlohmann::json result = run_launcher(request, log_file, timeout).result;
   if (result.is_object() && result.value("success", false)) {
-    std::filesystem::remove_all(run_dir);
-    std::filesystem::remove(options.log_file);
+    std::filesystem::remove_all(request.run_dir);
+    std::filesystem::remove(log_file);
   } else {
     std::cerr << "cover-bench " << who << ": " << launch_name << " on domain " << domain
               << (result.is_object() ? " did not succeed" : " gave no result") << "; logs in "
-              << run_dir.string() << " and " << options.log_file << "\n";
+              << request.run_dir.string() << " and " << log_file << "\n";
   }
   return result.is_object() ? result : nlohmann::json::object();
 }

@@ -1,11 +1,37 @@
 #pragma once
 
 #include <chrono>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+// Missions run through cover-launch, by the benchmarks and the integration tests alike.
 namespace cover::bench {
+
+// One run of cover-launch, reporting with --json.
+struct LaunchRequest {
+  std::string launch_file;         // path of the launch file
+  int domain = 0;                  // --domain
+  std::filesystem::path run_dir;   // --run-dir: the processes' logs, the result, the plot
+  std::vector<std::string> flags;  // more of cover-launch's flags (--dds, --clock, --seed)
+};
+
+// What a run of cover-launch gave.
+struct LaunchOutcome {
+  int exit_code = -1;       // -1: it did not end within the timeout
+  nlohmann::json result;    // its --json report; discarded (not an object) if it gave none
+  std::string stdout_text;  // all it printed on stdout
+};
+
+// cover-launch's argv for `request` (the launcher built beside this tree).
+std::vector<std::string> launch_argv(const LaunchRequest& request);
+
+// Runs `request` to its end, `timeout` at most for its output and as much for its exit.
+// The launcher's own log lines (stderr) go to `log_file`, or to this process's stderr when
+// it is empty.
+LaunchOutcome run_launcher(const LaunchRequest& request, const std::string& log_file,
+                           std::chrono::milliseconds timeout);
 
 // One mission through cover-launch (`--json`): the launch file under config/launch/, the
 // extra flags, one DDS domain. Returns the launcher's JSON report, or an empty object when

@@ -3,17 +3,100 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstring>
+#include <initializer_list>
 #include <stdexcept>
 #include <thread>
 
 extern char** environ;
 
 namespace cover::process {
+
+namespace {
+
+// What the child needs, all allocated before the fork: after it the child calls only
+// async-signal-safe functions (the parent may have other threads, holding locks).
+struct ChildSetup {
+  std::vector<char*> args;
+  std::vector<char*> env;
+  const SpawnOptions* options = nullptr;
+  int stdout_fd = -1;  // write end of the stdout pipe, when captured
+  int error_fd = -1;   // where the child writes its errno when it cannot exec
+  pid_t parent = -1;
+};
+
+void close_all(std::initializer_list<int> fds) {
+  for (const int fd : fds) {
+    if (fd >= 0) close(fd);
+  }
+}
+
+// Opens `path` onto `target` (stdin, stderr).
+bool open_onto(int target, const char* path, int flags) {
+  const int fd = open(path, flags, 0644);
+  if (fd < 0) return false;
+  if (fd == target) return true;
+  const bool ok = dup2(fd, target) >= 0;
+  close(fd);
+  return ok;
+}
+
+// Every descriptor above stderr but `keep`.
+void close_others(int keep) {
+  if (keep > STDERR_FILENO + 1) close_range(STDERR_FILENO + 1, keep - 1, 0);
+  close_range(keep + 1, ~0U, 0);
+}
+
+// The child's end when it cannot become the process asked for: errno to the parent.
+[[noreturn]] void report_and_exit(int error_fd) noexcept {
+  const int error = errno;
+  const ssize_t written = write(error_fd, &error, sizeof error);
+  (void)written;
+  _exit(127);
+}
+
+// In the forked child: sets it up as `setup` says and execs; on any failure reports errno
+// on setup.error_fd and exits 127.
+[[noreturn]] void become_child(const ChildSetup& setup) noexcept {
+  const SpawnOptions& options = *setup.options;
+  const auto fail = [&] { report_and_exit(setup.error_fd); };
+  // Killed when the parent dies, even by SIGKILL: a test or launcher that aborts leaves no
+  // process running. A parent that died before the prctl is seen in getppid().
+  if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0) fail();
+  if (getppid() != setup.parent) _exit(127);
+  if (options.new_process_group && setpgid(0, 0) != 0) fail();
+  // The child must not inherit blocked SIGINT/SIGTERM from a ShutdownSignal parent.
+  sigset_t empty;
+  sigemptyset(&empty);
+  sigprocmask(SIG_SETMASK, &empty, nullptr);
+  if (setup.stdout_fd >= 0 && dup2(setup.stdout_fd, STDOUT_FILENO) < 0) fail();
+  if (options.null_stdin && !open_onto(STDIN_FILENO, "/dev/null", O_RDONLY)) fail();
+  if (!options.log_file.empty()) {
+    const int mode = options.append_log ? O_APPEND : O_TRUNC;
+    if (!open_onto(STDERR_FILENO, options.log_file.c_str(), O_WRONLY | O_CREAT | mode)) fail();
+    if (!options.capture_stdout && dup2(STDERR_FILENO, STDOUT_FILENO) < 0) fail();
+  }
+  if (options.close_other_fds) close_others(setup.error_fd);
+  execve(setup.args[0], setup.args.data(), setup.env.data());
+  report_and_exit(setup.error_fd);
+}
+
+// Blocks until the child has exec'd (EOF: 0) or reported why it could not (its errno).
+int child_exec_error(int error_fd) {
+  int error = 0;
+  ssize_t n;
+  do {
+    n = read(error_fd, &error, sizeof error);
+  } while (n < 0 && errno == EINTR);
+  return n == static_cast<ssize_t>(sizeof error) ? error : 0;
+}
+
+}  // namespace
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv,
                            const std::vector<std::string>& extra_env, bool capture_stdout)
@@ -25,61 +108,43 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv,
       }()) {}
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv, const SpawnOptions& options) {
-  std::vector<char*> args;
-  for (const auto& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
-  args.push_back(nullptr);
+  if (argv.empty()) throw std::runtime_error("cannot start a process without an argv");
+  ChildSetup setup;
+  setup.options = &options;
+  for (const auto& arg : argv) setup.args.push_back(const_cast<char*>(arg.c_str()));
+  setup.args.push_back(nullptr);
   std::vector<std::string> env_storage;
   for (char** e = environ; *e; ++e) env_storage.emplace_back(*e);
   env_storage.insert(env_storage.end(), options.extra_env.begin(), options.extra_env.end());
-  std::vector<char*> env;
-  for (auto& entry : env_storage) env.push_back(entry.data());
-  env.push_back(nullptr);
+  for (auto& entry : env_storage) setup.env.push_back(entry.data());
+  setup.env.push_back(nullptr);
 
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  int pipe_fds[2] = {-1, -1};
-  if (options.capture_stdout) {
-    // Close-on-exec, so later children do not hold the write end open (dup2 clears the flag).
-    if (pipe2(pipe_fds, O_CLOEXEC) != 0) throw std::runtime_error("pipe() failed");
-    posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
-    posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
+  int stdout_fds[2] = {-1, -1};
+  // Close-on-exec, so later children do not hold the write end open (dup2 clears the flag).
+  if (options.capture_stdout && pipe2(stdout_fds, O_CLOEXEC) != 0) {
+    throw std::runtime_error("pipe() failed");
   }
-  if (options.null_stdin) {
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  int error_fds[2] = {-1, -1};  // the child's errno if it cannot exec; EOF once it has
+  if (pipe2(error_fds, O_CLOEXEC) != 0) {
+    close_all({stdout_fds[0], stdout_fds[1]});
+    throw std::runtime_error("pipe() failed");
   }
-  if (!options.log_file.empty()) {
-    const int mode = options.append_log ? O_APPEND : O_TRUNC;
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, options.log_file.c_str(),
-                                     O_WRONLY | O_CREAT | mode, 0644);
-    if (!options.capture_stdout) {
-      posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
-    }
-  }
-  if (options.close_other_fds) {
-    posix_spawn_file_actions_addclosefrom_np(&actions, STDERR_FILENO + 1);
-  }
-  // The child must not inherit blocked SIGINT/SIGTERM from a ShutdownSignal parent.
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  sigset_t empty;
-  sigemptyset(&empty);
-  posix_spawnattr_setsigmask(&attr, &empty);
-  short flags = POSIX_SPAWN_SETSIGMASK;
-  if (options.new_process_group) {
-    posix_spawnattr_setpgroup(&attr, 0);
-    flags |= POSIX_SPAWN_SETPGROUP;
-  }
-  posix_spawnattr_setflags(&attr, flags);
-  const int rc = posix_spawn(&pid_, args[0], &actions, &attr, args.data(), env.data());
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attr);
-  if (options.capture_stdout) {
-    close(pipe_fds[1]);
-    stdout_fd_ = pipe_fds[0];
-  }
-  if (rc != 0) {
+  setup.stdout_fd = stdout_fds[1];
+  setup.error_fd = error_fds[1];
+  setup.parent = getpid();
+  pid_ = fork();
+  if (pid_ == 0) become_child(setup);
+  const int fork_error = errno;
+  close_all({stdout_fds[1], error_fds[1]});
+  stdout_fd_ = stdout_fds[0];
+  const int error = pid_ < 0 ? fork_error : child_exec_error(error_fds[0]);
+  close(error_fds[0]);
+  if (error != 0) {
+    if (pid_ > 0) waitpid(pid_, nullptr, 0);
     pid_ = -1;
-    throw std::runtime_error("cannot start " + argv.at(0) + ": " + std::strerror(rc));
+    close_all({stdout_fd_});
+    stdout_fd_ = -1;
+    throw std::runtime_error("cannot start " + argv.front() + ": " + std::strerror(error));
   }
 }
 

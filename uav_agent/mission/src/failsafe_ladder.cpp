@@ -187,21 +187,20 @@ double FailsafeLadder::reference_height_m(double now_s) const {
 // the reference's speed as feed-forward, around the hover thrust. The integral learns only
 // from a measured height; blind, it keeps what it had learnt.
 double FailsafeLadder::vertical_thrust_m_s2(bool measured, double now_s) {
-  constexpr double kHeightGain_1_s2 = 2.0;
-  constexpr double kSpeedGain_1_s = 2.5;
-  constexpr double kIntegralGain_1_s3 = 0.5;
-  constexpr double kIntegralLimit_m_s2 = 0.2 * model::kGravity_m_s2;
   const double reference_speed_m_s =
       level_ == LadderLevel::EmergencyLanding ? -params_.emergency_descent_rate_m_s : 0.0;
   const double error_m = reference_height_m(now_s) - height_m_;
   if (measured && std::isfinite(error_m)) {
+    const double limit_m_s2 = params_.emergency_integral_limit_m_s2;
     height_integral_m_s2_ =
-        std::clamp(height_integral_m_s2_ + kIntegralGain_1_s3 * error_m * params_.control_period_s,
-                   -kIntegralLimit_m_s2, kIntegralLimit_m_s2);
+        std::clamp(height_integral_m_s2_ +
+                       params_.emergency_integral_gain_1_s3 * error_m * params_.control_period_s,
+                   -limit_m_s2, limit_m_s2);
   }
-  const double accel_m_s2 = kHeightGain_1_s2 * error_m +
-                            kSpeedGain_1_s * (reference_speed_m_s - vertical_speed_m_s_) +
-                            height_integral_m_s2_;
+  const double accel_m_s2 =
+      params_.emergency_height_gain_1_s2 * error_m +
+      params_.emergency_speed_gain_1_s * (reference_speed_m_s - vertical_speed_m_s_) +
+      height_integral_m_s2_;
   const double thrust_m_s2 = hover_thrust_m_s2_ * (1.0 + accel_m_s2 / model::kGravity_m_s2);
   // A blind landing may slow its sink but never push up: on the ground (which it cannot
   // see) more than the hover thrust would lift it off again.

@@ -62,6 +62,10 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
   reader.optional("emergency_hover_s", params.emergency_hover_s);
   reader.optional("emergency_descent_rate_m_s", params.emergency_descent_rate_m_s);
   reader.optional("emergency_level_gain_1_s", params.emergency_level_gain_1_s);
+  reader.optional("emergency_height_gain_1_s2", params.emergency_height_gain_1_s2);
+  reader.optional("emergency_speed_gain_1_s", params.emergency_speed_gain_1_s);
+  reader.optional("emergency_integral_gain_1_s3", params.emergency_integral_gain_1_s3);
+  reader.optional("emergency_integral_limit_m_s2", params.emergency_integral_limit_m_s2);
   reader.optional("emergency_blind_floor_m", params.emergency_blind_floor_m);
   reader.optional("max_plan_attempts", params.max_plan_attempts);
   reader.optional("integral_gain_1_s3", params.integral_gain_1_s3);
@@ -114,6 +118,16 @@ void MissionParams::validate() const {
                 ctx + ".emergency_descent_rate_m_s", "must be in (0, 1]");
   config::check(positive(emergency_level_gain_1_s) && emergency_level_gain_1_s <= 20.0,
                 ctx + ".emergency_level_gain_1_s", "must be in (0, 20]");
+  config::check(positive(emergency_height_gain_1_s2) && emergency_height_gain_1_s2 <= 20.0,
+                ctx + ".emergency_height_gain_1_s2", "must be in (0, 20]");
+  config::check(positive(emergency_speed_gain_1_s) && emergency_speed_gain_1_s <= 20.0,
+                ctx + ".emergency_speed_gain_1_s", "must be in (0, 20]");
+  config::check(std::isfinite(emergency_integral_gain_1_s3) &&
+                    emergency_integral_gain_1_s3 >= 0.0 && emergency_integral_gain_1_s3 <= 10.0,
+                ctx + ".emergency_integral_gain_1_s3", "must be in [0, 10] (0 disables)");
+  config::check(std::isfinite(emergency_integral_limit_m_s2) &&
+                    emergency_integral_limit_m_s2 >= 0.0 && emergency_integral_limit_m_s2 <= 5.0,
+                ctx + ".emergency_integral_limit_m_s2", "must be in [0, 5]");
   config::check(std::isfinite(emergency_blind_floor_m) && emergency_blind_floor_m >= 0.0 &&
                     emergency_blind_floor_m <= 10.0,
                 ctx + ".emergency_blind_floor_m", "must be in [0, 10]");

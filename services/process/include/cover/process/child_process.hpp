@@ -28,12 +28,18 @@ struct SpawnOptions {
   bool close_other_fds = false;
 };
 
-// A child process started with posix_spawn, for integration tests and benchmarks that
-// run real processes. Its stdout can be read line by line; the destructor terminates it.
+// A child process (fork + execve), for integration tests, benchmarks and launchers that run
+// real processes. Its stdout can be read line by line; the destructor terminates it.
+//
+// The child dies with its parent: it is sent SIGKILL when the parent exits, also when the
+// parent is killed or crashes (PR_SET_PDEATHSIG), so an aborted test or launcher leaves
+// nothing running. Linux sends that signal when the *thread* that started the child ends:
+// start children from the main thread, or from a thread that outlives them.
 class ChildProcess {
  public:
   // `argv[0]` is the executable path. `extra_env` entries ("KEY=value") are added to the
-  // parent's environment. Throws std::runtime_error when the spawn fails.
+  // parent's environment. Throws std::runtime_error when the child cannot be started (no
+  // such executable, a log file that cannot be opened), naming why.
   ChildProcess(const std::vector<std::string>& argv, const std::vector<std::string>& extra_env = {},
                bool capture_stdout = false);
   ChildProcess(const std::vector<std::string>& argv, const SpawnOptions& options);

@@ -53,6 +53,14 @@ struct MissionParams {
   // The emergency landing's sink rate (m/s) and the gain (1/s) that levels the attitude.
   double emergency_descent_rate_m_s = 0.3;
   double emergency_level_gain_1_s = 4.0;
+  // The ladder's vertical control in the hover and the landing: an acceleration around the
+  // hover thrust from the height error (gain 1/s^2), the vertical speed error (1/s) and the
+  // height error's integral (1/s^3; learnt only from a measured height), which is bounded
+  // (m/s^2; 0.2 g).
+  double emergency_height_gain_1_s2 = 2.0;
+  double emergency_speed_gain_1_s = 2.5;
+  double emergency_integral_gain_1_s3 = 0.5;
+  double emergency_integral_limit_m_s2 = 1.962;
   // Without any relative state the landing cannot see contact: it disarms once its sinking
   // reference is this far below the frame's origin (m; the lowest ground can be there) plus
   // land_detect_gap_m, held for land_detect_time_s.
