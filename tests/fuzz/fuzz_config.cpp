@@ -84,9 +84,11 @@ const fs::path& work_dir() {
       const fs::path link = d / entry.path().filename();
       if (!fs::exists(fs::symlink_status(link))) fs::create_symlink(entry.path(), link);
     }
-    std::atexit([] { fs::remove_all(dir); });
     return d;
   }();
+  // Registered once `dir` is made, so that it runs before dir's destructor, not after it.
+  static const bool removed_at_exit = (std::atexit([] { fs::remove_all(dir); }), true);
+  (void)removed_at_exit;
   return dir;
 }
 
