@@ -3,6 +3,7 @@
 // error per axis, and how much faster than real time the whole loop runs.
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -34,6 +35,30 @@ double out_ratio(const cover::sim::ClosedLoopResult& r) {
                                          : std::nan("");
 }
 
+// One line per control step: time, stage, frame, the true relative position and velocity,
+// the reference position, the command and the disturbance estimate (what a tracking error
+// over time is read from).
+bool write_step_trace(const cover::sim::ClosedLoopResult& r, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) return false;
+  out << "time_s,stage,process,reference_ugv,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,ref_x_m,ref_y_m,"
+         "ref_z_m,thrust_m_s2,wx_rad_s,wy_rad_s,wz_rad_s,dx_m_s2,dy_m_s2,dz_m_s2\n";
+  const auto row = [&out](const Eigen::Vector3d& v) {
+    out << ',' << v.x() << ',' << v.y() << ',' << v.z();
+  };
+  for (const cover::sim::StepSample& s : r.step_trace) {
+    out << s.time_s << ',' << s.stage_code << ',' << s.process_index << ',' << s.reference_ugv;
+    row(s.position_m);
+    row(s.velocity_m_s);
+    row(s.reference_position_m);
+    out << ',' << s.thrust_m_s2;
+    row(s.body_rate_rad_s);
+    row(s.disturbance_m_s2);
+    out << '\n';
+  }
+  return static_cast<bool>(out);
+}
+
 int run(const std::vector<std::string>& args) {
   CLI::App app{"The paper's scenarios 1-4 in closed loop (sec. 5.2)"};
   int number = 2;
@@ -55,6 +80,12 @@ int run(const std::vector<std::string>& args) {
   CLI::Option* plot =
       app.add_option("--plot", plot_file, "write a top-view SVG (default file scenario<N>.svg)");
   plot->expected(0, 1);
+  std::string scenario_file;
+  app.add_option("--scenario-file", scenario_file,
+                 "fly this scenario YAML instead of scenario N's (a variant of its world)");
+  std::string trace_file;
+  app.add_option("--trace", trace_file,
+                 "write every control step (state, reference, command) as CSV to this file");
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
 
   if (pattern_opt->count() > 0 && number != 1) {
@@ -63,10 +94,13 @@ int run(const std::vector<std::string>& args) {
   }
   const Scenario1Pattern* scenario1 = number == 1 ? &scenario1_pattern(pattern) : nullptr;
   const std::string name = scenario1 ? scenario1->file : "scenario" + std::to_string(number);
-  cover::sim::Scenario scenario = cover::sim::Scenario::load_file(cover::sim::scenario_path(name));
+  cover::sim::Scenario scenario = cover::sim::Scenario::load_file(
+      scenario_file.empty() ? cover::sim::scenario_path(name) : scenario_file);
   if (app.count("--seed") > 0) scenario.world.seed = seed;
   const auto config = cover::uav::ControllerConfig::load_default(*cover::sampc::parse_mode(method));
-  const cover::sim::ClosedLoop loop(scenario, config);
+  cover::sim::ClosedLoopOptions options;
+  options.record_step_trace = !trace_file.empty();
+  const cover::sim::ClosedLoop loop(scenario, config, options);
   const cover::sim::ClosedLoopResult result = loop.run();
 
   if (plot->count() > 0) {
@@ -77,6 +111,10 @@ int run(const std::vector<std::string>& args) {
       std::cerr << "cannot write " << plot_file << "\n";
       return 1;
     }
+  }
+  if (!trace_file.empty() && !write_step_trace(result, trace_file)) {
+    std::cerr << "cannot write " << trace_file << "\n";
+    return 1;
   }
   if (json) {
     nlohmann::json out = cover::sim::summary_json(result);

@@ -81,6 +81,10 @@ struct SampcParams {
                              Eigen::Vector4d(1, 20, 20, 5),
                              0.0,
                              0.0};
+  // x-y-z-ref: node k's thrust and attitude references are those that fly the plan's
+  // acceleration there (the model solved for R(q) [0, 0, F] at the reference's position,
+  // velocity and acceleration, yaw from the yaw reference); false: hover thrust, level.
+  bool tracking_feed_forward = true;
   // The terminal node k = N uses the stage weights of k = N times this factor.
   double terminal_weight_scale = 2.0;
 
