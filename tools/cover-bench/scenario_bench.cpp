@@ -3,7 +3,6 @@
 // error per axis, and how much faster than real time the whole loop runs.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -33,30 +32,6 @@ const Scenario1Pattern& scenario1_pattern(const std::string& name) {
 double out_ratio(const cover::sim::ClosedLoopResult& r) {
   return r.total_straight_length_m > 0.0 ? r.total_path_length_m / r.total_straight_length_m
                                          : std::nan("");
-}
-
-// One line per control step: time, stage, frame, the true relative position and velocity,
-// the reference position, the command and the disturbance estimate (what a tracking error
-// over time is read from).
-bool write_step_trace(const cover::sim::ClosedLoopResult& r, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) return false;
-  out << "time_s,stage,process,reference_ugv,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,ref_x_m,ref_y_m,"
-         "ref_z_m,thrust_m_s2,wx_rad_s,wy_rad_s,wz_rad_s,dx_m_s2,dy_m_s2,dz_m_s2\n";
-  const auto row = [&out](const Eigen::Vector3d& v) {
-    out << ',' << v.x() << ',' << v.y() << ',' << v.z();
-  };
-  for (const cover::sim::StepSample& s : r.step_trace) {
-    out << s.time_s << ',' << s.stage_code << ',' << s.process_index << ',' << s.reference_ugv;
-    row(s.position_m);
-    row(s.velocity_m_s);
-    row(s.reference_position_m);
-    out << ',' << s.thrust_m_s2;
-    row(s.body_rate_rad_s);
-    row(s.disturbance_m_s2);
-    out << '\n';
-  }
-  return static_cast<bool>(out);
 }
 
 int run(const std::vector<std::string>& args) {
@@ -112,7 +87,7 @@ int run(const std::vector<std::string>& args) {
       return 1;
     }
   }
-  if (!trace_file.empty() && !write_step_trace(result, trace_file)) {
+  if (!trace_file.empty() && !cover::sim::write_step_trace(result, trace_file)) {
     std::cerr << "cannot write " << trace_file << "\n";
     return 1;
   }
