@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "cover/sim/closed_loop.hpp"
@@ -107,6 +108,30 @@ TEST(ClosedLoop, ScenarioTwoLandsOnTheTargetUgv) {
   ASSERT_EQ(result.transitions.size(), 1u);
   EXPECT_TRUE(result.transitions[0].completed);
   EXPECT_GT(result.transitions[0].straight_length_m, 1.0);
+}
+
+// Scenario 2's final stage descends fast onto a deck driving an S-curve: the tracking
+// feed-forward keeps each axis within the paper's Table 4 scale (<= 1.5 cm mean |error|),
+// and the transition's height plan, planned alone, holds the transition height instead of
+// dipping with a 3-D plan's horizontal part.
+TEST(ClosedLoop, ScenarioTwoTracksTheFinalStageAndHoldsTheTransitionHeight) {
+  ClosedLoopOptions options;
+  options.record_paths = false;
+  options.record_step_trace = true;
+  const ClosedLoop loop(Scenario::load_file(cover::sim::scenario_path("scenario2")), cover_config(),
+                        options);
+  const cover::sim::ClosedLoopResult result = loop.run();
+  ASSERT_TRUE(result.success) << result.status;
+  for (int axis = 0; axis < 3; ++axis) EXPECT_LE(result.final_tracking_error_m[axis], 0.015);
+  double lowest_m = 1e9;
+  int transition_steps = 0;
+  for (const cover::sim::StepSample& s : result.step_trace) {
+    if (s.stage_code != static_cast<int>(cover::model::Stage::Transition)) continue;
+    lowest_m = std::min(lowest_m, s.position_m.z());
+    ++transition_steps;
+  }
+  EXPECT_GT(transition_steps, 100);
+  EXPECT_GT(lowest_m, 0.85);  // the transition point is 1.0 m above G1's deck
 }
 
 // Same seed, same run: the harness is deterministic (timings aside).

@@ -84,6 +84,11 @@ TEST(MissionParams, TransitionReferenceIsParsedAndChecked) {
   EXPECT_THROW(load("transition_reference: curved"), config::ConfigError);
   EXPECT_THROW(load("approach_brake_fraction: 0"), config::ConfigError);
   EXPECT_THROW(load("approach_brake_fraction: 1.5"), config::ConfigError);
+  EXPECT_DOUBLE_EQ(load("{}").final_start_acceleration_fraction, 0.3);
+  EXPECT_DOUBLE_EQ(load("final_start_acceleration_fraction: 0").final_start_acceleration_fraction,
+                   0.0);
+  EXPECT_THROW(load("final_start_acceleration_fraction: -0.1"), config::ConfigError);
+  EXPECT_THROW(load("final_start_acceleration_fraction: 1.5"), config::ConfigError);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@ struct GradientCase {
   const char* name;
   Eigen::Vector3d start, v0, goal;
   double vmax, amax;
+  Eigen::Vector3d a0 = Eigen::Vector3d::Zero();
 };
 
 class ObjectiveGradient : public ::testing::TestWithParam<GradientCase> {};
@@ -22,7 +23,7 @@ TEST_P(ObjectiveGradient, MatchesFiniteDifferences) {
   PlannerParams params;
   params.pieces = 4;
   StageObjective objective(params);
-  objective.set_problem(c.start, c.v0, c.goal, c.vmax, c.amax);
+  objective.set_problem(c.start, c.v0, c.a0, c.goal, c.vmax, c.amax);
   // Short durations so the speed and acceleration penalties are active.
   Eigen::VectorXd durations(4);
   durations << 0.9, 1.3, 0.6, 1.1;
@@ -54,7 +55,15 @@ INSTANTIATE_TEST_SUITE_P(
         GradientCase{"long_fast", {6.0, 2.0, 1.0}, {0.5, 0.0, 0.0}, {0.0, 0.0, 1.5}, 1.0, 2.0},
         GradientCase{
             "overspeed_start", {2.0, -1.0, 1.0}, {2.5, 1.0, 0.0}, {0.0, 0.0, 1.5}, 1.0, 1.5},
-        GradientCase{"short", {0.2, 0.1, 1.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 1.5}, 1.2, 3.0}),
+        GradientCase{"short", {0.2, 0.1, 1.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 1.5}, 1.2, 3.0},
+        // Starting mid-manoeuvre: a braking start acceleration.
+        GradientCase{"braking_start",
+                     {0.2, 0.1, 1.0},
+                     {-0.3, 0.1, 0.2},
+                     {0.0, 0.0, 0.05},
+                     1.5,
+                     2.0,
+                     {1.8, -0.4, 0.5}}),
     [](const ::testing::TestParamInfo<GradientCase>& info) { return info.param.name; });
 
 TEST(TimeMap, IsPositiveMonotoneAndInvertible) {

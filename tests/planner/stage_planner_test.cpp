@@ -190,6 +190,32 @@ TEST(StagePlanner, TransitionStageUsesRelativeTranslationalVelocity) {
   EXPECT_LT(result.trajectory.velocity(0.0).norm(), 1e-9);
 }
 
+// A stage that starts braking (the final stage after the transition's approach) starts with
+// that acceleration, capped at amax; at the transition stage it is ignored; a non-finite one
+// is refused.
+TEST(StagePlanner, StartAccelerationIsTheTrajectorysFirst) {
+  StageProblem problem = make_problem({0.1, -0.05, 1.0}, {0.25, 0.0, 0.0}, {0.0, 0.0, 0.05});
+  problem.vmax_m_s = 1.5;
+  problem.start_acceleration_m_s2 = Eigen::Vector3d(-0.9, 0.2, 0.0);
+  StagePlanner planner{PlannerParams{}};
+  const PlanResult braking = planner.plan(problem);
+  ASSERT_TRUE(is_usable(braking.status)) << braking.reason;
+  EXPECT_LT((braking.trajectory.acceleration(0.0) - problem.start_acceleration_m_s2).norm(), 1e-6);
+  EXPECT_LT((braking.trajectory.position(braking.trajectory.duration_s()) - problem.goal_position_m)
+                .norm(),
+            1e-6);
+
+  problem.start_acceleration_m_s2 = Eigen::Vector3d(8.0, 0.0, 0.0);
+  EXPECT_TRUE(initial_acceleration(problem).isApprox(Eigen::Vector3d(problem.amax_m_s2, 0, 0)));
+  problem.transition_stage = true;
+  EXPECT_EQ(initial_acceleration(problem), Eigen::Vector3d::Zero());
+  problem.transition_stage = false;
+  problem.start_acceleration_m_s2.x() = std::numeric_limits<double>::quiet_NaN();
+  const PlanResult bad = planner.plan(problem);
+  EXPECT_EQ(bad.status, PlanStatus::InvalidInput);
+  EXPECT_TRUE(bad.trajectory.is_finite());
+}
+
 TEST(StagePlanner, InvalidParametersThrowAtConstruction) {
   PlannerParams params;
   params.pieces = 0;

@@ -4,6 +4,7 @@
 
 #include "cover/config/yaml_reader.hpp"
 #include "cover/model/angles.hpp"
+#include "cover/model/dynamics.hpp"
 #include "cover/model/quaternion.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 
@@ -32,7 +33,8 @@ HorizonCost build(const SampcParams& params, const SampcInput& in, double held_y
 }
 
 TEST(HorizonCost, TrackingStagesFollowThePlanWithTable2Weights) {
-  const SampcParams params;
+  SampcParams params;
+  params.tracking_feed_forward = false;  // Table 2's around-hover references
   for (Stage stage : {Stage::Initial, Stage::Final}) {
     const SampcInput in = example_input(stage);
     const HorizonCost cost = build(params, in);
@@ -137,7 +139,8 @@ TEST(HorizonCost, NoRefVxyDiffersFromCoverOnlyInTheHorizontalVelocityWeight) {
 TEST(HorizonCost, ConiMpcTracksThePlanAtTheTransitionStageToo) {
   SampcParams coni;
   coni.mode = Mode::ConiMpc;
-  const SampcParams cover_params;
+  SampcParams cover_params;
+  cover_params.tracking_feed_forward = false;  // coni-mpc's transition never has it
   const HorizonCost at_transition = build(coni, example_input(Stage::Transition));
   const HorizonCost cover_initial = build(cover_params, example_input(Stage::Initial));
   EXPECT_EQ(at_transition.reference_mode, ReferenceMode::XyzRef);
@@ -146,7 +149,59 @@ TEST(HorizonCost, ConiMpcTracksThePlanAtTheTransitionStageToo) {
     EXPECT_EQ(at_transition.nodes[k].velocity_ref_m_s, cover_initial.nodes[k].velocity_ref_m_s);
     EXPECT_EQ(at_transition.nodes[k].attitude_ref, cover_initial.nodes[k].attitude_ref);
     EXPECT_EQ(at_transition.nodes[k].squared_distance_weight, 0.0);
+    EXPECT_EQ(at_transition.nodes[k].input_ref, model::hover_input());
   }
+}
+
+// A plan accelerating at a constant rate (still UGV): the feed-forward references are a
+// trajectory of the model itself. From node k's reference state under node k's input
+// reference, one model step lands on node k + 1's reference.
+TEST(HorizonCost, FeedForwardReferencesFlyThePlanInTheModel) {
+  const SampcParams params;
+  SampcInput in;
+  in.stage = Stage::Final;
+  const Vector3d p0(0.4, -0.3, 1.0), v0(-0.2, 0.1, -0.5), a(0.6, -0.3, 1.2);
+  for (int k = 0; k <= kMaxHorizon; ++k) {
+    const double t = k * params.step_s;
+    in.reference.position_m[k] = p0 + v0 * t + 0.5 * a * t * t;
+    in.reference.velocity_m_s[k] = v0 + a * t;
+    in.reference.acceleration_m_s2[k] = a;
+  }
+  in.uav_state = model::uav_state_at_rest(p0);
+  const HorizonCost cost = build(params, in);
+  for (int k = 0; k + 1 < params.horizon_steps; ++k) {
+    const NodeCost& n = cost.nodes[k];
+    const Vector3d thrust = a + Vector3d(0.0, 0.0, model::kGravity_m_s2);
+    EXPECT_NEAR(n.input_ref(0), thrust.norm(), 1e-9);
+    EXPECT_LT((model::thrust_direction(n.attitude_ref) - thrust.normalized()).norm(), 1e-9);
+    model::UavState x = model::UavState::Zero();
+    x.segment<3>(0) = in.reference.position_m[k];
+    x.segment<3>(3) = in.reference.velocity_m_s[k];
+    x.segment<4>(6) = n.attitude_ref;
+    const model::UavState next = model::uav_rk4_step(x, n.input_ref, in.ugv, params.step_s);
+    EXPECT_LT((next.segment<3>(0) - in.reference.position_m[k + 1]).norm(), 1e-3) << k;
+    EXPECT_LT((next.segment<3>(3) - in.reference.velocity_m_s[k + 1]).norm(), 1e-3) << k;
+  }
+}
+
+// The rate references turn the yaw reference (0.8 rad/s toward the UGV's x axis) in a frame
+// that itself turns at 0.4 rad/s: w_z = yaw' + Omega_z, and zero once the yaw is reached.
+TEST(HorizonCost, RateFeedForwardFollowsTheYawReferenceInTheTurningFrame) {
+  const SampcParams params;
+  SampcInput in = example_input(Stage::Final);
+  for (int k = 0; k <= kMaxHorizon; ++k) {
+    in.reference.position_m[k] = Vector3d(0.0, 0.0, 1.0);
+    in.reference.velocity_m_s[k] = Vector3d::Zero();
+  }
+  in.uav_state = model::uav_state_at_rest(Vector3d(0.0, 0.0, 1.0));
+  in.uav_state.segment<4>(6) = model::yaw_quaternion(1.0);
+  in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.4);
+  const HorizonCost cost = build(params, in);
+  const double turn_rate = -params.yaw_reference_rate_rad_s;
+  EXPECT_NEAR(cost.nodes[0].input_ref(3), turn_rate + 0.4, 0.02);
+  EXPECT_NEAR(cost.nodes[params.horizon_steps - 1].input_ref(3), 0.4, 0.02);
+  // A level hover in the turning frame: its thrust and no roll or pitch rate.
+  EXPECT_LT(std::abs(cost.nodes[0].input_ref(1)) + std::abs(cost.nodes[0].input_ref(2)), 0.05);
 }
 
 TEST(HorizonCost, YawIsHeldOnTheUgvAxis) {

@@ -55,6 +55,12 @@ int run(const std::vector<std::string>& args) {
   CLI::Option* plot =
       app.add_option("--plot", plot_file, "write a top-view SVG (default file scenario<N>.svg)");
   plot->expected(0, 1);
+  std::string scenario_file;
+  app.add_option("--scenario-file", scenario_file,
+                 "fly this scenario YAML instead of scenario N's (a variant of its world)");
+  std::string trace_file;
+  app.add_option("--trace", trace_file,
+                 "write every control step (state, reference, command) as CSV to this file");
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
 
   if (pattern_opt->count() > 0 && number != 1) {
@@ -63,10 +69,13 @@ int run(const std::vector<std::string>& args) {
   }
   const Scenario1Pattern* scenario1 = number == 1 ? &scenario1_pattern(pattern) : nullptr;
   const std::string name = scenario1 ? scenario1->file : "scenario" + std::to_string(number);
-  cover::sim::Scenario scenario = cover::sim::Scenario::load_file(cover::sim::scenario_path(name));
+  cover::sim::Scenario scenario = cover::sim::Scenario::load_file(
+      scenario_file.empty() ? cover::sim::scenario_path(name) : scenario_file);
   if (app.count("--seed") > 0) scenario.world.seed = seed;
   const auto config = cover::uav::ControllerConfig::load_default(*cover::sampc::parse_mode(method));
-  const cover::sim::ClosedLoop loop(scenario, config);
+  cover::sim::ClosedLoopOptions options;
+  options.record_step_trace = !trace_file.empty();
+  const cover::sim::ClosedLoop loop(scenario, config, options);
   const cover::sim::ClosedLoopResult result = loop.run();
 
   if (plot->count() > 0) {
@@ -77,6 +86,10 @@ int run(const std::vector<std::string>& args) {
       std::cerr << "cannot write " << plot_file << "\n";
       return 1;
     }
+  }
+  if (!trace_file.empty() && !cover::sim::write_step_trace(result, trace_file)) {
+    std::cerr << "cannot write " << trace_file << "\n";
+    return 1;
   }
   if (json) {
     nlohmann::json out = cover::sim::summary_json(result);

@@ -95,6 +95,10 @@ int run(const std::vector<std::string>& args) {
       "--plot", plot_file,
       "SVG of the first pattern's cover run (default stability.svg); baselines get _<method>");
   plot->expected(0, 1);
+  std::string trace_file;
+  app.add_option("--trace", trace_file,
+                 "CSV of every control step of the first pattern's cover run; baselines get "
+                 "_<method>");
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
 
   std::vector<std::string> patterns = {"circle", "eight", "star"};
@@ -110,6 +114,7 @@ int run(const std::vector<std::string>& args) {
       const auto config = cover::uav::ControllerConfig::load_default(mode);
       cover::sim::ClosedLoopOptions options;
       options.record_paths = plot->count() > 0 && i == 0;
+      options.record_step_trace = !trace_file.empty() && i == 0;
       const cover::sim::ClosedLoop loop(scenario, config, options);
       const cover::sim::ClosedLoopResult result = loop.run();
       Row row{patterns[i], method, !result.transitions.empty(), {}, result.status};
@@ -120,6 +125,15 @@ int run(const std::vector<std::string>& args) {
                                      : cover::sim::with_suffix(plot_file, method);
         const std::string title = "Fig. 8, " + patterns[i] + ": " + method;
         if (!cover::sim::write_path_plot(result, scenario, title, file)) {
+          std::cerr << "cannot write " << file << "\n";
+          return 1;
+        }
+      }
+      if (options.record_step_trace) {
+        const std::string file = mode == cover::sampc::Mode::Cover
+                                     ? trace_file
+                                     : cover::sim::with_suffix(trace_file, method);
+        if (!cover::sim::write_step_trace(result, file)) {
           std::cerr << "cannot write " << file << "\n";
           return 1;
         }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 namespace cover::sim {
 
@@ -26,10 +27,10 @@ nlohmann::json summary_json(const ClosedLoopResult& r) {
           {"Lt", r.total_path_length_m},
           {"Ls", r.total_straight_length_m},
           {"ratio", number_or_null(ratio)},
-          {"eq30_law_ratio", number_or_null(r.eq30_law_straight_length_m > 0.0
-                                                ? r.eq30_law_path_length_m /
-                                                      r.eq30_law_straight_length_m
-                                                : std::nan(""))},
+          {"eq30_law_ratio",
+           number_or_null(r.eq30_law_straight_length_m > 0.0
+                              ? r.eq30_law_path_length_m / r.eq30_law_straight_length_m
+                              : std::nan(""))},
           {"bound_ratio", number_or_null(r.bound_straight_length_m > 0.0
                                              ? r.bound_path_length_m / r.bound_straight_length_m
                                              : std::nan(""))},
@@ -80,6 +81,30 @@ std::string with_suffix(const std::string& path, const std::string& suffix) {
     return path + "_" + suffix;
   }
   return path.substr(0, dot) + "_" + suffix + path.substr(dot);
+}
+
+// One line per control step: time, stage, frame, the true relative position and velocity,
+// the reference position, the command and the disturbance estimate (what a tracking error
+// over time is read from).
+bool write_step_trace(const ClosedLoopResult& r, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) return false;
+  out << "time_s,stage,process,reference_ugv,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,ref_x_m,ref_y_m,"
+         "ref_z_m,thrust_m_s2,wx_rad_s,wy_rad_s,wz_rad_s,dx_m_s2,dy_m_s2,dz_m_s2\n";
+  const auto row = [&out](const Eigen::Vector3d& v) {
+    out << ',' << v.x() << ',' << v.y() << ',' << v.z();
+  };
+  for (const StepSample& s : r.step_trace) {
+    out << s.time_s << ',' << s.stage_code << ',' << s.process_index << ',' << s.reference_ugv;
+    row(s.position_m);
+    row(s.velocity_m_s);
+    row(s.reference_position_m);
+    out << ',' << s.thrust_m_s2;
+    row(s.body_rate_rad_s);
+    row(s.disturbance_m_s2);
+    out << '\n';
+  }
+  return static_cast<bool>(out);
 }
 
 }  // namespace cover::sim

@@ -37,6 +37,7 @@ void RunRecorder::record(const mission::ControllerStatus& status,
     ++result_.failsafe_steps;
   }
   record_path(status, ws);
+  if (options_.record_step_trace) record_step(status, command, world);
   // An aborted task is over for the run once its safe action has disarmed the motors, a
   // task failed by the failsafe ladder once its emergency landing has.
   const bool landing = status.failsafe == mission::Failsafe::EmergencyHover ||
@@ -73,6 +74,24 @@ void RunRecorder::record_path(const mission::ControllerStatus& status, const Wor
   for (std::size_t k = 0; k < result_.ugv_paths.size(); ++k) {
     result_.ugv_paths[k].push_back(ws.ugvs[k].position_m.eigen().head<2>());
   }
+}
+
+void RunRecorder::record_step(const mission::ControllerStatus& status,
+                              const mission::ControlCommand& command, const World& world) {
+  StepSample sample;
+  sample.time_s = world.state().time_s;
+  const bool running = status.stage.state == mission::MissionState::Running;
+  sample.stage_code = running ? static_cast<int>(status.stage.stage) : -1;
+  sample.process_index = static_cast<int>(status.stage.process_index);
+  sample.reference_ugv = status.stage.reference_ugv;
+  const RelativeState truth = world.true_relative_state(status.stage.reference_ugv);
+  sample.position_m = truth.position_m;
+  sample.velocity_m_s = truth.velocity_m_s;
+  sample.reference_position_m = status.reference_position_m;
+  sample.thrust_m_s2 = command.thrust_m_s2;
+  sample.body_rate_rad_s = command.body_rate_rad_s;
+  sample.disturbance_m_s2 = status.disturbance_m_s2;
+  result_.step_trace.push_back(sample);
 }
 
 void RunRecorder::track_transitions(const mission::ControllerStatus& status,

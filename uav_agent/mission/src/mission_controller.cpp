@@ -279,6 +279,24 @@ bool MissionController::plan_stage(double now_s) {
   problem.transition_stage =
       decision.stage == Stage::Transition && sampc_.params().mode != sampc::Mode::ConiMpc;
   problem.ugv_angular_velocity_rad_s = in.imu.motion.angular_velocity_rad_s;
+  // The final stage begins in the transition's frame while the UAV still brakes from its
+  // approach. Planned from zero acceleration, the plan runs on while the UAV cannot drop its
+  // braking attitude at once, and the UAV trails it (Scenario 4: 3 cm); with all of SAMPC's
+  // planned braking the plan stops short and the UAV overshoots it (Scenario 2: 2.9 cm).
+  if (decision.stage == Stage::Final && decision.stage_started && output_.command.armed &&
+      output_.status.failsafe == Failsafe::None) {
+    const Eigen::Vector3d planned = (sampc_.planned_state(1).segment<3>(model::idx::kVelocity) -
+                                     sampc_.planned_state(0).segment<3>(model::idx::kVelocity)) /
+                                    sampc_.params().step_s;
+    problem.start_acceleration_m_s2 = params_.final_start_acceleration_fraction * planned;
+  }
+  if (flies_radial_approach()) {
+    // The radial approach replaces the plan's horizontal part: plan the height alone. A
+    // 3-D plan's height bends with its horizontal part, which nothing flies (Scenario 2: a
+    // 0.7 m dip and the climb back, 1.5 m of an 11 m transition path).
+    problem.start_position_m.head<2>() = problem.goal_position_m.head<2>();
+    problem.start_velocity_m_s.head<2>().setZero();
+  }
 
   planner::PlanResult result = planner_.plan(problem);
   output_.status.planned = true;
@@ -297,6 +315,7 @@ void MissionController::fill_reference(double t_s, sampc::HorizonReference& refe
     const double t_k = t_s + k * p.step_s;
     reference.position_m[k] = trajectory_.position(t_k);
     reference.velocity_m_s[k] = trajectory_.velocity(t_k);
+    reference.acceleration_m_s2[k] = trajectory_.acceleration(t_k);
   }
 }
 

@@ -40,12 +40,14 @@ StageObjective::StageObjective(const PlannerParams& params)
 
 void StageObjective::set_problem(const Eigen::Vector3d& start_position_m,
                                  const Eigen::Vector3d& initial_velocity_m_s,
+                                 const Eigen::Vector3d& initial_acceleration_m_s2,
                                  const Eigen::Vector3d& goal_position_m, double vmax_m_s,
                                  double amax_m_s2) {
   Eigen::Matrix3d head = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d tail = Eigen::Matrix3d::Zero();
   head.col(0) = start_position_m;
   head.col(1) = initial_velocity_m_s;
+  head.col(2) = initial_acceleration_m_s2;
   tail.col(0) = goal_position_m;
   minco_.set_conditions(head, tail, pieces_);
   vmax_m_s_ = vmax_m_s;

@@ -103,6 +103,8 @@ std::string StagePlanner::check_problem(const StageProblem& problem) const {
   if (!std::isfinite(problem.amax_m_s2) || problem.amax_m_s2 <= 0.0 ||
       problem.amax_m_s2 > params_.max_limit_m_s2)
     return "amax must be finite, > 0 and <= max_limit_m_s2 (is amax_uav <= amax_ugv? eq. 15)";
+  if (!problem.transition_stage && !problem.start_acceleration_m_s2.allFinite())
+    return "start acceleration is not finite";
   if (bad_vector(initial_velocity(problem), params_.max_abs_speed_m_s))
     return "eq. 23 initial velocity v + Omega x p exceeds max_abs_speed_m_s";
   return {};
@@ -144,13 +146,15 @@ PlanResult StagePlanner::plan_or_throw(const StageProblem& problem) {
   const Eigen::Vector3d start = problem.start_position_m;
   const Eigen::Vector3d goal = problem.goal_position_m;
   const Eigen::Vector3d v0 = initial_velocity(problem);
+  const Eigen::Vector3d a0 = initial_acceleration(problem);
   const double vm = problem.vmax_m_s;
   const double am = problem.amax_m_s2;
   result.initial_velocity_m_s = v0;
 
   const Eigen::Vector3d displacement = goal - start;
   const double distance = displacement.norm();
-  if (distance <= params_.at_goal_tolerance_m && v0.norm() <= params_.at_rest_tolerance_m_s) {
+  if (distance <= params_.at_goal_tolerance_m && v0.norm() <= params_.at_rest_tolerance_m_s &&
+      a0.isZero()) {
     result.status = PlanStatus::Ok;
     result.reason = "already at the goal and at rest: hold";
     result.trajectory = Trajectory::hold(start);
@@ -174,7 +178,7 @@ PlanResult StagePlanner::plan_or_throw(const StageProblem& problem) {
 
   Optimiser& optimiser = *optimiser_;
   StageObjective& objective = optimiser.objective;
-  objective.set_problem(start, v0, goal, vm, am);
+  objective.set_problem(start, v0, a0, goal, vm, am);
   objective.encode(waypoints, durations, optimiser.x.data());
   const std::vector<double> guess = optimiser.x;
   std::vector<double>& gradient = optimiser.gradient;

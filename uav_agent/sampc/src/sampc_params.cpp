@@ -100,6 +100,7 @@ SampcParams SampcParams::load(config::YamlReader& reader) {
   reader.optional("yaw_rate_max_rad_s", p.yaw_rate_max_rad_s);
   load_weights(reader.child("transition_weights"), p.transition_weights, true);
   load_weights(reader.child("tracking_weights"), p.tracking_weights, false);
+  reader.optional("tracking_feed_forward", p.tracking_feed_forward);
   reader.optional("terminal_weight_scale", p.terminal_weight_scale);
   reader.optional("yaw_hold_radius_m", p.yaw_hold_radius_m);
   reader.optional("yaw_reference_rate_rad_s", p.yaw_reference_rate_rad_s);

@@ -11,6 +11,8 @@ struct ClosedLoopOptions {
   // The in-process harness computes each completed transition's shortest-path bound after
   // the run (transition_bound.hpp, some 30 ms per transition, not in the wall time).
   bool transition_bounds = true;
+  // Keep every control step's state, reference and command (ClosedLoopResult::step_trace).
+  bool record_step_trace = false;
 };
 
 }  // namespace cover::sim

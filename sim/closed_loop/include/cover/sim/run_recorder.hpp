@@ -43,6 +43,8 @@ class RunRecorder {
  private:
   void record_tracking(const mission::ControllerStatus& status, const World& world);
   void record_path(const mission::ControllerStatus& status, const WorldState& world);
+  void record_step(const mission::ControllerStatus& status, const mission::ControlCommand& command,
+                   const World& world);
   void fill_action_errors(const World& world);
   void fill_eq30_law_transitions();
   bool task_succeeded(const World& world) const;

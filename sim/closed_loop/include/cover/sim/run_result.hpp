@@ -41,6 +41,22 @@ struct StagedPoint {
   int stage_code = -1;  // cover::model::Stage as int; -1 before start / after the end
 };
 
+// One control step as the controller saw it and as it was (ClosedLoopOptions::
+// record_step_trace): what a tracking error over time is read from.
+struct StepSample {
+  double time_s = 0.0;
+  int stage_code = -1;  // cover::model::Stage as int; -1 when not running
+  int process_index = 0;
+  int reference_ugv = 0;
+  // True relative state in the reference UGV's frame, and the reference position there.
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d reference_position_m = Eigen::Vector3d::Zero();
+  double thrust_m_s2 = 0.0;
+  Eigen::Vector3d body_rate_rad_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d disturbance_m_s2 = Eigen::Vector3d::Zero();
+};
+
 struct ClosedLoopResult {
   bool success = false;
   std::string status;  // the stage machine's last status line (names the failure)
@@ -75,6 +91,9 @@ struct ClosedLoopResult {
   double plan_median_ms = 0.0;
   double plan_max_ms = 0.0;
   int failsafe_steps = 0;  // control steps whose command was a failsafe (stale/solver)
+
+  // Every control step of the run, when ClosedLoopOptions::record_step_trace.
+  std::vector<StepSample> step_trace;
 
   // World-frame paths for plots (decimated).
   std::vector<StagedPoint> uav_path;

@@ -99,6 +99,10 @@ struct MissionParams {
   // has to follow it).
   TransitionReference transition_reference = TransitionReference::RadialApproach;
   double approach_brake_fraction = 0.5;
+  // The final stage starts while the UAV still brakes from the transition's approach: its
+  // plan starts with this fraction of the acceleration SAMPC had planned over its first
+  // node (0: from zero acceleration). In [0, 1].
+  double final_start_acceleration_fraction = 0.3;
   // Control period (the controller runs at 100 Hz).
   double control_period_s = 0.01;
 

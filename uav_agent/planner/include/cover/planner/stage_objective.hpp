@@ -24,9 +24,10 @@ class StageObjective {
 
   explicit StageObjective(const PlannerParams& params);
 
-  // Boundary conditions: start (p0, v0, 0), end (goal, 0, 0); limits vm, am.
+  // Boundary conditions: start (p0, v0, a0), end (goal, 0, 0); limits vm, am.
   void set_problem(const Eigen::Vector3d& start_position_m,
                    const Eigen::Vector3d& initial_velocity_m_s,
+                   const Eigen::Vector3d& initial_acceleration_m_s2,
                    const Eigen::Vector3d& goal_position_m, double vmax_m_s, double amax_m_s2);
 
   int dimension() const { return 4 * pieces_ - 3; }

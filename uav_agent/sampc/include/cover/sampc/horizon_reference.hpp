@@ -16,12 +16,16 @@ namespace cover::sampc {
 struct HorizonReference {
   std::array<Eigen::Vector3d, kMaxHorizon + 1> position_m;
   std::array<Eigen::Vector3d, kMaxHorizon + 1> velocity_m_s;
+  // The plan's acceleration: x-y-z-ref turns it into each node's thrust and attitude
+  // reference (SampcParams::tracking_feed_forward).
+  std::array<Eigen::Vector3d, kMaxHorizon + 1> acceleration_m_s2;
 
   // Every entry equal to a still point: hold position there.
   static HorizonReference hold(const Eigen::Vector3d& position_m) {
     HorizonReference r;
     r.position_m.fill(position_m);
     r.velocity_m_s.fill(Eigen::Vector3d::Zero());
+    r.acceleration_m_s2.fill(Eigen::Vector3d::Zero());
     return r;
   }
 };

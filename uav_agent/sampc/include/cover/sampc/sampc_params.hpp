@@ -81,6 +81,12 @@ struct SampcParams {
                              Eigen::Vector4d(1, 20, 20, 5),
                              0.0,
                              0.0};
+  // x-y-z-ref: node k's thrust and attitude references are those that fly the plan's
+  // acceleration there (the model solved for R(q) [0, 0, F] at the reference's position,
+  // velocity and acceleration, yaw from the yaw reference), its body-rate references those
+  // that turn node k's attitude reference into node k + 1's; false: hover thrust, level,
+  // zero rates (Table 2's around-hover references). Never at coni-mpc's transition stage.
+  bool tracking_feed_forward = true;
   // The terminal node k = N uses the stage weights of k = N times this factor.
   double terminal_weight_scale = 2.0;
 
