@@ -300,7 +300,9 @@ TEST(HorizonCost, YawReferenceIsRateLimitedFromTheMeasuredYaw) {
       const double yaw = 2.0 * std::atan2(r(3), r(0));
       const double step = std::remainder(yaw - previous, model::kTwoPi);
       EXPECT_LE(std::abs(step), params.yaw_reference_rate_rad_s * params.step_s + 1e-9) << k;
-      if (k > 0) EXPECT_LT(step, 0.0) << "turns the short way round, k = " << k;
+      if (k > 0) {
+        EXPECT_LT(step, 0.0) << "turns the short way round, k = " << k;
+      }
       previous = yaw;
     }
     EXPECT_NEAR(std::remainder(previous - start, model::kTwoPi),

@@ -26,7 +26,13 @@ class DispatcherTest : public ::testing::Test {
 
   void hear(int uav, double now_s, const std::string& task_id = "",
             AgentTask state = AgentTask::None, const std::string& message = "") {
-    live_.agents[uav] = AgentReport{uav, now_s, task_id, state, message};
+    AgentReport report;
+    report.uav_id = uav;
+    report.heard_s = now_s;
+    report.task_id = task_id;
+    report.task_state = state;
+    report.message = message;
+    live_.agents[uav] = report;
     for (int k = 0; k < 2; ++k) live_.ugv_imu_heard_s[k] = now_s;
   }
   // Heartbeat at now_s, task report unchanged.

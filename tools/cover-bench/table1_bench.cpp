@@ -344,7 +344,10 @@ int run(const std::vector<std::string>& args) {
   std::vector<cover::sim::TransitionTrace> first_transitions;
   for (std::size_t s = 0; s < options.settings.size(); ++s) {
     for (const std::string& method : options.methods) {
-      Row row{options.settings[s].first, options.settings[s].second, method};
+      Row row;
+      row.v = options.settings[s].first;
+      row.w = options.settings[s].second;
+      row.method = method;
       cover::sim::TransitionTrace trace;
       if (!run_cell(options, s, starts, row, trace)) return 1;
       if (s == 0) first_transitions.push_back(std::move(trace));
