@@ -57,7 +57,10 @@ void apply_profile(config::YamlReader profiles, const std::string& name,
   std::string known;
   if (profiles.node().IsMap()) {
     for (const auto& entry : profiles.node()) {
-      const auto key = entry.first.as<std::string>();
+      // A list or a mapping as a profile's name (`? wifi:`, a stray `?`) names nothing.
+      config::check(entry.first.IsScalar(), profiles.context(),
+                    "a profile name that is not a name" + config::line_of(entry.first));
+      const auto key = entry.first.Scalar();
       known += (known.empty() ? "" : ", ") + key;
       ParticipantOptions scratch;
       config::YamlReader profile = profiles.child(key);
