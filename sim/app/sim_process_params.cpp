@@ -5,7 +5,12 @@
 namespace cover::sim {
 
 SimProcessParams SimProcessParams::load_file(const std::string& path) {
-  config::YamlReader reader = config::open_section(path, "sim_process", true);
+  return from_yaml(config::load_yaml_file(path), path);
+}
+
+SimProcessParams SimProcessParams::from_yaml(const YAML::Node& document,
+                                             const std::string& source) {
+  config::YamlReader reader = config::open_section(document, source, "sim_process", true);
   SimProcessParams p;
   reader.optional("offboard_timeout_s", p.offboard_timeout_s);
   reader.optional("loss_descent_rate_m_s", p.loss_descent_rate_m_s);

@@ -21,6 +21,8 @@ struct SimProcessParams {
   double control_rate_hz = 100.0;
 
   static SimProcessParams load_file(const std::string& path);
+  // The same from a document already parsed (config::parse_yaml); `source` names it.
+  static SimProcessParams from_yaml(const YAML::Node& document, const std::string& source);
   void validate() const;
 };
 

@@ -115,7 +115,11 @@ std::vector<bool> WorldParams::ugvs_with_odometry() const {
 }
 
 WorldParams WorldParams::load_file(const std::string& path) {
-  cover::config::YamlReader reader(cover::config::load_yaml_file(path), path);
+  return from_yaml(cover::config::load_yaml_file(path), path);
+}
+
+WorldParams WorldParams::from_yaml(const YAML::Node& document, const std::string& source) {
+  cover::config::YamlReader reader(document, source);
   return load(reader);
 }
 

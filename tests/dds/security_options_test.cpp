@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cover/config/config_error.hpp"
+#include "cover/config/yaml_reader.hpp"
 #include "cover/dds/access_rules.hpp"
 #include "cover/dds/dds_error.hpp"
 #include "cover/dds/participant.hpp"
@@ -64,6 +65,43 @@ TEST(SecurityOptions, LoadRejectsUnknownKeysAndNamesMissingOnes) {
       "identity: sim}\n    other:\n      security: {enabeld: true}\n");
   EXPECT_NE(message_of([&] { ParticipantOptions::load_file(in_profile); }).find("enabeld"),
             std::string::npos);
+}
+
+TEST(SecurityOptions, ExpiryWarningWindowIsReadAndChecked) {
+  EXPECT_EQ(SecurityOptions{}.expiry_warning_days, 14);
+  const auto shipped =
+      ParticipantOptions::load_file(std::string(COVER_SOURCE_DIR) + "/config/dds.yaml", "field");
+  EXPECT_EQ(shipped.security.expiry_warning_days, 14);
+  const auto thirty = ParticipantOptions::from_yaml(
+      config::parse_yaml("dds:\n  security:\n    expiry_warning_days: 30\n", "w.yaml"), "w.yaml");
+  EXPECT_EQ(thirty.security.expiry_warning_days, 30);
+  for (const char* bad : {"-1", "3651", "1.5", ".nan"}) {
+    const std::string text = std::string("dds:\n  security:\n    expiry_warning_days: ") + bad;
+    EXPECT_NE(message_of([&] {
+                ParticipantOptions::from_yaml(config::parse_yaml(text, "w.yaml"), "w.yaml");
+              }).find("expiry_warning_days"),
+              std::string::npos)
+        << bad;
+  }
+}
+
+TEST(SecurityExpiry, WindowAndTimeLeftText) {
+  EXPECT_TRUE(expires_within(13 * 86400, 14));
+  EXPECT_FALSE(expires_within(14 * 86400, 14));
+  EXPECT_TRUE(expires_within(-5, 0));  // expired: always
+  EXPECT_FALSE(expires_within(1, 0));  // a window of 0 days warns of nothing still valid
+  EXPECT_EQ(time_left_text(86400 + 3 * 3600 + 4 * 60 + 59), "1 d 3 h 4 min");
+  EXPECT_EQ(time_left_text(0), "expired");
+  IdentityReport report;
+  report.name = "uav-agent-0";
+  report.not_after_utc = "2026-12-02T17:00:00Z";
+  report.expires_first = "certificate";
+  report.seconds_to_expiry = 86400;
+  const std::string warning = expiry_warning(report, 14);
+  EXPECT_NE(warning.find("uav-agent-0 expires on 2026-12-02T17:00:00Z (its certificate), in 1 d"),
+            std::string::npos)
+      << warning;
+  EXPECT_EQ(expiry_warning(report, 1), "");
 }
 
 TEST(SecurityOptions, EnvironmentTurnsItOn) {

@@ -5,8 +5,9 @@
 // Contract: no exception; a final task never changes again; a dispatch goes only to an
 // agent that is up and idle; a UGV counts as heard only from a valid sample on its own
 // topic; memory for the agents' messages stays bounded; every refusal is counted.
-#include <map>
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "cover/task_manager/dispatcher.hpp"
 #include "cover/task_manager/flyability.hpp"
@@ -56,6 +57,20 @@ msg::UgvImu ugv_imu(FuzzInput& in, int topic) {
   return s;
 }
 
+// Once in a final state a task never changes again: in each task's history (every change
+// the store ever made, oldest first) nothing follows the first final state. Read once per
+// input: checking the whole list after every event cost most of the harness's time.
+void require_finals_kept(const tmg::TaskStore& store) {
+  for (const tmg::TaskRecord& r : store.list(true)) {
+    const std::vector<tmg::StateChange> history = store.history(r.task_id);
+    const auto final_row = std::find_if(history.begin(), history.end(),
+                                        [](const auto& c) { return tmg::is_final(c.to); });
+    if (final_row == history.end()) continue;
+    require(final_row + 1 == history.end(), "a final task changed again: " + r.task_id);
+    require(r.state == final_row->to, "a final task's record changed state: " + r.task_id);
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -64,7 +79,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const tmg::TaskLimits limits;
   tmg::Dispatcher dispatcher(store, limits);
   tmg::FleetIntake intake(kUavs, kUgvs);
-  std::map<std::string, tmg::TaskState> finals;
   double now_s = 1000.0;
   std::uint64_t refused = 0;
   while (!in.empty()) {
@@ -119,13 +133,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         break;
       }
     }
-    if (event < 4) continue;  // only aborts and steps change a stored task
-    for (const tmg::TaskRecord& r : store.list(true)) {
-      const auto seen = finals.find(r.task_id);
-      if (seen != finals.end()) require(seen->second == r.state, "a final task changed state");
-      if (tmg::is_final(r.state)) finals[r.task_id] = r.state;
-    }
   }
+  require_finals_kept(store);
   require(intake.remembered_messages() <= tmg::FleetIntake::kRememberedMessages,
           "the agents' messages grow without bound");
   require(intake.rejections().total() == refused, "a refusal was not counted");

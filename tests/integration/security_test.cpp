@@ -371,6 +371,47 @@ TEST(SecurityFleet, BrokenExpiredOrExposedFilesStopAProcess) {
   EXPECT_NE(none.log.find("no identity"), std::string::npos) << none.log;
 }
 
+// A fleet made for one day: inside the default 14-day warning window. A process still
+// starts (the identity is valid) and logs when it expires and the time left; `cover
+// security check` fails with 4 (expiring, not broken) until the window is narrowed.
+// Domain 131.
+TEST(SecurityFleet, ShortLivedFleetWarnsAtStartAndFailsTheCheck) {
+  const fs::path fleet = make_fleet("short", {"--days", "1"});
+  const Outcome pub =
+      cover_cli(on("fastdds", 131,
+                   std::vector<std::string>{"pub", "cover/task/abort", "{}", "--wait", "0"} +
+                       secure(fleet, "ground-station-0")),
+                "short_pub.log");
+  EXPECT_EQ(pub.exit_code, 0) << pub.log;
+  EXPECT_NE(pub.log.find("identity ground-station-0 expires on"), std::string::npos) << pub.log;
+  // A day at most (whole seconds: made in the same second, exactly a day).
+  EXPECT_TRUE(std::regex_search(pub.log, std::regex(", in (0 d 23 h [0-9]+|1 d 0 h 0) min")))
+      << pub.log;
+  EXPECT_NE(pub.log.find("within security.expiry_warning_days (14)"), std::string::npos) << pub.log;
+  EXPECT_EQ(pub.out.find("expires"), std::string::npos) << "the warning belongs on stderr";
+
+  const Outcome check = cover_cli({"security", "check", fleet.string()}, "short_check.log");
+  EXPECT_EQ(check.exit_code, 4) << check.out << check.log;
+  EXPECT_NE(check.out.find("CA: valid until"), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("ground-station-0: valid until"), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("EXPIRES WITHIN THE WARNING WINDOW"), std::string::npos) << check.out;
+  const Outcome json = cover_cli({"security", "check", fleet.string(), "--json"}, "short_json.log");
+  EXPECT_EQ(json.exit_code, 4);
+  const auto report = nlohmann::json::parse(json.out);
+  EXPECT_EQ(report["warning_days"], 14);
+  EXPECT_TRUE(report["ca"]["expires_within_warning"].get<bool>());
+  for (const auto& identity : report["identities"]) {
+    EXPECT_TRUE(identity["expires_within_warning"].get<bool>()) << identity;
+  }
+  const Outcome narrow =
+      cover_cli({"security", "check", fleet.string(), "--warning-days", "0"}, "short_narrow.log");
+  EXPECT_EQ(narrow.exit_code, 0) << narrow.out << narrow.log;
+  EXPECT_EQ(narrow.out.find("EXPIRES WITHIN"), std::string::npos) << narrow.out;
+  const Outcome bad =
+      cover_cli({"security", "check", fleet.string(), "--warning-days", "-1"}, "short_bad.log");
+  EXPECT_EQ(bad.exit_code, 2) << bad.log;
+}
+
 struct LaunchOutcome {
   int exit_code = -1;
   nlohmann::json result;

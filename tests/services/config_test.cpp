@@ -93,3 +93,29 @@ TEST(YamlFile, OpenSectionChecksTheTopLevel) {
   EXPECT_THROW(cover::config::open_section(path, "sampc", true), ConfigError);
   EXPECT_THROW(cover::config::open_section(path + ".missing", "x", false), ConfigError);
 }
+
+// From memory (what the fuzz harnesses and from_yaml take): the same checks, the source named.
+TEST(YamlText, ParsesFromMemoryAndNamesTheSource) {
+  try {
+    cover::config::parse_yaml("planner: [1, 2", "input.yaml");
+    FAIL() << "a syntax error was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("input.yaml: YAML syntax error at line"),
+              std::string::npos)
+        << e.what();
+  }
+  const YAML::Node document = cover::config::parse_yaml("planner:\n  rho: 2\n", "input.yaml");
+  auto reader = cover::config::open_section(document, "input.yaml", "planner", true);
+  double rho = 0;
+  reader.optional("rho", rho);
+  EXPECT_EQ(rho, 2.0);
+  try {
+    cover::config::open_section(document, "input.yaml", "sampc", true);
+    FAIL() << "a missing section was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("input.yaml: missing section 'sampc'"), std::string::npos)
+        << e.what();
+  }
+  const YAML::Node typo = cover::config::parse_yaml("planner: {}\nplaner: {}\n", "input.yaml");
+  EXPECT_THROW(cover::config::open_section(typo, "input.yaml", "planner", false), ConfigError);
+}

@@ -2,8 +2,10 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <optional>
 
 #include "cover/dds/cli_options.hpp"
+#include "cover/logging/log.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "security_commands.hpp"
 #include "task_commands.hpp"
@@ -11,6 +13,8 @@
 
 int main(int argc, char** argv) {
   cover::process::ShutdownSignal::install();
+  // Logs (e.g. a certificate about to expire) go to stderr: stdout carries samples and JSON.
+  cover::logging::init("cover");
   CLI::App app{"cover: ground station for COVER cross-vehicle missions"};
   app.require_subcommand(1);
 
@@ -106,10 +110,16 @@ int main(int argc, char** argv) {
       "check", "Per identity: what it may publish and subscribe, when it expires");
   security_check->add_option("dir", check_directory, "fleet directory")->required();
   security_check->add_flag("--json", check_json, "one JSON object");
-  security->footer(
-      "init exits 0 when made, 2 on a bad request or an existing directory, 3 when openssl "
-      "fails; check exits 0 when every identity is valid, 1 when one is broken, expired or "
-      "mis-signed, 2 when DIR is not a fleet directory.");
+  std::optional<int> check_warning_days;
+  security_check->add_option("--warning-days", check_warning_days,
+                             "fail (exit 4) when the CA or an identity expires within N days "
+                             "(default: security.expiry_warning_days of config/dds.yaml)");
+  security_init->footer(
+      "Exit: 0 made and checked, 2 a bad request or an existing directory, 3 openssl failed.");
+  security_check->footer(
+      "Exit: 0 the CA and every identity valid beyond the warning window, 1 one broken, "
+      "expired or mis-signed, 2 DIR is not a fleet directory, 4 all valid but one (or the CA) "
+      "expires within the window.");
   app.footer(
       "Task commands exit 0 when accepted / found / succeeded, 1 when rejected, unknown or not\n"
       "succeeded, 2 on a bad file or usage, 3 when no task manager answers within --timeout.");
@@ -123,7 +133,9 @@ int main(int argc, char** argv) {
                                                        : TopicsFormat::Table);
     }
     if (*security_init) return cover::cli::security_init(init_request);
-    if (*security_check) return cover::cli::security_check(check_directory, check_json);
+    if (*security_check) {
+      return cover::cli::security_check(check_directory, check_json, check_warning_days);
+    }
     if (*echo) return cover::cli::echo(echo_dds.resolve("cover-echo"), echo_request);
     if (*pub) return cover::cli::publish(pub_dds.resolve("cover-pub"), pub_request);
     const auto station = [&] { return task_dds.resolve("cover-station"); };

@@ -14,11 +14,13 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
+#include "cover/config/yaml_reader.hpp"
 #include "cover/dds/dds_error.hpp"
 #include "cover/dds/participant_options.hpp"
 #include "cover/dds/security_check.hpp"
@@ -36,7 +38,7 @@ namespace layout = dds::security_layout;
 constexpr int kExitBroken = 1;
 constexpr int kExitUsage = 2;
 constexpr int kExitOpenssl = 3;
-constexpr int kMaxDays = 3650;
+constexpr int kExitExpiring = 4;
 constexpr std::uint32_t kMaxPerRole = 64;  // identities per numbered role
 constexpr const char* kOrganisation = "COVER";
 
@@ -160,9 +162,9 @@ void write_fleet_record(const fs::path& dir, const SecurityInitRequest& request,
 }
 
 void check_request(const SecurityInitRequest& request) {
-  if (request.days < 1 || request.days > kMaxDays) {
+  if (request.days < 1 || request.days > dds::kMaxValidityDays) {
     throw std::invalid_argument("--days " + std::to_string(request.days) + " (valid: 1.." +
-                                std::to_string(kMaxDays) + ")");
+                                std::to_string(dds::kMaxValidityDays) + ")");
   }
   dds::parse_vendor(request.vendor);
   const dds::Fleet& fleet = request.fleet;
@@ -215,8 +217,17 @@ int init(const SecurityInitRequest& request) {
   }
 }
 
-std::string days_text(std::int64_t seconds) {
-  return std::to_string(seconds / 86400) + " days";
+// The window of `security.expiry_warning_days`: given, or config/dds.yaml's.
+int warning_window_days(const std::optional<int>& given) {
+  if (given) {
+    if (*given < 0 || *given > dds::kMaxValidityDays) {
+      throw dds::DdsError("--warning-days " + std::to_string(*given) + " (valid: 0.." +
+                          std::to_string(dds::kMaxValidityDays) + ")");
+    }
+    return *given;
+  }
+  return dds::ParticipantOptions::load_file(config::default_config_dir() + "/dds.yaml")
+      .security.expiry_warning_days;
 }
 
 std::string joined(const std::vector<std::string>& items) {
@@ -240,42 +251,76 @@ int security_init(const SecurityInitRequest& request) {
   }
 }
 
-int security_check(const std::string& directory, bool json) {
+int security_check(const std::string& directory, bool json,
+                   const std::optional<int>& warning_days) {
   dds::FleetRecord record;
+  int window_days = 0;
   try {
+    window_days = warning_window_days(warning_days);
     record = dds::read_fleet_record(directory);
-  } catch (const dds::DdsError& e) {
+  } catch (const std::exception& e) {
     std::cerr << "cover security check: " << e.what() << "\n";
     return kExitUsage;
   }
-  int exit_code = 0;
+  bool broken = false;
+  bool expiring = false;
+  nlohmann::json ca = {{"valid", false}};
   nlohmann::json identities = nlohmann::json::array();
   if (!json) {
     std::cout << "fleet " << directory << ": " << dds::vendor_name(record.vendor) << ", "
               << record.fleet.ugvs << " UGV(s), " << record.fleet.uavs << " UAV(s), "
               << record.fleet.ground_stations << " ground station(s), created "
-              << record.created_utc << "\n";
+              << record.created_utc << "; warning window " << window_days << " days\n";
+  }
+  // An expiry within the window is flagged on its line (and in --json) and fails the check.
+  const auto soon = [&](std::int64_t seconds_left) {
+    const bool within = dds::expires_within(seconds_left, window_days);
+    expiring = expiring || within;
+    return within;
+  };
+  try {
+    const dds::CaValidity validity = dds::ca_validity(directory);
+    const bool within = soon(validity.seconds_to_expiry);
+    ca = {{"valid", validity.seconds_to_expiry > 0},
+          {"not_after_utc", validity.not_after_utc},
+          {"seconds_to_expiry", validity.seconds_to_expiry},
+          {"expires_within_warning", within}};
+    broken = broken || validity.seconds_to_expiry <= 0;
+    if (!json) {
+      std::cout << "CA: valid until " << validity.not_after_utc << " ("
+                << dds::time_left_text(validity.seconds_to_expiry) << " left)"
+                << (within ? ", EXPIRES WITHIN THE WARNING WINDOW" : "") << "\n";
+    }
+  } catch (const dds::DdsError& e) {
+    broken = true;
+    ca["error"] = e.what();
+    if (!json) std::cout << "CA: INVALID: " << e.what() << "\n";
   }
   for (const auto& identity : dds::fleet_identities(record.fleet)) {
     const std::string name = dds::identity_name(identity);
     try {
       const dds::IdentityReport report = dds::verify_identity(directory, name);
+      const bool within = soon(report.seconds_to_expiry);
       identities.push_back({{"identity", name},
                             {"valid", true},
                             {"subject", report.subject},
                             {"not_before_utc", report.not_before_utc},
                             {"not_after_utc", report.not_after_utc},
                             {"seconds_to_expiry", report.seconds_to_expiry},
+                            {"expires_first", report.expires_first},
+                            {"expires_within_warning", within},
                             {"publish", report.publish},
                             {"subscribe", report.subscribe}});
       if (!json) {
-        std::cout << name << ": valid until " << report.not_after_utc << " (in "
-                  << days_text(report.seconds_to_expiry) << ")\n"
+        std::cout << name << ": valid until " << report.not_after_utc << " ("
+                  << dds::time_left_text(report.seconds_to_expiry) << " left, its "
+                  << report.expires_first << ")"
+                  << (within ? ", EXPIRES WITHIN THE WARNING WINDOW" : "") << "\n"
                   << "  publish:   " << joined(report.publish) << "\n"
                   << "  subscribe: " << joined(report.subscribe) << "\n";
       }
     } catch (const dds::DdsError& e) {
-      exit_code = kExitBroken;
+      broken = true;
       identities.push_back({{"identity", name}, {"valid", false}, {"error", e.what()}});
       if (!json) std::cout << name << ": INVALID: " << e.what() << "\n";
     }
@@ -285,6 +330,8 @@ int security_check(const std::string& directory, bool json) {
     std::cout << nlohmann::json{{"directory", directory},
                                 {"vendor", dds::vendor_name(record.vendor)},
                                 {"created_utc", record.created_utc},
+                                {"warning_days", window_days},
+                                {"ca", ca},
                                 {"ca_key_present", ca_key_present},
                                 {"identities", identities}}
                      .dump()
@@ -293,7 +340,8 @@ int security_check(const std::string& directory, bool json) {
     std::cout << "note: " << layout::kCaKey
               << " (the CA's signing key) is in this directory: keep it off the vehicles\n";
   }
-  return exit_code;
+  if (broken) return kExitBroken;
+  return expiring ? kExitExpiring : 0;
 }
 
 }  // namespace cover::cli

@@ -19,7 +19,11 @@ UgvAgentParams UgvAgentParams::load(cover::config::YamlReader& reader) {
 }
 
 UgvAgentParams UgvAgentParams::load_file(const std::string& path) {
-  auto reader = cover::config::open_section(path, "ugv_agent", /*required=*/true);
+  return from_yaml(cover::config::load_yaml_file(path), path);
+}
+
+UgvAgentParams UgvAgentParams::from_yaml(const YAML::Node& document, const std::string& source) {
+  auto reader = cover::config::open_section(document, source, "ugv_agent", /*required=*/true);
   return load(reader);
 }
 

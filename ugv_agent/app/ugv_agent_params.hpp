@@ -19,6 +19,8 @@ struct UgvAgentParams {
   static UgvAgentParams load(cover::config::YamlReader& reader);
   // Section `ugv_agent` of `path`; throws ConfigError naming the file and key.
   static UgvAgentParams load_file(const std::string& path);
+  // The same from a document already parsed (config::parse_yaml); `source` names it.
+  static UgvAgentParams from_yaml(const YAML::Node& document, const std::string& source);
   void validate(const std::string& context = "ugv_agent") const;
 };
 

@@ -53,7 +53,11 @@ IntakeLimits IntakeLimits::load(config::YamlReader& reader) {
 }
 
 IntakeLimits IntakeLimits::load_file(const std::string& path) {
-  config::YamlReader reader = config::open_section(path, "intake", false);
+  return from_yaml(config::load_yaml_file(path), path);
+}
+
+IntakeLimits IntakeLimits::from_yaml(const YAML::Node& document, const std::string& source) {
+  config::YamlReader reader = config::open_section(document, source, "intake", false);
   return load(reader);
 }
 

@@ -11,6 +11,15 @@ std::string default_config_dir() {
   return COVER_CONFIG_DIR;
 }
 
+namespace {
+
+ConfigError syntax_error(const std::string& source, const YAML::Exception& e) {
+  return ConfigError(source + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
+                     ": " + e.msg);
+}
+
+}  // namespace
+
 YAML::Node load_yaml_file(const std::string& path) {
   // A directory opens as a stream on Linux, and reading it throws: say what it is instead
   // (an empty `task_file:` resolves to the folder it is relative to).
@@ -23,10 +32,17 @@ YAML::Node load_yaml_file(const std::string& path) {
   try {
     return YAML::Load(stream);
   } catch (const YAML::Exception& e) {
-    throw ConfigError(path + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
-                      ": " + e.msg);
+    throw syntax_error(path, e);
   } catch (const std::ios_base::failure& e) {
     throw ConfigError(path + ": cannot read file (" + e.what() + ")");
+  }
+}
+
+YAML::Node parse_yaml(const std::string& text, const std::string& source) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw syntax_error(source, e);
   }
 }
 
@@ -67,8 +83,13 @@ void YamlReader::reject_unknown_keys() const {
 }
 
 YamlReader open_section(const std::string& path, const std::string& section, bool required) {
-  YamlReader root(load_yaml_file(path), path);
-  check(!required || root.has(section), path, "missing section '" + section + "'");
+  return open_section(load_yaml_file(path), path, section, required);
+}
+
+YamlReader open_section(const YAML::Node& document, const std::string& source,
+                        const std::string& section, bool required) {
+  YamlReader root(document, source);
+  check(!required || root.has(section), source, "missing section '" + section + "'");
   YamlReader reader = root.child(section);
   root.reject_unknown_keys();
   return reader;

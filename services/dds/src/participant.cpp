@@ -1,5 +1,7 @@
 #include "cover/dds/participant.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <thread>
 
 #include "cover/dds/dds_error.hpp"
@@ -11,7 +13,10 @@ namespace cover::dds {
 
 Participant::Participant(const ParticipantOptions& options) : options_(options) {
   options_.validate();
-  check_participant_security(options_);
+  if (const auto identity = check_participant_security(options_)) {
+    const std::string warning = expiry_warning(*identity, options_.security.expiry_warning_days);
+    if (!warning.empty()) spdlog::warn("{}", warning);
+  }
   backend_ = options_.vendor == Vendor::FastDds ? make_fastdds_participant(options_)
                                                 : make_cyclone_participant(options_);
 }

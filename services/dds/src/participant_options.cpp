@@ -18,6 +18,11 @@ void ParticipantOptions::validate() const {
     throw DdsError("invalid announcement_period_s " + std::to_string(announcement_period_s) +
                    " (valid: 0 = vendor default, or up to 3600 s)");
   }
+  if (security.expiry_warning_days < 0 || security.expiry_warning_days > kMaxValidityDays) {
+    throw DdsError("invalid security.expiry_warning_days " +
+                   std::to_string(security.expiry_warning_days) + " (valid: 0.." +
+                   std::to_string(kMaxValidityDays) + " days)");
+  }
   // Not security.validate(): a file or profile may leave the identity to --identity;
   // check_participant_security checks the complete options before a participant exists.
   for (const auto& peer : peers) {
@@ -40,6 +45,7 @@ void read_network_keys(config::YamlReader& reader, ParticipantOptions& options) 
   security.optional("enabled", options.security.enabled);
   security.optional("directory", options.security.directory);
   security.optional("identity", options.security.identity);
+  security.optional("expiry_warning_days", options.security.expiry_warning_days);
   security.reject_unknown_keys();
 }
 
@@ -51,7 +57,10 @@ void apply_profile(config::YamlReader profiles, const std::string& name,
   std::string known;
   if (profiles.node().IsMap()) {
     for (const auto& entry : profiles.node()) {
-      const auto key = entry.first.as<std::string>();
+      // A list or a mapping as a profile's name (`? wifi:`, a stray `?`) names nothing.
+      config::check(entry.first.IsScalar(), profiles.context(),
+                    "a profile name that is not a name" + config::line_of(entry.first));
+      const auto key = entry.first.Scalar();
       known += (known.empty() ? "" : ", ") + key;
       ParticipantOptions scratch;
       config::YamlReader profile = profiles.child(key);
@@ -77,8 +86,14 @@ void apply_profile(config::YamlReader profiles, const std::string& name,
 
 ParticipantOptions ParticipantOptions::load_file(const std::string& path,
                                                  const std::string& profile) {
+  return from_yaml(config::load_yaml_file(path), path, profile);
+}
+
+ParticipantOptions ParticipantOptions::from_yaml(const YAML::Node& document,
+                                                 const std::string& source,
+                                                 const std::string& profile) {
   ParticipantOptions options;
-  config::YamlReader dds = config::open_section(path, "dds", /*required=*/false);
+  config::YamlReader dds = config::open_section(document, source, "dds", /*required=*/false);
   std::string vendor = vendor_name(options.vendor);
   dds.optional("vendor", vendor);
   dds.optional("domain_id", options.domain_id);
@@ -89,7 +104,7 @@ ParticipantOptions ParticipantOptions::load_file(const std::string& path,
     options.vendor = parse_vendor(vendor);
     options.validate();
   } catch (const DdsError& e) {
-    throw config::ConfigError(path + ": " + e.what());
+    throw config::ConfigError(source + ": " + e.what());
   }
   return options;
 }

@@ -239,19 +239,60 @@ IdentityReport verify_identity(const std::string& directory, const std::string& 
   report.subject = rfc2253(X509_get_subject_name(cert.get()));
   report.not_before_utc = iso8601(to_time(X509_get0_notBefore(cert.get())));
   std::time_t not_after = to_time(X509_get0_notAfter(cert.get()));
+  report.expires_first = "certificate";
   verified_content(files.governance, permissions_ca.get(), files.permissions_ca);
   const std::string permissions =
       verified_content(files.permissions, permissions_ca.get(), files.permissions_ca);
+  const std::time_t certificate_not_after = not_after;
   check_permissions(permissions, report.subject, files.permissions, report, not_after);
+  if (not_after < certificate_not_after) report.expires_first = "permissions";
+  // Nothing the CA signed is accepted after the CA itself expires.
+  for (const Cert* ca : {&identity_ca, &permissions_ca}) {
+    const std::time_t ca_not_after = to_time(X509_get0_notAfter(ca->get()));
+    if (ca_not_after < not_after) {
+      not_after = ca_not_after;
+      report.expires_first = "CA";
+    }
+  }
   report.not_after_utc = iso8601(not_after);
   report.seconds_to_expiry = static_cast<std::int64_t>(not_after - std::time(nullptr));
   return report;
 }
 
-void check_participant_security(const ParticipantOptions& options) {
+CaValidity ca_validity(const std::string& directory) {
+  const std::string path = SecurityFiles::of(directory, "").identity_ca;
+  const Cert ca = read_certificate(path);
+  CaValidity validity;
+  validity.not_before_utc = iso8601(to_time(X509_get0_notBefore(ca.get())));
+  const std::time_t not_after = to_time(X509_get0_notAfter(ca.get()));
+  validity.not_after_utc = iso8601(not_after);
+  validity.seconds_to_expiry = static_cast<std::int64_t>(not_after - std::time(nullptr));
+  return validity;
+}
+
+bool expires_within(std::int64_t seconds_to_expiry, int days) {
+  return seconds_to_expiry < std::int64_t{days} * 86400;
+}
+
+std::string time_left_text(std::int64_t seconds) {
+  if (seconds <= 0) return "expired";
+  const std::int64_t minutes = seconds / 60;
+  return std::to_string(minutes / 1440) + " d " + std::to_string(minutes / 60 % 24) + " h " +
+         std::to_string(minutes % 60) + " min";
+}
+
+std::string expiry_warning(const IdentityReport& report, int warning_days) {
+  if (!expires_within(report.seconds_to_expiry, warning_days)) return "";
+  return "security: identity " + report.name + " expires on " + report.not_after_utc + " (its " +
+         report.expires_first + "), in " + time_left_text(report.seconds_to_expiry) +
+         ": within security.expiry_warning_days (" + std::to_string(warning_days) +
+         "); renew the fleet directory and restart before then (docs/security.md)";
+}
+
+std::optional<IdentityReport> check_participant_security(const ParticipantOptions& options) {
   const SecurityOptions& security = options.security;
   security.validate();
-  if (!security.enabled) return;
+  if (!security.enabled) return std::nullopt;
   if (options.domain_id > kMaxSecureDomainId) {
     throw DdsError("security: domain " + std::to_string(options.domain_id) +
                    " is above the secure range 0.." + std::to_string(kMaxSecureDomainId));
@@ -266,7 +307,7 @@ void check_participant_security(const ParticipantOptions& options) {
                    vendor_name(record.vendor) + " or a fleet directory made with --vendor " +
                    vendor_name(options.vendor));
   }
-  verify_identity(security.directory, security.identity);
+  return verify_identity(security.directory, security.identity);
 }
 
 }  // namespace cover::dds

@@ -8,7 +8,11 @@
 namespace cover::sim {
 
 Scenario Scenario::load_file(const std::string& path) {
-  config::YamlReader root(config::load_yaml_file(path), path);
+  return from_yaml(config::load_yaml_file(path), path);
+}
+
+Scenario Scenario::from_yaml(const YAML::Node& document, const std::string& path) {
+  config::YamlReader root(document, path);
   Scenario scenario;
   root.optional("name", scenario.name);
   root.optional("description", scenario.description);

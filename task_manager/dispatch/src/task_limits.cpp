@@ -25,7 +25,12 @@ TaskLimits TaskLimits::load(config::YamlReader& reader) {
 }
 
 TaskLimits TaskLimits::load_file(const std::string& path) {
-  config::YamlReader section = config::open_section(path, "task_manager", /*required=*/false);
+  return from_yaml(config::load_yaml_file(path), path);
+}
+
+TaskLimits TaskLimits::from_yaml(const YAML::Node& document, const std::string& source) {
+  config::YamlReader section =
+      config::open_section(document, source, "task_manager", /*required=*/false);
   return load(section);
 }
 

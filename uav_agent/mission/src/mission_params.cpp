@@ -93,7 +93,12 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
 }
 
 MissionParams MissionParams::load_file(const std::string& path) {
-  config::YamlReader section = config::open_section(path, "mission", /*required=*/false);
+  return from_yaml(config::load_yaml_file(path), path);
+}
+
+MissionParams MissionParams::from_yaml(const YAML::Node& document, const std::string& source) {
+  config::YamlReader section =
+      config::open_section(document, source, "mission", /*required=*/false);
   return load(section);
 }
 

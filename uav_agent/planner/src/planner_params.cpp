@@ -33,7 +33,11 @@ PlannerParams PlannerParams::load(config::YamlReader& reader) {
 }
 
 PlannerParams PlannerParams::load_file(const std::string& path) {
-  config::YamlReader reader = config::open_section(path, "planner", /*required=*/false);
+  return from_yaml(config::load_yaml_file(path), path);
+}
+
+PlannerParams PlannerParams::from_yaml(const YAML::Node& document, const std::string& source) {
+  config::YamlReader reader = config::open_section(document, source, "planner", /*required=*/false);
   return load(reader);
 }
 

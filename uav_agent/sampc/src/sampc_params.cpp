@@ -125,7 +125,11 @@ SampcParams SampcParams::load(config::YamlReader& reader) {
 }
 
 SampcParams SampcParams::load_file(const std::string& path) {
-  config::YamlReader reader = config::open_section(path, "sampc", /*required=*/true);
+  return from_yaml(config::load_yaml_file(path), path);
+}
+
+SampcParams SampcParams::from_yaml(const YAML::Node& document, const std::string& source) {
+  config::YamlReader reader = config::open_section(document, source, "sampc", /*required=*/true);
   return load(reader);
 }
 

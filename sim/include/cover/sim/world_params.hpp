@@ -68,6 +68,8 @@ struct WorldParams {
 
   static WorldParams load(cover::config::YamlReader& reader);
   static WorldParams load_file(const std::string& path);
+  // The same from a document already parsed (config::parse_yaml); `source` names it.
+  static WorldParams from_yaml(const YAML::Node& document, const std::string& source);
   // config/sim/world_default.yaml
   static WorldParams load_default();
   void validate(const std::string& context = "world") const;

@@ -38,7 +38,9 @@ struct IntakeLimits {
 
   static IntakeLimits load(config::YamlReader& reader);
   static IntakeLimits load_file(const std::string& path);  // section `intake`, optional
-  void validate() const;                                   // throws ConfigError naming the key
+  // The same from a document already parsed (config::parse_yaml); `source` names it.
+  static IntakeLimits from_yaml(const YAML::Node& document, const std::string& source);
+  void validate() const;  // throws ConfigError naming the key
 };
 
 // Content checks, needing no clock: finite, in range, addressed to (uav_id, ugv_id).

@@ -17,6 +17,10 @@ std::string default_config_dir();
 // Loads a YAML file; throws ConfigError naming the file on I/O or syntax errors.
 YAML::Node load_yaml_file(const std::string& path);
 
+// Parses YAML text held in memory (a file's content, a fuzzer's input); throws ConfigError
+// naming `source` on syntax errors. Every loader's `from_yaml` takes what this returns.
+YAML::Node parse_yaml(const std::string& text, const std::string& source);
+
 // Reads the keys of one YAML mapping into parameter structs, the agilib way: every key
 // is optional (the struct's default stands) unless read with `require`; a key of the
 // wrong type, or a key the struct does not know, is an error that names the key path.
@@ -54,6 +58,11 @@ class YamlReader {
 // any other top-level key is an error. A missing section is an error when `required`,
 // otherwise the struct's defaults stand. Use in `Params::load_file`.
 YamlReader open_section(const std::string& path, const std::string& section, bool required);
+
+// The same on a document already parsed; `source` names it in errors. Use in
+// `Params::from_yaml`.
+YamlReader open_section(const YAML::Node& document, const std::string& source,
+                        const std::string& section, bool required);
 
 // " (line N)" of a node read from a file, "" when it has no position (built in code).
 std::string line_of(const YAML::Node& node);

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <yaml-cpp/yaml.h>
+
 #include <string>
 #include <vector>
 
@@ -39,6 +41,9 @@ struct ParticipantOptions {
   // `dds.profiles.<profile>` on top (e.g. "wifi"). Throws ConfigError, also for a
   // profile the file does not define.
   static ParticipantOptions load_file(const std::string& path, const std::string& profile = "");
+  // The same from a document already parsed (config::parse_yaml); `source` names it.
+  static ParticipantOptions from_yaml(const YAML::Node& document, const std::string& source,
+                                      const std::string& profile = "");
 };
 
 inline constexpr int kMaxDomainId = 232;

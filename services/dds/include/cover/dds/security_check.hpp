@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,9 @@ struct IdentityReport {
   std::string name;
   std::string subject;                 // RFC 2253, as the permissions must name it
   std::string not_before_utc;          // certificate validity, ISO 8601
-  std::string not_after_utc;           // the earlier of certificate and permissions expiry
+  std::string not_after_utc;           // the earliest of certificate, permissions and CA expiry
   std::int64_t seconds_to_expiry = 0;  // from now to not_after_utc
+  std::string expires_first;           // "certificate", "permissions" or "CA"
   std::vector<std::string> publish;    // topics, from the signed permissions
   std::vector<std::string> subscribe;
 };
@@ -40,8 +42,27 @@ struct IdentityReport {
 // which file is wrong and why. Never prints key material.
 IdentityReport verify_identity(const std::string& directory, const std::string& name);
 
-// A participant's security, checked before the vendor sees it: off, or a valid identity
-// whose fleet runs `options.vendor`. Throws DdsError (mixed-vendor secure is refused).
-void check_participant_security(const ParticipantOptions& options);
+// The fleet CA's certificate (DIR/identity_ca.pem, the one CA of a fleet): its validity.
+// Throws DdsError naming the file.
+struct CaValidity {
+  std::string not_before_utc;
+  std::string not_after_utc;
+  std::int64_t seconds_to_expiry = 0;
+};
+CaValidity ca_validity(const std::string& directory);
+
+// True when `seconds_to_expiry` is less than `days` days (or the identity has expired):
+// what `security.expiry_warning_days` warns about.
+bool expires_within(std::int64_t seconds_to_expiry, int days);
+// "12 d 3 h 4 min" (or "expired"), for logs and `cover security check`.
+std::string time_left_text(std::int64_t seconds_to_expiry);
+
+// A participant's security, checked before the vendor sees it: off (nullopt), or a valid
+// identity whose fleet runs `options.vendor` (its report). Throws DdsError (mixed-vendor
+// secure is refused).
+std::optional<IdentityReport> check_participant_security(const ParticipantOptions& options);
+
+// One line for the process's log when `report` expires within `warning_days`, else "".
+std::string expiry_warning(const IdentityReport& report, int warning_days);
 
 }  // namespace cover::dds

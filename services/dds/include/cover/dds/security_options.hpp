@@ -12,6 +12,9 @@ struct SecurityOptions {
   bool enabled = false;
   std::string directory;  // the fleet directory
   std::string identity;   // e.g. "uav-agent-0" (access_rules.hpp names them)
+  // A process warns at start-up, and `cover security check` fails, when its identity (its
+  // certificate, its permissions or the CA) expires within this many days: time to renew.
+  int expiry_warning_days = 14;
 
   // Throws DdsError naming the missing key when enabled without a directory or identity.
   void validate() const;
@@ -20,6 +23,9 @@ struct SecurityOptions {
 // The highest domain a fleet's governance and permissions cover: Cyclone 0.10's parser
 // refuses a domain id above 230 in them (DDS's 0..232 otherwise).
 inline constexpr int kMaxSecureDomainId = 230;
+
+// The longest validity `cover security init --days` makes, and so the widest warning window.
+inline constexpr int kMaxValidityDays = 3650;
 
 // The environment variables that turn security on with a fleet directory and name the
 // identity (cover-launch sets them per process).

@@ -39,6 +39,9 @@ struct Scenario {
   // Keys: name, description, max_duration_s, settle_time_s, sim (world format), and either
   // task (inline, task format) or task_file (path relative to the scenario file).
   static Scenario load_file(const std::string& path);
+  // The same from a document already parsed (config::parse_yaml), as if read from `path`:
+  // it names the document in errors and its task files are relative to its folder.
+  static Scenario from_yaml(const YAML::Node& document, const std::string& path);
   void validate() const;
 };
 

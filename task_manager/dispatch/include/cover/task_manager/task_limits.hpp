@@ -23,6 +23,8 @@ struct TaskLimits {
 
   static TaskLimits load(config::YamlReader& reader);
   static TaskLimits load_file(const std::string& path);
+  // The same from a document already parsed (config::parse_yaml); `source` names it.
+  static TaskLimits from_yaml(const YAML::Node& document, const std::string& source);
   // Throws config::ConfigError naming the key.
   void validate() const;
 };

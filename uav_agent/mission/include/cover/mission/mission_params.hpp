@@ -108,6 +108,8 @@ struct MissionParams {
 
   static MissionParams load(config::YamlReader& reader);
   static MissionParams load_file(const std::string& path);  // reads the `mission:` section
+  // The same from a document already parsed (config::parse_yaml); `source` names it.
+  static MissionParams from_yaml(const YAML::Node& document, const std::string& source);
   void validate() const;
 };
 

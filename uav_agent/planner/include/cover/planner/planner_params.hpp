@@ -48,6 +48,8 @@ struct PlannerParams {
   static PlannerParams load(config::YamlReader& reader);
   // Reads the `planner` section of a YAML file; throws config::ConfigError naming the key.
   static PlannerParams load_file(const std::string& path);
+  // The same from a document already parsed (config::parse_yaml); `source` names it.
+  static PlannerParams from_yaml(const YAML::Node& document, const std::string& source);
   // Throws config::ConfigError naming the offending key.
   void validate() const;
 };

@@ -148,6 +148,8 @@ struct SampcParams {
   static SampcParams load(config::YamlReader& reader);
   // Reads the `sampc` section of a YAML file; throws config::ConfigError naming the key.
   static SampcParams load_file(const std::string& path);
+  // The same from a document already parsed (config::parse_yaml); `source` names it.
+  static SampcParams from_yaml(const YAML::Node& document, const std::string& source);
   // Throws config::ConfigError naming the offending key.
   void validate() const;
 };
