@@ -15,7 +15,12 @@ constexpr double kNow_s = 1000.0;
 
 LiveView fleet_up() {
   LiveView live;
-  for (int u = 0; u < 2; ++u) live.agents[u] = AgentReport{u, kNow_s - 0.1};
+  for (int u = 0; u < 2; ++u) {
+    AgentReport report;
+    report.uav_id = u;
+    report.heard_s = kNow_s - 0.1;
+    live.agents[u] = report;
+  }
   for (int k = 0; k < 4; ++k) live.ugv_imu_heard_s[k] = kNow_s - 0.05;
   return live;
 }
@@ -24,7 +29,7 @@ LiveView fleet_up() {
 mission::Task three_processes() {
   mission::Task task = testing::make_task("tour", 1);
   task.processes[0].final_action = mission::FinalAction::Deliver;
-  for (const auto [from, to] : {std::pair{1, 2}, std::pair{2, 0}}) {
+  for (const auto& [from, to] : {std::pair{1, 2}, std::pair{2, 0}}) {
     mission::TransitionProcess p = task.processes[0];
     p.from_ugv = from;
     p.to_ugv = to;

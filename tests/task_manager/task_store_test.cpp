@@ -139,7 +139,9 @@ TEST_F(TaskStoreTest, HistoryIsOldestFirstStartingWithTheSubmission) {
     EXPECT_EQ(h[i].task_id, "t");
     EXPECT_EQ(h[i].to, to[i]);
     EXPECT_EQ(h[i].time_s, 1.0 + i);
-    if (i > 0) EXPECT_EQ(h[i].from, to[i - 1]);
+    if (i > 0) {
+      EXPECT_EQ(h[i].from, to[i - 1]);
+    }
   }
   const auto record = store.find("t");
   EXPECT_EQ(record->state, TaskState::Succeeded);
