@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <random>
 
 #include "cover/model/angles.hpp"
 #include "cover/test/scratch_dir.hpp"
@@ -102,6 +103,27 @@ TEST(ImuFilter, AngularAccelerationOfARampIsItsSlope) {
     filter.update(sample_at(t, kGravity, Eigen::Vector3d(0, 0, slope * t)));
   }
   EXPECT_NEAR(filter.output().angular_acceleration_rad_s2.z(), slope, 1e-3);
+}
+
+// The angular acceleration's noise is what the controller feels (beta x p over the
+// horizon, docs/benchmarks.md Fig. 8): the simulated gyro's white noise (0.005 rad/s at
+// 200 Hz, config/sim/world_default.yaml) turning at a steady 0.5 rad/s must leave beta
+// within 0.02 rad/s^2 (1-sigma) with the shipped cut-offs; a 5 Hz cut-off leaves 0.064.
+TEST(ImuFilter, ShippedCutOffsKeepTheGyroNoiseOutOfTheAngularAcceleration) {
+  ImuFilter filter(ImuFilterParams::load_default());
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  double sum_squares = 0.0;
+  int count = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Eigen::Vector3d rate(noise(rng), noise(rng), 0.5 + noise(rng));
+    filter.update(sample_at(0.005 * i, kGravity, rate));
+    if (i >= 1000) {  // settled
+      sum_squares += filter.output().angular_acceleration_rad_s2.squaredNorm() / 3.0;
+      ++count;
+    }
+  }
+  EXPECT_LT(std::sqrt(sum_squares / count), 0.02);
 }
 
 TEST(ImuFilter, ParamsRejectNonPositiveCutOff) {

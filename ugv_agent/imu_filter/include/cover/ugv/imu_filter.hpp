@@ -19,8 +19,13 @@ struct ImuFilterParams {
   // Low-pass cut-off for the angular velocity (gyro), Hz.
   double angular_velocity_cutoff_hz = 15.0;
   // Second low-pass on the differentiated (filtered) gyro, Hz: differentiation
-  // amplifies noise by 1/dt, so the angular acceleration needs a lower cut-off.
-  double angular_acceleration_cutoff_hz = 5.0;
+  // amplifies noise by 1/dt, so the angular acceleration needs a much lower cut-off. The
+  // model extrapolates Omega with it over the 2 s horizon and multiplies it by the distance
+  // to the UGV (beta x p), so its noise is the command's: at 5 Hz the simulated gyro's
+  // 0.005 rad/s noise made every method's body-rate and thrust steps at the frame switch
+  // about twice what they are at 1 Hz (docs/benchmarks.md, Fig. 8), while a UGV's angular
+  // acceleration changes over seconds (a 0.16 s lag).
+  double angular_acceleration_cutoff_hz = 1.0;
   // A gap between samples longer than this restarts the filter from the new sample:
   // blending across a long outage would output stale dynamics.
   double max_sample_gap_s = 0.1;
