@@ -16,8 +16,28 @@ constexpr double kStep_s = 0.1;
 sampc::HorizonReference approach(const Vector3d& p, double closing_m_s,
                                  const RadialApproachLimits& limits) {
   sampc::HorizonReference reference = sampc::HorizonReference::hold(Vector3d(9.0, 9.0, 1.5));
-  fill_radial_approach(p, closing_m_s, limits, kNodes, kStep_s, reference);
+  fill_radial_approach(p, closing_m_s, 0.0, limits, kNodes, kStep_s, reference);
   return reference;
+}
+
+// At the frame switch the speed-up's acceleration starts at 0 and reaches amax after the
+// ramp; from then on (and with no ramp) it is amax.
+TEST(RadialApproach, SpeedUpRampsItsAccelerationFromTheStageStart) {
+  RadialApproachLimits limits;
+  limits.amax_m_s2 = 2.0;
+  EXPECT_DOUBLE_EQ(speed_up_m_s(0.0, 0.25, limits), 0.5);
+  limits.speed_up_ramp_s = 0.5;
+  EXPECT_DOUBLE_EQ(speed_up_m_s(0.0, 0.25, limits), 2.0 * 0.25 * 0.25 / (2.0 * 0.5));
+  EXPECT_DOUBLE_EQ(speed_up_m_s(0.0, 0.5, limits), 0.5);   // the ramp's mean: amax / 2
+  EXPECT_DOUBLE_EQ(speed_up_m_s(0.6, 0.25, limits), 0.5);  // past the ramp
+  // Across its end: 0.25 s of the ramp (0.5 - 0.125 m/s) and 0.25 s at amax (0.5 m/s).
+  EXPECT_NEAR(speed_up_m_s(0.25, 0.5, limits), 0.375 + 0.5, 1e-12);
+  const Vector3d p(5.0, 0.0, 1.0);
+  sampc::HorizonReference early = sampc::HorizonReference::hold(Vector3d::Zero());
+  sampc::HorizonReference late = early;
+  fill_radial_approach(p, 0.0, 0.0, limits, kNodes, kStep_s, early);
+  fill_radial_approach(p, 0.0, 5.0, limits, kNodes, kStep_s, late);
+  EXPECT_GT(early.position_m[5].x(), late.position_m[5].x());  // closes later at the switch
 }
 
 TEST(RadialApproach, ClosesOnTheAxisAlongTheLineWithinTheLimits) {

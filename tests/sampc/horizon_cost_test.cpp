@@ -75,7 +75,7 @@ TEST(HorizonCost, TransitionStageUsesXyZRefWithTheCustomisedVelocityAndYaw) {
   expected_v0.head<2>() -= p.head<2>().normalized() * in.reference.velocity_m_s[0].head<2>().norm();
   expected_v0.z() = in.reference.velocity_m_s[0].z();
   EXPECT_LT((cost.nodes[0].velocity_ref_m_s - expected_v0).norm(), 1e-12);
-  EXPECT_LT((cost.nodes[0].velocity_weight - Vector3d(350, 350, 100)).norm(), 1e-12);
+  EXPECT_LT((cost.nodes[0].velocity_weight - params.transition_weights.velocity).norm(), 1e-12);
 
   const double yaw = std::atan2(-p.y(), -p.x());
   EXPECT_NEAR(cost.yaw_ref_rad, yaw, 1e-12);
@@ -84,7 +84,9 @@ TEST(HorizonCost, TransitionStageUsesXyZRefWithTheCustomisedVelocityAndYaw) {
     const double decay = std::exp(-params.e0 * k);
     EXPECT_LT((n.position_weight - decay * Vector3d(0, 0, 200)).norm(), 1e-9);
     if (k > params.custom_velocity_nodes) {
-      EXPECT_LT((n.velocity_weight - decay * Vector3d(0, 0, 100)).norm(), 1e-9);
+      EXPECT_LT((n.velocity_weight - decay * Vector3d(0, 0, params.transition_weights.velocity.z()))
+                    .norm(),
+                1e-9);
       EXPECT_EQ(n.velocity_ref_m_s.z(), in.reference.velocity_m_s[k].z());
     }
     EXPECT_LT((n.attitude_weight - decay * Eigen::Vector4d::Constant(40)).norm(), 1e-9);
@@ -113,11 +115,12 @@ TEST(HorizonCost, NoRefVxyDiffersFromCoverOnlyInTheHorizontalVelocityWeight) {
   ablation.mode = Mode::NoRefVxy;
   const SampcInput in = example_input(Stage::Transition);
   const HorizonCost a = build(cover_params, in), b = build(ablation, in);
-  EXPECT_EQ(b.nodes[0].velocity_weight, Vector3d(0, 0, 100));
+  const double vertical = cover_params.transition_weights.velocity.z();
+  EXPECT_EQ(b.nodes[0].velocity_weight, Vector3d(0, 0, vertical));
   // The customised velocity acts where the state is free: the first predicted node differs.
   EXPECT_EQ(a.nodes[1].velocity_weight.head<2>(),
             std::exp(-cover_params.e0) * Eigen::Vector2d(350, 350));
-  EXPECT_EQ(b.nodes[1].velocity_weight, std::exp(-cover_params.e0) * Vector3d(0, 0, 100));
+  EXPECT_EQ(b.nodes[1].velocity_weight, std::exp(-cover_params.e0) * Vector3d(0, 0, vertical));
   for (int k = 0; k <= cover_params.horizon_steps; ++k) {
     EXPECT_EQ(a.nodes[k].position_weight, b.nodes[k].position_weight);
     EXPECT_EQ(a.nodes[k].position_ref_m, b.nodes[k].position_ref_m);

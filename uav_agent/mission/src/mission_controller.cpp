@@ -325,7 +325,7 @@ bool MissionController::flies_radial_approach() const {
          sampc_.params().mode != sampc::Mode::ConiMpc;
 }
 
-void MissionController::fill_approach(const UgvInputs& inputs) {
+void MissionController::fill_approach(const UgvInputs& inputs, double stage_time_s) {
   const TransitionProcess& process = machine_.task().processes[machine_.decision().process_index];
   const Eigen::Vector3d& p = inputs.state.position_m;
   // The UAV's velocity relative to the UGV's translation (eq. 23's v + Omega x p).
@@ -337,8 +337,10 @@ void MissionController::fill_approach(const UgvInputs& inputs) {
   limits.vmax_m_s = process.vmax_m_s;
   limits.amax_m_s2 = process.amax_m_s2;
   limits.brake_m_s2 = params_.approach_brake_fraction * process.amax_m_s2;
+  limits.speed_up_ramp_s = params_.approach_speed_up_ramp_s;
   const sampc::SampcParams& sp = sampc_.params();
-  fill_radial_approach(p, closing, limits, sp.horizon_steps, sp.step_s, sampc_input_.reference);
+  fill_radial_approach(p, closing, stage_time_s, limits, sp.horizon_steps, sp.step_s,
+                       sampc_input_.reference);
 }
 
 void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s) {
@@ -350,7 +352,7 @@ void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s
   const Eigen::Quaterniond q = inputs.state.attitude.normalized();
   sampc_input_.uav_state.segment<4>(model::idx::kQuaternion) << q.w(), q.x(), q.y(), q.z();
   fill_reference(t_s, sampc_input_.reference);
-  if (flies_radial_approach()) fill_approach(inputs);
+  if (flies_radial_approach()) fill_approach(inputs, t_s);
   output_.status.reference_position_m = sampc_input_.reference.position_m[0];
   integrate_disturbance(inputs.state.position_m, sampc_input_.reference.position_m[0]);
   sampc_input_.ugv = inputs.imu.motion;

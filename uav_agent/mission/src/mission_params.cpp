@@ -85,6 +85,7 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
   reader.optional("transition_reference", transition_reference);
   params.transition_reference = parse_transition_reference(transition_reference, reader.context());
   reader.optional("approach_brake_fraction", params.approach_brake_fraction);
+  reader.optional("approach_speed_up_ramp_s", params.approach_speed_up_ramp_s);
   reader.optional("final_start_acceleration_fraction", params.final_start_acceleration_fraction);
   reader.optional("control_period_s", params.control_period_s);
   reader.reject_unknown_keys();
@@ -160,6 +161,9 @@ void MissionParams::validate() const {
   config::check(positive(land_detect_time_s), ctx + ".land_detect_time_s", "must be > 0");
   config::check(positive(approach_brake_fraction) && approach_brake_fraction <= 1.0,
                 ctx + ".approach_brake_fraction", "must be in (0, 1]");
+  config::check(std::isfinite(approach_speed_up_ramp_s) && approach_speed_up_ramp_s >= 0.0 &&
+                    approach_speed_up_ramp_s <= 5.0,
+                ctx + ".approach_speed_up_ramp_s", "must be in [0, 5]");
   config::check(std::isfinite(final_start_acceleration_fraction) &&
                     final_start_acceleration_fraction >= 0.0 &&
                     final_start_acceleration_fraction <= 1.0,

@@ -119,7 +119,7 @@ class MissionController {
   void fill_reference(double t_s, sampc::HorizonReference& reference) const;
   void command_from_sampc(const UgvInputs& inputs, double now_s);
   bool flies_radial_approach() const;
-  void fill_approach(const UgvInputs& inputs);
+  void fill_approach(const UgvInputs& inputs, double stage_time_s);
   void integrate_disturbance(const Eigen::Vector3d& position_m, const Eigen::Vector3d& reference_m);
   void update_observer(const model::Input& applied, double now_s);
   void use_process_method(std::size_t process_index);

@@ -99,6 +99,10 @@ struct MissionParams {
   // has to follow it).
   TransitionReference transition_reference = TransitionReference::RadialApproach;
   double approach_brake_fraction = 0.5;
+  // The approach's speed-up acceleration builds from 0 to amax over this long after the
+  // frame switch (s, in [0, 5]; 0: at once), as a planned trajectory's would
+  // (RadialApproachLimits::speed_up_ramp_s).
+  double approach_speed_up_ramp_s = 0.5;
   // The final stage starts while the UAV still brakes from the transition's approach: its
   // plan starts with this fraction of the acceleration SAMPC had planned over its first
   // node (0: from zero acceleration). In [0, 1].
