@@ -30,6 +30,7 @@ msg::ManagerReply reply_to(const msg::ManagerRequest& request, bool ok, std::str
 ManagerNode::ManagerNode(dds::Participant& participant, TaskStore& store, TaskLimits limits,
                          ManagerOptions options)
     : store_(store),
+      limits_(limits),
       dispatcher_(store, limits),
       options_(options),
       fleet_(participant, options.max_uavs, options.max_ugvs),
@@ -60,15 +61,14 @@ int ManagerNode::run() {
       batch.swap(requests_);
     }
     const double now = clock::system_s();
-    const bool listened = now - listening_since_s_ >= listen_first_s_;
-    if (listened) {
-      while (!held_.empty()) {
-        handle(held_.front(), now);
-        held_.pop_front();
-      }
+    // In submission order: a submission waits while any before it does.
+    while (!held_.empty() && !must_wait(held_.front(), now)) {
+      handle(held_.front(), now);
+      held_.pop_front();
     }
     for (const msg::ManagerRequest& request : batch) {
-      if (!listened && request.kind == msg::ManagerRequestKind::MANAGER_SUBMIT) {
+      if (request.kind == msg::ManagerRequestKind::MANAGER_SUBMIT &&
+          (!held_.empty() || must_wait(request, now))) {
         held_.push_back(request);
       } else {
         handle(request, now);
@@ -78,6 +78,21 @@ int ManagerNode::run() {
   }
   spdlog::info("shutting down");
   return 0;
+}
+
+bool ManagerNode::must_wait(const msg::ManagerRequest& request, double now_s) const {
+  const double listened_s = now_s - listening_since_s_;
+  if (listened_s < listen_first_s_) return true;
+  if (listened_s >= limits_.restart_grace_s) return false;
+  try {
+    const mission::Task task = wire::from_msg(request.task);
+    // A submission refused or rejected for its own faults is answered at once.
+    if (why_not_recordable(task, request.submitter, request.request_id)) return false;
+    if (why_not_sound(task, limits_)) return false;
+    return names_unheard(task, fleet_.view(), options_.max_uavs, options_.max_ugvs);
+  } catch (const std::exception&) {
+    return false;  // handle() reports it
+  }
 }
 
 void ManagerNode::handle(const msg::ManagerRequest& request, double now_s) {

@@ -32,6 +32,10 @@ class ManagerNode {
 
  private:
   void on_request(const msg::ManagerRequest& request);
+  // Whether a submission must wait before it is judged: until the manager has listened for
+  // one heartbeat timeout, then, up to restart_grace_s after its start, while the task
+  // names a vehicle it listens to and has not heard yet (discovery can take seconds).
+  bool must_wait(const msg::ManagerRequest& request, double now_s) const;
   void handle(const msg::ManagerRequest& request, double now_s);
   msg::ManagerReply submit(const msg::ManagerRequest& request, double now_s);
   msg::ManagerReply abort(const msg::ManagerRequest& request, double now_s);
@@ -40,6 +44,7 @@ class ManagerNode {
   void send(const Actions& actions, double now_s);
 
   TaskStore& store_;
+  TaskLimits limits_;
   Dispatcher dispatcher_;
   ManagerOptions options_;
   FleetWatch fleet_;
@@ -53,7 +58,7 @@ class ManagerNode {
   // a repeat gets the first answer instead of being carried out again.
   std::map<std::string, msg::ManagerReply> answered_;
   // Submissions are judged against the live fleet, which a manager that has just started
-  // has not heard yet: they wait until it has listened for one heartbeat timeout.
+  // has not heard yet: they wait (must_wait) in held_.
   double listening_since_s_ = 0.0;
   double listen_first_s_ = 0.0;
   std::deque<msg::ManagerRequest> held_;

@@ -43,20 +43,25 @@ namespace fs = std::filesystem;
 // that an operator's abort finds the task in flight), and a task manager on `db`.
 class StandingSystem {
  public:
+  // With `fleet_first` false no UAV agent is started (start_uav) and nothing is waited for.
   StandingSystem(int domain, const std::string& manager_vendor,
-                 const std::string& clock = "realtime", int uavs = 1)
+                 const std::string& clock = "realtime", int uavs = 1, bool fleet_first = true)
       : system_(domain, "tm",
                 {"--scenario", uavs == 1 ? "scenario1" : "fleet_two_uavs", "--standing"}, clock),
-        manager_vendor_(manager_vendor) {
+        manager_vendor_(manager_vendor),
+        clock_(clock) {
     db_ = cover::test::scratch_path(system_.run_id() + ".db");
     fs::remove(db_);
-    for (int u = 0; u < uavs; ++u) {
-      uavs_.push_back(system_.spawn(
-          {bin("cover-uav-agent"), "--id", std::to_string(u), "--ugv-count", "2", "--clock", clock},
-          "uav" + std::to_string(u), u == 0 ? "fastdds" : "cyclone"));
+    if (fleet_first) {
+      for (int u = 0; u < uavs; ++u) start_uav(u);
     }
     start_manager();
-    wait_until_up(uavs);
+    if (fleet_first) wait_until_up(uavs);
+  }
+  void start_uav(int u) {
+    uavs_.push_back(system_.spawn(
+        {bin("cover-uav-agent"), "--id", std::to_string(u), "--ugv-count", "2", "--clock", clock_},
+        "uav" + std::to_string(u), u == 0 ? "fastdds" : "cyclone"));
   }
   ~StandingSystem() {
     manager_.reset();
@@ -96,12 +101,19 @@ class StandingSystem {
   // `cover ARGS --json` as a ground station on this domain: exit code and its last JSON line.
   std::pair<int, nlohmann::json> cover(std::vector<std::string> args,
                                        const std::string& vendor = "cyclone") {
+    return finish(*start_cover(std::move(args), vendor));
+  }
+  // The same in two halves: started, then its answer awaited.
+  std::unique_ptr<ChildProcess> start_cover(std::vector<std::string> args,
+                                            const std::string& vendor = "cyclone") {
     args.insert(args.begin(), COVER_CLI);
     args.insert(args.end(), {"--json", "--timeout", "20"});
     cover::process::SpawnOptions options =
         quiet(vendor, system_.domain(), system_.log_name("cover"));
     options.capture_stdout = true;
-    ChildProcess cli(args, options);
+    return std::make_unique<ChildProcess>(args, options);
+  }
+  static std::pair<int, nlohmann::json> finish(ChildProcess& cli) {
     std::string last;
     while (const auto line = cli.read_line(120s)) {
       if (!line->empty()) last = *line;
@@ -125,6 +137,7 @@ class StandingSystem {
  private:
   cover::test::SimSystem system_;  // first: its domain held until every child has stopped
   std::string manager_vendor_;
+  std::string clock_;
   std::string db_;
   std::vector<std::unique_ptr<ChildProcess>> uavs_;
   std::unique_ptr<ChildProcess> manager_;
@@ -200,6 +213,24 @@ TEST(TaskManager, BadSubmissionsAreRejectedWithAReasonAndTheManagerKeepsServing)
   EXPECT_EQ(system.cover({"status", "no-such-task"}).first, 1);
   // Still serving: a good task is accepted.
   EXPECT_EQ(system.cover({"submit", system.task_file("good")}).first, 0);
+}
+
+// A task submitted while its UAV agent is still starting (the agent not heard yet, the
+// manager past its first heartbeat timeout of listening: discovery can take longer) waits
+// for the agent instead of being rejected as not up.
+TEST(TaskManager, ATaskSubmittedBeforeItsUavAgentIsHeardWaitsForIt) {
+  StandingSystem system(178, "cyclone", "realtime", 1, /*fleet_first=*/false);
+  // Every submission is held for the first heartbeat timeout, this one too: once it is
+  // answered (rejected for its own fault) the manager has listened that long.
+  const auto [fast_code, fast_reply] =
+      system.cover({"submit", system.task_file("too-fast", "", "9.0")});
+  ASSERT_EQ(fast_code, 1) << fast_reply.dump();
+  const auto cli = system.start_cover({"submit", system.task_file("early")});
+  system.start_uav(0);
+  const auto [code, reply] = StandingSystem::finish(*cli);
+  EXPECT_EQ(code, 0) << reply.dump();
+  EXPECT_EQ(reply["message"], "queued for UAV 0") << reply.dump();
+  EXPECT_EQ(system.stop_manager(), 0);
 }
 
 TEST(TaskManager, KilledWhileATaskRunsTheRestartedManagerRecordsItsTrueResult) {

@@ -120,6 +120,35 @@ TEST(TaskManagerFlyability, TheTasksOwnFaultComesBeforeADownVehicle) {
   EXPECT_EQ(why(task, live), "process 2: final_point_m.z is NaN");
 }
 
+TEST(TaskManagerFlyability, SoundnessIgnoresTheFleet) {
+  EXPECT_FALSE(why_not_sound(three_processes(), TaskLimits{}));
+  mission::Task task = three_processes();
+  task.processes[1].vmax_m_s = 9.0;
+  EXPECT_EQ(why_not_sound(task, TaskLimits{}).value_or("sound"),
+            "process 1: vmax_m_s 9 is above the vehicle's 3 m/s");
+}
+
+// What a manager that has just started waits for: a vehicle it listens to and has not heard
+// yet; not one heard once (even long ago: then it is down, not undiscovered), nor an id
+// beyond those it listens to.
+TEST(TaskManagerFlyability, UnheardVehiclesAreOnlyThoseThatCouldStillBeHeard) {
+  const mission::Task task = three_processes();  // UAV 1, UGVs 0, 1, 2
+  LiveView live = fleet_up();
+  EXPECT_FALSE(names_unheard(task, live, 4, 8));
+  live.agents[1].heard_s = kNow_s - 60.0;
+  EXPECT_FALSE(names_unheard(task, live, 4, 8));
+  live.agents.erase(1);
+  EXPECT_TRUE(names_unheard(task, live, 4, 8));
+  EXPECT_FALSE(names_unheard(task, live, 1, 8)) << "UAV 1 is not listened to";
+  live = fleet_up();
+  live.ugv_imu_heard_s.erase(2);
+  EXPECT_TRUE(names_unheard(task, live, 4, 8));
+  EXPECT_FALSE(names_unheard(task, live, 4, 2)) << "UGV 2 is not listened to";
+  mission::Task far = task;
+  far.uav_id = -1;
+  EXPECT_FALSE(names_unheard(far, fleet_up(), 4, 8));
+}
+
 TEST(TaskManagerLimits, ShippedFileHoldsTheDefaultsAndBadKeysAreNamed) {
   const TaskLimits shipped =
       TaskLimits::load_file(config::default_config_dir() + "/task_manager.yaml");

@@ -138,16 +138,31 @@ std::optional<std::string> why_not_recordable(const mission::Task& task,
   return std::nullopt;
 }
 
-std::optional<std::string> why_not_flyable(const mission::Task& task, const LiveView& live,
-                                           const TaskLimits& limits, double now_s) {
+std::optional<std::string> why_not_sound(const mission::Task& task, const TaskLimits& limits) {
   for (std::size_t i = 0; i < task.processes.size(); ++i) {
     if (auto why = check_process(task.processes[i], limits)) {
       return "process " + std::to_string(i) + ": " + *why;
     }
   }
-  if (auto why = check_structure(task)) return why;
+  return check_structure(task);
+}
+
+std::optional<std::string> why_not_flyable(const mission::Task& task, const LiveView& live,
+                                           const TaskLimits& limits, double now_s) {
+  if (auto why = why_not_sound(task, limits)) return why;
   if (auto why = check_uav(task.uav_id, live, limits, now_s)) return why;
   return check_ugvs(task, live, limits, now_s);
+}
+
+bool names_unheard(const mission::Task& task, const LiveView& live, int max_uavs, int max_ugvs) {
+  const auto unheard = [](int id, int max_id, const auto& heard) {
+    return id >= 0 && id < max_id && heard.find(id) == heard.end();
+  };
+  if (unheard(task.uav_id, max_uavs, live.agents)) return true;
+  for (const int k : ugvs_of(task)) {
+    if (unheard(k, max_ugvs, live.ugv_imu_heard_s)) return true;
+  }
+  return false;
 }
 
 }  // namespace cover::task_manager

@@ -17,7 +17,8 @@ struct TaskLimits {
   double max_amax_m_s2 = 5.0;        // the vehicle's acceleration limit
   double heartbeat_timeout_s = 1.0;  // an agent / UGV IMU not heard for this long is "not up"
   // After a (re)start, a task in flight on an agent not heard yet is given this long before
-  // it counts as silent: discovery of a restarted participant can take seconds.
+  // it counts as silent: discovery of a restarted participant can take seconds. A
+  // submission naming a vehicle not heard yet waits as long at most before it is judged.
   double restart_grace_s = 10.0;
   double dispatch_timeout_s = 5.0;  // a dispatched task the agent has not taken by then fails
 
