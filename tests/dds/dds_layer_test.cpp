@@ -7,6 +7,7 @@
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 #include <vector>
@@ -25,6 +26,20 @@ namespace {
 
 using cover::test::message_of;
 using cover::test::write_temp_yaml;
+
+// A thread woken by a sample (Reader::wait_for_sample) reads what the reader's callback
+// made of it: the callback runs before the sample is counted.
+TEST(Reader, TheCallbackRunsBeforeTheSampleCountsSoAWokenWaiterFindsItsWork) {
+  using State = cover::dds::Reader<cover::msg::UgvImu>::State;
+  std::optional<std::uint64_t> count_during_callback;
+  std::shared_ptr<State> state;
+  state = std::make_shared<State>(
+      [&](const cover::msg::UgvImu&) { count_during_callback = state->count(); });
+  state->deliver(cover::msg::UgvImu{});
+  EXPECT_EQ(count_during_callback, std::optional<std::uint64_t>(0));
+  EXPECT_EQ(state->count(), 1u);
+  EXPECT_TRUE(state->wait_beyond(0, std::chrono::milliseconds(0)));
+}
 
 TEST(Qos, NamedProfilesSetEveryPolicy) {
   const auto sensor = qos_profile("sensor");

@@ -31,14 +31,17 @@ class Reader {
   class State {
    public:
     explicit State(Callback callback) : callback_(std::move(callback)) {}
+    // The callback runs first: a thread woken by the count (wait_beyond) must find what the
+    // callback did with the sample. Woken first, the UAV agent would step on the previous
+    // relative state while its callback still files this one: a period of extra latency.
     void deliver(const T& sample) {
+      if (callback_) callback_(sample);
       {
         std::lock_guard<std::mutex> lock(mutex_);
         latest_ = Received{sample, cover::clock::monotonic_ns()};
         ++count_;
       }
       changed_.notify_all();
-      if (callback_) callback_(sample);
     }
     std::optional<Received> latest() const {
       std::lock_guard<std::mutex> lock(mutex_);
