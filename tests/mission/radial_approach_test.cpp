@@ -109,6 +109,11 @@ TEST(MissionParams, TransitionReferenceIsParsedAndChecked) {
                    0.0);
   EXPECT_THROW(load("final_start_acceleration_fraction: -0.1"), config::ConfigError);
   EXPECT_THROW(load("final_start_acceleration_fraction: 1.5"), config::ConfigError);
+  EXPECT_DOUBLE_EQ(load("{}").approach_speed_up_ramp_s, 0.5);
+  EXPECT_DOUBLE_EQ(load("approach_speed_up_ramp_s: 0").approach_speed_up_ramp_s, 0.0);
+  EXPECT_THROW(load("approach_speed_up_ramp_s: -0.1"), config::ConfigError);
+  EXPECT_THROW(load("approach_speed_up_ramp_s: .nan"), config::ConfigError);
+  EXPECT_THROW(load("approach_speed_up_ramp_s: 6"), config::ConfigError);
 }
 
 }  // namespace
