@@ -30,7 +30,6 @@ msg::ManagerReply reply_to(const msg::ManagerRequest& request, bool ok, std::str
 ManagerNode::ManagerNode(dds::Participant& participant, TaskStore& store, TaskLimits limits,
                          ManagerOptions options)
     : store_(store),
-      limits_(limits),
       dispatcher_(store, limits),
       options_(options),
       fleet_(participant, options.max_uavs, options.max_ugvs),
@@ -83,12 +82,13 @@ int ManagerNode::run() {
 bool ManagerNode::must_wait(const msg::ManagerRequest& request, double now_s) const {
   const double listened_s = now_s - listening_since_s_;
   if (listened_s < listen_first_s_) return true;
-  if (listened_s >= limits_.restart_grace_s) return false;
+  const TaskLimits& limits = dispatcher_.limits();
+  if (listened_s >= limits.restart_grace_s) return false;
   try {
     const mission::Task task = wire::from_msg(request.task);
     // A submission refused or rejected for its own faults is answered at once.
     if (why_not_recordable(task, request.submitter, request.request_id)) return false;
-    if (why_not_sound(task, limits_)) return false;
+    if (why_not_sound(task, limits)) return false;
     return names_unheard(task, fleet_.view(), options_.max_uavs, options_.max_ugvs);
   } catch (const std::exception&) {
     return false;  // handle() reports it

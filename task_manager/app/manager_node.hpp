@@ -44,7 +44,6 @@ class ManagerNode {
   void send(const Actions& actions, double now_s);
 
   TaskStore& store_;
-  TaskLimits limits_;
   Dispatcher dispatcher_;
   ManagerOptions options_;
   FleetWatch fleet_;

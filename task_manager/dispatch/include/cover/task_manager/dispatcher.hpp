@@ -34,6 +34,8 @@ class Dispatcher {
  public:
   Dispatcher(TaskStore& store, TaskLimits limits);
 
+  const TaskLimits& limits() const { return limits_; }
+
   // Validates (why_not_flyable) and stores: Queued, or Rejected with the reason. Idempotent
   // by task id: a repeat returns the stored record, created = false, whatever the live view.
   // A submission that cannot be recorded (why_not_recordable) throws std::invalid_argument
