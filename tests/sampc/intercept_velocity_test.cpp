@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "cover/config/yaml_reader.hpp"
 #include "cover/model/angles.hpp"
@@ -41,6 +43,91 @@ TEST(InterceptVelocity, MeanVelocityOfAStraightAndATurningUgv) {
   EXPECT_LT((ugv_mean_velocity(u, -w, tau) * tau - Vector2d(u / w, -u / w)).norm(), 1e-12);
   // The series below the threshold joins the closed form.
   EXPECT_LT((ugv_mean_velocity(u, 1e-4, 0.999) - ugv_mean_velocity(u, 1e-4, 1.001)).norm(), 1e-6);
+}
+
+// D(tau) / tau by numerical integration (midpoints) of speed u + a t at yaw rate w, stopped
+// at zero speed.
+Vector2d integrated_mean_velocity(double u, double w, double a, double tau) {
+  constexpr int kSteps = 200000;
+  const double dt = tau / kSteps;
+  Vector2d d = Vector2d::Zero();
+  for (int i = 0; i < kSteps; ++i) {
+    const double t = (i + 0.5) * dt;
+    d += std::max(u + a * t, 0.0) * Vector2d(std::cos(w * t), std::sin(w * t)) * dt;
+  }
+  return d / tau;
+}
+
+TEST(InterceptVelocity, MeanVelocityOfAnAcceleratingUgvAndOfOneThatBrakesToAStop) {
+  // Straight: u + a tau / 2.
+  EXPECT_LT((ugv_mean_velocity(0.5, 0.0, 4.0, 0.2) - Vector2d(0.9, 0.0)).norm(), 1e-15);
+  for (const auto& [u, w, a, tau] : {std::tuple{0.5, 0.3, 0.2, 4.0},
+                                     {0.8, -0.35, -0.1, 5.0},
+                                     {0.6, 0.005, 0.3, 1.0},
+                                     {0.6, 0.02, -0.2, 2.0}}) {
+    EXPECT_LT((ugv_mean_velocity(u, w, tau, a) - integrated_mean_velocity(u, w, a, tau)).norm(),
+              1e-9)
+        << u << " " << w << " " << a << " " << tau;
+  }
+  // Braking from 1 m/s at 1 m/s^2: stopped after 0.5 m, whatever the time to go.
+  for (const double tau : {2.0, 4.0, 6.0}) {
+    EXPECT_LT((ugv_mean_velocity(1.0, 0.0, tau, -1.0) * tau - Vector2d(0.5, 0.0)).norm(), 1e-12);
+    EXPECT_LT(
+        (ugv_mean_velocity(1.0, 0.4, tau, -1.0) - integrated_mean_velocity(1.0, 0.4, -1.0, tau))
+            .norm(),
+        1e-9);
+  }
+  // The series below the threshold joins the closed form.
+  EXPECT_LT(
+      (ugv_mean_velocity(0.5, 1e-2, 0.999, 0.3) - ugv_mean_velocity(0.5, 1e-2, 1.001, 0.3)).norm(),
+      1e-3);
+}
+
+TEST(InterceptVelocity, UsesTheUgvsOwnAccelerationClampedAndNeverANaN) {
+  InterceptParams params;
+  model::UgvMotion ugv = driving(0.8, 0.0);
+  ugv.forward_acceleration_m_s2 = 0.3;
+  EXPECT_EQ(predicted_forward_acceleration_m_s2(params, ugv), 0.3);
+  ugv.forward_acceleration_m_s2 = -5.0;
+  EXPECT_EQ(predicted_forward_acceleration_m_s2(params, ugv), -params.max_ugv_acceleration_m_s2);
+  ugv.forward_acceleration_m_s2 = kNaN;
+  EXPECT_EQ(predicted_forward_acceleration_m_s2(params, ugv), 0.0);
+  ugv.forward_acceleration_m_s2 = 0.3;
+  params.use_ugv_acceleration = false;
+  EXPECT_EQ(predicted_forward_acceleration_m_s2(params, ugv), 0.0);
+}
+
+// A straight-driving UGV speeding up: eq. 30 (the collision course with a target of constant
+// velocity) keeps re-aiming behind it; the law with the UGV's acceleration aims where it
+// will be. A point mass flying each, in the world, from abeam and ahead of the UGV (from
+// behind, both fly nearly straight).
+TEST(InterceptVelocity, APointMassMeetsAnAcceleratingUgvOnAStraighterPathThanEq30) {
+  const auto ratio = [](bool with_acceleration, const Vector2d& start) {
+    InterceptParams params;
+    params.use_ugv_acceleration = with_acceleration;
+    const double s = 1.5, dt = 0.01, accel = 0.3;
+    Vector2d uav = start, ugv_position(0.0, 0.0);
+    double u = 0.3, length = 0.0;
+    for (int i = 0; i < 5000; ++i) {
+      const Vector2d rel = uav - ugv_position;
+      if (rel.norm() < 0.05) return length / (uav - start).norm();
+      model::UgvMotion ugv = driving(u, 0.0);
+      ugv.forward_acceleration_m_s2 = accel;
+      const Vector3d p(rel.x(), rel.y(), 1.0);
+      const Vector2d v = intercept_velocity(params, ugv, p, s, eq30(ugv, p, s), s).velocity_m_s;
+      const Vector2d inertial = v + Vector2d(u, 0.0);
+      uav += inertial * dt;
+      length += inertial.norm() * dt;
+      ugv_position.x() += u * dt;
+      u += accel * dt;
+    }
+    return kInf;
+  };
+  for (const Vector2d& start : {Vector2d(0.0, 4.0), Vector2d(3.0, 3.0), Vector2d(2.0, -4.0)}) {
+    const double with = ratio(true, start), without = ratio(false, start);
+    EXPECT_LT(with, without - 0.002) << start.transpose() << ": " << with << " " << without;
+    EXPECT_LT(with, 1.02) << start.transpose();
+  }
 }
 
 TEST(InterceptVelocity, FallsBackToEq30BitForBitWithTheReason) {
@@ -328,7 +415,9 @@ TEST(InterceptVelocity, ParamsLoadAndRejectBadValuesNamingTheKey) {
   for (const char* bad :
        {"intercept: {min_ugv_speed_m_s: -1}", "intercept: {max_ugv_yaw_rate_rad_s: 0}",
         "intercept: {max_time_to_go_s: .nan}", "intercept: {max_predicted_turn_rad: 7}",
-        "intercept: {velocity_nodes: 21}", "intercept: {velocity_nodes: 0}"}) {
+        "intercept: {velocity_nodes: 21}", "intercept: {velocity_nodes: 0}",
+        "intercept: {max_ugv_acceleration_m_s2: -0.1}",
+        "intercept: {max_ugv_acceleration_m_s2: .inf}"}) {
     try {
       load(bad);
       ADD_FAILURE() << bad;

@@ -197,10 +197,11 @@ TEST(CoverBench, Table1SamplesStartingPhases) {
   }
 }
 
-// Scenario 1 on both of the paper's patterns, each beside its Table 3 value.
+// Scenario 1 on both of the paper's patterns (and the short lines), each beside its Table 3
+// value; the lines' transitions as long as the paper's (L_s per transition within 15 %).
 TEST(CoverBench, ScenarioOneOnCirclesAndLines) {
-  for (const auto& [pattern, paper] :
-       std::vector<std::pair<std::string, double>>{{"circle", 1.11}, {"lines", 1.07}}) {
+  for (const auto& [pattern, paper] : std::vector<std::pair<std::string, double>>{
+           {"circle", 1.11}, {"lines", 1.07}, {"lines-short", 1.07}}) {
     SCOPED_TRACE(pattern);
     const BenchRun run = run_bench({"scenario", "1", "--pattern", pattern, "--json"});
     ASSERT_EQ(run.exit_code, 0) << run.out;
@@ -212,6 +213,11 @@ TEST(CoverBench, ScenarioOneOnCirclesAndLines) {
     EXPECT_TRUE(IsNumberIn(out["ratio"], 1.0, 2.0));
     EXPECT_TRUE(IsNumberIn(out["bound_ratio"], 1.0, out["ratio"].get<double>()));
     for (const auto& axis : out["tracking_error_m"]) EXPECT_TRUE(IsNumberIn(axis, 0.0, 0.05));
+    const double paper_length = out["paper_transition_length_m"].get<double>();
+    EXPECT_NEAR(paper_length, (pattern == "circle" ? 55.68 : 57.67) / 8.0, 1e-12);
+    if (pattern == "lines") {
+      EXPECT_TRUE(IsNumberIn(out["transition_length_m"], 0.85 * paper_length, paper_length));
+    }
   }
 }
 

@@ -14,19 +14,32 @@
 
 namespace {
 
-// Scenario 1's two UGV patterns (paper Table 3): the scenario file and the paper's L_t/L_s.
+// Scenario 1's UGV patterns (paper Table 3): the scenario file, the paper's L_t/L_s and its
+// L_s per transition (Table 3's L_s over its eight transitions; the paper says "more than 8",
+// so at most this).
 struct Scenario1Pattern {
   const char* name;
   const char* file;
   double paper_ratio;
+  double paper_transition_length_m;
 };
-constexpr Scenario1Pattern kScenario1Patterns[] = {{"circle", "scenario1", 1.11},
-                                                   {"lines", "scenario1_lines", 1.07}};
+constexpr Scenario1Pattern kScenario1Patterns[] = {
+    {"circle", "scenario1", 1.11, 55.68 / 8.0},
+    {"lines", "scenario1_lines", 1.07, 57.67 / 8.0},
+    // The lines with 2 m half strokes: UGVs nearly abreast at every switch.
+    {"lines-short", "scenario1_lines_short", 1.07, 57.67 / 8.0}};
 
 const Scenario1Pattern& scenario1_pattern(const std::string& name) {
   for (const Scenario1Pattern& p : kScenario1Patterns)
     if (name == p.name) return p;
   return kScenario1Patterns[0];
+}
+
+// L_s per transition, comparable with the paper's (NaN with none).
+double mean_transition_length_m(const cover::sim::ClosedLoopResult& r) {
+  return r.transitions.empty()
+             ? std::nan("")
+             : r.total_straight_length_m / static_cast<double>(r.transitions.size());
 }
 
 double out_ratio(const cover::sim::ClosedLoopResult& r) {
@@ -50,7 +63,9 @@ int run(const std::vector<std::string>& args) {
   std::vector<std::string> pattern_names;
   for (const Scenario1Pattern& p : kScenario1Patterns) pattern_names.emplace_back(p.name);
   CLI::Option* pattern_opt =
-      app.add_option("--pattern", pattern, "scenario 1 only: circle (default) | lines")
+      app.add_option("--pattern", pattern,
+                     "scenario 1 only: circle (default) | lines | lines-short "
+                     "(2 m half strokes)")
           ->check(CLI::IsMember(pattern_names));
   CLI::Option* plot =
       app.add_option("--plot", plot_file, "write a top-view SVG (default file scenario<N>.svg)");
@@ -99,6 +114,8 @@ int run(const std::vector<std::string>& args) {
     if (scenario1) {
       out["pattern"] = scenario1->name;
       out["paper_ratio"] = scenario1->paper_ratio;
+      out["transition_length_m"] = mean_transition_length_m(result);
+      out["paper_transition_length_m"] = scenario1->paper_transition_length_m;
     }
     if (plot->count() > 0) out["plot"] = plot_file;
     std::cout << out.dump(2) << "\n";
@@ -106,8 +123,11 @@ int run(const std::vector<std::string>& args) {
     std::printf("Scenario %d (%s), method %s\n%s", number, scenario.description.c_str(),
                 method.c_str(), cover::sim::readable_summary(result).c_str());
     if (scenario1) {
-      std::printf("  pattern           %s: Lt/Ls %.3f, paper (Table 3) %.2f\n", scenario1->name,
-                  out_ratio(result), scenario1->paper_ratio);
+      std::printf(
+          "  pattern           %s: Lt/Ls %.3f, paper (Table 3) %.2f; Ls per transition "
+          "%.2f m, paper %.2f m\n",
+          scenario1->name, out_ratio(result), scenario1->paper_ratio,
+          mean_transition_length_m(result), scenario1->paper_transition_length_m);
     }
     if (plot->count() > 0) std::printf("  plot              %s\n", plot_file.c_str());
   }

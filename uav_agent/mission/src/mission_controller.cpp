@@ -356,6 +356,7 @@ void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s
   output_.status.reference_position_m = sampc_input_.reference.position_m[0];
   integrate_disturbance(inputs.state.position_m, sampc_input_.reference.position_m[0]);
   sampc_input_.ugv = inputs.imu.motion;
+  sampc_input_.ugv.forward_acceleration_m_s2 = inputs.imu.motion.specific_force_m_s2.x();
   sampc_input_.speed_limit_m_s =
       machine_.task().processes[machine_.decision().process_index].vmax_m_s;
   const Eigen::Vector3d disturbance = disturbance_m_s2_ + observer_.estimate_m_s2();

@@ -13,6 +13,8 @@ InterceptParams InterceptParams::load(config::YamlReader reader) {
   reader.optional("max_predicted_turn_rad", p.max_predicted_turn_rad);
   reader.optional("velocity_nodes", p.velocity_nodes);
   reader.optional("solve_time_to_go", p.solve_time_to_go);
+  reader.optional("use_ugv_acceleration", p.use_ugv_acceleration);
+  reader.optional("max_ugv_acceleration_m_s2", p.max_ugv_acceleration_m_s2);
   reader.reject_unknown_keys();
   return p;
 }
@@ -29,6 +31,9 @@ void InterceptParams::validate(const std::string& context) const {
   config::check(std::isfinite(max_predicted_turn_rad) && max_predicted_turn_rad > 0.0 &&
                     max_predicted_turn_rad <= 6.3,
                 context + ".max_predicted_turn_rad", "must be in (0, 6.3]");
+  config::check(std::isfinite(max_ugv_acceleration_m_s2) && max_ugv_acceleration_m_s2 >= 0.0 &&
+                    max_ugv_acceleration_m_s2 <= 10.0,
+                context + ".max_ugv_acceleration_m_s2", "must be in [0, 10]");
 }
 
 const char* to_string(InterceptFallback fallback) {
@@ -49,13 +54,37 @@ const char* to_string(InterceptFallback fallback) {
   return "unknown";
 }
 
-Eigen::Vector2d ugv_mean_velocity(double speed_m_s, double yaw_rate_rad_s, double tau_s) {
-  const double turn = yaw_rate_rad_s * tau_s;
-  // sin(x) / x and (1 - cos(x)) / x; their series below 1e-4 (error < 1e-17).
-  if (std::abs(turn) < 1e-4) {
-    return speed_m_s * Eigen::Vector2d(1.0 - turn * turn / 6.0, 0.5 * turn);
+namespace {
+
+// D(tau) / tau at speed u + a t and yaw rate w: the mean over tau of [cos, sin](w t) (the
+// speed's term) and of t [cos, sin](w t) / tau (the acceleration's); their series below
+// |w tau| = 1e-2 (errors below 1e-12 relative).
+Eigen::Vector2d mean_velocity_at_constant_acceleration(double u, double w, double a, double tau) {
+  const double turn = w * tau;
+  Eigen::Vector2d heading_mean, ramp_mean;
+  if (std::abs(turn) < 1e-2) {
+    const double t2 = turn * turn;
+    heading_mean = Eigen::Vector2d(1.0 - t2 / 6.0, 0.5 * turn * (1.0 - t2 / 12.0));
+    ramp_mean = Eigen::Vector2d(0.5 - t2 / 8.0 + t2 * t2 / 144.0, turn / 3.0 - turn * t2 / 30.0);
+  } else {
+    const double s = std::sin(turn), c = std::cos(turn);
+    heading_mean = Eigen::Vector2d(s / turn, (1.0 - c) / turn);
+    ramp_mean = Eigen::Vector2d(s / turn + (c - 1.0) / (turn * turn), s / (turn * turn) - c / turn);
   }
-  return speed_m_s * Eigen::Vector2d(std::sin(turn) / turn, (1.0 - std::cos(turn)) / turn);
+  return u * heading_mean + a * tau * ramp_mean;
+}
+
+}  // namespace
+
+Eigen::Vector2d ugv_mean_velocity(double speed_m_s, double yaw_rate_rad_s, double tau_s,
+                                  double forward_acceleration_m_s2) {
+  const double u = speed_m_s, a = forward_acceleration_m_s2;
+  // A braking UGV stops rather than reverses: from its stop on it stays where it is.
+  if (u >= 0.0 && a < 0.0 && u + a * tau_s < 0.0) {
+    const double stop_s = u / -a;
+    return mean_velocity_at_constant_acceleration(u, yaw_rate_rad_s, a, stop_s) * (stop_s / tau_s);
+  }
+  return mean_velocity_at_constant_acceleration(u, yaw_rate_rad_s, a, tau_s);
 }
 
 InterceptFallback prediction_fallback(const InterceptParams& params, const model::UgvMotion& ugv) {
@@ -69,35 +98,47 @@ InterceptFallback prediction_fallback(const InterceptParams& params, const model
   return InterceptFallback::None;
 }
 
+double predicted_forward_acceleration_m_s2(const InterceptParams& params,
+                                           const model::UgvMotion& ugv) {
+  const double a = ugv.forward_acceleration_m_s2;
+  if (!params.use_ugv_acceleration || !std::isfinite(a)) return 0.0;
+  return std::clamp(a, -params.max_ugv_acceleration_m_s2, params.max_ugv_acceleration_m_s2);
+}
+
 namespace {
 
 // The velocity relative to the UGV's translation now that flies from p to D(tau) in tau.
-Eigen::Vector2d straight_relative_velocity(double u, double w, const Eigen::Vector2d& p,
+Eigen::Vector2d straight_relative_velocity(double u, double w, double a, const Eigen::Vector2d& p,
                                            double tau) {
-  return ugv_mean_velocity(u, w, tau) - p / tau - Eigen::Vector2d(u, 0.0);
+  return ugv_mean_velocity(u, w, tau, a) - p / tau - Eigen::Vector2d(u, 0.0);
 }
 
 }  // namespace
 
 std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_rad_s,
                                             const Eigen::Vector2d& p_m, double approach_speed_m_s,
-                                            double tau_max_s) {
+                                            double tau_max_s, double forward_acceleration_m_s2) {
   if (!p_m.allFinite() || !std::isfinite(speed_m_s) || !std::isfinite(yaw_rate_rad_s) ||
-      !std::isfinite(approach_speed_m_s) || !std::isfinite(tau_max_s)) {
+      !std::isfinite(approach_speed_m_s) || !std::isfinite(tau_max_s) ||
+      !std::isfinite(forward_acceleration_m_s2)) {
     return std::nullopt;
   }
   const double distance = p_m.norm();
   if (!(distance > 0.0)) return 0.0;
   const double u = std::abs(speed_m_s), s = std::max(approach_speed_m_s, 0.0);
-  // |vbar - u| <= 2u, so no arrival before distance / (s + 2u) is slow enough: the search
-  // starts there, where the excess speed is >= 0.
-  const double tau_lo = distance / (s + 2.0 * u);
+  // |vbar - u| <= 2u + |a| tau_max, so no arrival before distance / (s + 2u + |a| tau_max) is
+  // slow enough: the search starts there, where the excess speed is >= 0.
+  const double tau_lo =
+      distance / (s + 2.0 * u + std::abs(forward_acceleration_m_s2) * std::max(tau_max_s, 0.0));
   if (!(tau_lo < tau_max_s)) return std::nullopt;
   // The limit holds relative to the UGV's translation now, as eq. 30's: the law is
   // re-solved every step. (Holding it against the UGV's velocity over the whole flight, as it
   // turns, leaves no straight flight on most long transitions: Table 1 at (0.8, 0.35) 1.119.)
   const auto excess = [&](double tau) {
-    return straight_relative_velocity(speed_m_s, yaw_rate_rad_s, p_m, tau).norm() - s;
+    return straight_relative_velocity(speed_m_s, yaw_rate_rad_s, forward_acceleration_m_s2, p_m,
+                                      tau)
+               .norm() -
+           s;
   };
   // A grid for the first feasible arrival (the excess need not be monotone: a turning UGV
   // first comes closer, then recedes), then bisection inside its cell.
@@ -145,6 +186,7 @@ InterceptVelocity intercept_velocity(const InterceptParams& params, const model:
 
   const double u = ugv.speed_m_s;
   const double w = ugv.angular_velocity_rad_s.z();
+  const double a = predicted_forward_acceleration_m_s2(params, ugv);
   // The prediction's horizon: capped in time and in the UGV's turn.
   double tau_max = params.max_time_to_go_s;
   if (std::abs(w) > 0.0) tau_max = std::min(tau_max, params.max_predicted_turn_rad / std::abs(w));
@@ -161,16 +203,16 @@ InterceptVelocity intercept_velocity(const InterceptParams& params, const model:
   const bool solves = params.solve_time_to_go && speed_xy_m_s > 0.0 &&
                       speed_xy_m_s >= speed_limit_m_s * (1.0 - 1e-9);
   const std::optional<double> earliest =
-      solves ? earliest_time_to_go_s(u, w, p, speed_xy_m_s, tau_max) : std::nullopt;
+      solves ? earliest_time_to_go_s(u, w, p, speed_xy_m_s, tau_max, a) : std::nullopt;
   if (earliest) {
     tau = *earliest;
     // On the axis (tau = 0) there is nothing to lead: eq. 30.
-    if (tau > 0.0) relative = straight_relative_velocity(u, w, p, tau);
+    if (tau > 0.0) relative = straight_relative_velocity(u, w, a, p, tau);
   } else {
     // No straight flight within the prediction's horizon (or no solve): tau = |p_xy| / s,
     // capped (s = 0, a reference at rest, gives the cap), the lead on top of eq. 30.
     if (speed_xy_m_s > 0.0) tau = std::min(tau, distance / speed_xy_m_s);
-    relative += ugv_mean_velocity(u, w, tau) - Eigen::Vector2d(u, 0.0);
+    relative += ugv_mean_velocity(u, w, tau, a) - Eigen::Vector2d(u, 0.0);
   }
   out.time_to_go_s = tau;
   // Within the limit; eq. 30's own speed s is never cut.

@@ -30,6 +30,12 @@ struct UgvMotion {
   // motion): the intercept law uses it to predict where the UGV will be.
   double speed_m_s = 0.0;
   SpeedSource speed_source = SpeedSource::None;
+  // The UGV's own acceleration along its x axis (m/s^2): its accelerometer's x reading, since
+  // a ground vehicle without side slip feels its speed change along x and its turn along y
+  // (level ground; on a slope g sin(pitch) is read as acceleration). Not part of the model:
+  // kept apart from specific_force_m_s2, which the UAV's loop corrects by its own
+  // disturbance estimate (so its x is no longer the UGV's alone); the intercept law uses it.
+  double forward_acceleration_m_s2 = 0.0;
 
   bool speed_valid() const { return speed_source != SpeedSource::None && std::isfinite(speed_m_s); }
 

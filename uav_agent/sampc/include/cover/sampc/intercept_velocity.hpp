@@ -55,6 +55,14 @@ struct InterceptParams {
   // possible arrival, then bisection), rather than tau = |p_xy| / s. Default true
   // (docs/benchmarks.md: Table 1 at (0.8, 0.35) 1.096 -> 1.082 on 100 runs).
   bool solve_time_to_go = true;
+  // Predict with the UGV's along-track acceleration too (UgvMotion::forward_acceleration_m_s2,
+  // its own accelerometer), the speed u + a t held over tau and cut at zero (a braking UGV
+  // stops). Without it a straight-driving UGV's prediction is its velocity now, and the
+  // law is exactly eq. 30's collision course: it copies every speed change of the target.
+  bool use_ugv_acceleration = true;
+  // |a| is clamped to this (m/s^2): a bump or a hard brake is not extrapolated for seconds.
+  // In [0, 10]. Default 1.0.
+  double max_ugv_acceleration_m_s2 = 1.0;
 
   static InterceptParams load(config::YamlReader reader);
   // Throws config::ConfigError naming `context`.<key>.
@@ -79,9 +87,16 @@ struct InterceptVelocity {
   double time_to_go_s = 0.0;  // tau used (0 when it fell back)
 };
 
-// The UGV's mean velocity over the next tau seconds at forward speed u and yaw rate w, in
-// G's axes now: D(tau) / tau (tau = 0: [u, 0]). Finite for finite inputs.
-Eigen::Vector2d ugv_mean_velocity(double speed_m_s, double yaw_rate_rad_s, double tau_s);
+// The UGV's mean velocity over the next tau seconds at forward speed u + a t and yaw rate w,
+// in G's axes now: D(tau) / tau (tau = 0: [u, 0]). A forward-driving UGV that brakes to a
+// stop within tau stays there (it is not predicted to reverse). Finite for finite inputs.
+Eigen::Vector2d ugv_mean_velocity(double speed_m_s, double yaw_rate_rad_s, double tau_s,
+                                  double forward_acceleration_m_s2 = 0.0);
+
+// The along-track acceleration the prediction uses: the UGV's, clamped to
+// max_ugv_acceleration_m_s2; 0 when not used or not finite.
+double predicted_forward_acceleration_m_s2(const InterceptParams& params,
+                                           const model::UgvMotion& ugv);
 
 // Whether the UGV's motion allows the prediction at all (speed estimate, direction, yaw
 // rate): None, or why not. intercept_velocity() also checks its other inputs.
@@ -94,7 +109,8 @@ InterceptFallback prediction_fallback(const InterceptParams& params, const model
 // a non-finite input.
 std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_rad_s,
                                             const Eigen::Vector2d& p_m, double approach_speed_m_s,
-                                            double tau_max_s);
+                                            double tau_max_s,
+                                            double forward_acceleration_m_s2 = 0.0);
 
 // The intercept velocity reference at position `p_m` (in G), from eq. 30's value there
 // (`eq30_m_s`, computed by the caller for the same p, Omega and s) and the reference
