@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <tuple>
 
@@ -199,7 +200,8 @@ TEST(InterceptVelocity, AimsAtWhereTheTurningUgvWillBeAtTheEarliestArrival) {
       return Vector2d((ugv_at(tau) - p.head<2>()) / tau - Vector2d(u, 0.0));
     };
     for (const bool solve : {true, false}) {
-      InterceptParams params;
+      InterceptParams params;  // the constant-velocity aim (the fastest flight: below)
+      params.fastest_straight_flight = false;
       params.solve_time_to_go = solve;
       // Solved: the approach at the speed limit (s = vmax), far from the braking curve;
       // without the solve, a limit that does not cut the lead.
@@ -292,8 +294,9 @@ TEST(InterceptVelocity, FiniteForHostileInputs) {
 
 // A point mass with the law as its velocity, against a UGV on a circle, in the world.
 // Returns the world path length over the straight line from start to where it met the UGV.
-double point_mass_path_ratio(Mode mode, double u, double w, const Vector2d& start, double heading) {
-  const InterceptParams params;
+// The law never asks for more than s relative to the UGV's translation: checked every step.
+double point_mass_path_ratio(Mode mode, double u, double w, const Vector2d& start, double heading,
+                             const InterceptParams& params = InterceptParams{}) {
   const double s = 1.0, dt = 0.01;
   Vector2d uav = start, ugv_position(0.0, 0.0);
   double length = 0.0;
@@ -305,6 +308,7 @@ double point_mass_path_ratio(Mode mode, double u, double w, const Vector2d& star
     const Vector3d p(rel.x(), rel.y(), 1.0);
     Vector2d v = eq30(ugv, p, s);
     if (mode == Mode::Intercept) v = intercept_velocity(params, ugv, p, s, v, s).velocity_m_s;
+    EXPECT_LE((v + ugv.angular_velocity_rad_s.cross(p).head<2>()).norm(), s + 1e-9);
     const Vector2d inertial =
         to_world * (v + ugv.angular_velocity_rad_s.cross(p).head<2>() + Vector2d(u, 0.0));
     uav += inertial * dt;
@@ -337,6 +341,97 @@ TEST(InterceptVelocity, APointMassFollowingItMeetsATurningUgvOnANearStraightPath
     EXPECT_LT(intercept_sum, cover_sum) << u << ", " << w;
   }
   EXPECT_LT(point_mass_path_ratio(Mode::Intercept, 0.8, 0.0, Vector2d(4, 3), 0.3), 1.0 + 1e-9);
+}
+
+// The fastest straight flight against the constant-velocity aim: both re-solved every step,
+// the constant-velocity aim bends each time the UGV's turn invalidates its last answer.
+TEST(InterceptVelocity, TheFastestStraightFlightMeetsATurningUgvOnAStraighterPath) {
+  InterceptParams constant_velocity;
+  constant_velocity.fastest_straight_flight = false;
+  for (const auto& [u, w] : {std::pair{0.5, 0.35}, {0.8, 0.35}, {0.8, -0.5}}) {
+    double fastest_sum = 0.0, constant_sum = 0.0;
+    for (int i = 0; i < 6; ++i) {
+      const double bearing = model::kTwoPi * i / 6.0;
+      const Vector2d start = 5.0 * Vector2d(std::cos(bearing), std::sin(bearing));
+      for (const double heading : {0.0, 2.0, 4.0}) {
+        fastest_sum += point_mass_path_ratio(Mode::Intercept, u, w, start, heading);
+        constant_sum +=
+            point_mass_path_ratio(Mode::Intercept, u, w, start, heading, constant_velocity);
+      }
+    }
+    // Measured: 1.0000 / 1.0000 / 1.0030 against 1.0020 / 1.0112 / 1.0184.
+    EXPECT_LT(fastest_sum / 18.0, 1.005) << u << ", " << w;
+    EXPECT_LT(fastest_sum, constant_sum) << u << ", " << w;
+  }
+}
+
+// The fastest straight flight: from p along the law's direction, at the fastest speed within
+// s of the UGV's velocity at every instant, the UAV meets the UGV at tau (integrated
+// finely here), and no earlier tau allows a meeting.
+TEST(InterceptVelocity, FlyingTheFastestStraightFlightMeetsTheTurningUgvAtItsTimeToGo) {
+  const double u = 0.8, w = 0.35, s = 1.0;
+  const model::UgvMotion ugv = driving(u, w);
+  for (const Vector3d& p :
+       {Vector3d(-1.5, 2.0, 1.5), Vector3d(2.5, 0.0, 1.5), Vector3d(-4.0, -3.0, 1.0)}) {
+    const InterceptVelocity law =
+        intercept_velocity(InterceptParams{}, ugv, p, s, eq30(ugv, p, s), s);
+    ASSERT_EQ(law.fallback, InterceptFallback::None);
+    const Vector2d relative = law.velocity_m_s + ugv.angular_velocity_rad_s.cross(p).head<2>();
+    EXPECT_NEAR(relative.norm(), s, 1e-9);
+    const Vector2d direction = (relative + Vector2d(u, 0.0)).normalized();
+    const double tau = law.time_to_go_s;
+    Vector2d uav = p.head<2>();
+    constexpr int kSteps = 20000;
+    for (int i = 0; i < kSteps; ++i) {
+      const double t = (i + 0.5) * tau / kSteps;
+      uav += fastest_speed_along(direction, ugv_velocity_at(u, w, t), s) * direction * tau / kSteps;
+    }
+    EXPECT_LT((uav - ugv_mean_velocity(u, w, tau) * tau).norm(), 1e-4) << p.transpose();
+    const auto earliest = earliest_fastest_straight_flight(u, w, p.head<2>(), s, 10.0);
+    ASSERT_TRUE(earliest.has_value());
+    EXPECT_NEAR(earliest->time_to_go_s, tau, 1e-6);  // (its own horizon: another grid)
+  }
+}
+
+TEST(InterceptVelocity, FastestSpeedAlongARayWithinTheLimit) {
+  const Vector2d x = Vector2d::UnitX();
+  EXPECT_DOUBLE_EQ(fastest_speed_along(x, Vector2d::Zero(), 1.5), 1.5);
+  EXPECT_DOUBLE_EQ(fastest_speed_along(x, Vector2d(1.0, 0.0), 1.5), 2.5);    // with the UGV
+  EXPECT_DOUBLE_EQ(fastest_speed_along(x, Vector2d(-1.0, 0.0), 1.5), 0.5);   // head-on
+  EXPECT_NEAR(fastest_speed_along(x, Vector2d(0.0, 0.8), 1.0), 0.6, 1e-15);  // abeam
+  EXPECT_EQ(fastest_speed_along(x, Vector2d(-2.0, 0.0), 1.5), 0.0);          // outrun: none
+  EXPECT_EQ(fastest_speed_along(x, Vector2d(0.0, 2.0), 1.5), 0.0);           // the ray misses
+  EXPECT_EQ(fastest_speed_along(x, Vector2d(kNaN, 0.0), 1.5), 0.0);
+}
+
+TEST(InterceptVelocity, FastestStraightFlightIsTheConstantVelocityOneForAStraightUgv) {
+  // Without turn or acceleration the fastest speed along a line is constant: the same answer.
+  for (const Vector2d& p : {Vector2d(3.0, 4.0), Vector2d(-2.0, 1.0), Vector2d(0.5, -3.0)}) {
+    const auto flight = earliest_fastest_straight_flight(0.8, 0.0, p, 1.25, 10.0);
+    const auto tau = earliest_time_to_go_s(0.8, 0.0, p, 1.25, 10.0);
+    ASSERT_TRUE(flight && tau) << p.transpose();
+    EXPECT_NEAR(flight->time_to_go_s, *tau, 1e-6) << p.transpose();
+    const Vector2d meet(0.8 * *tau, 0.0);
+    EXPECT_LT((flight->direction - (meet - p).normalized()).norm(), 1e-6);
+  }
+  EXPECT_EQ(earliest_fastest_straight_flight(0.8, 0.3, Vector2d::Zero(), 1.0, 6.0)->time_to_go_s,
+            0.0);
+  EXPECT_FALSE(earliest_fastest_straight_flight(0.8, 0.3, Vector2d(-30.0, 0.0), 0.01, 6.0));
+  EXPECT_FALSE(earliest_fastest_straight_flight(kNaN, 0.3, Vector2d(3.0, 1.0), 1.0, 6.0));
+  EXPECT_FALSE(earliest_fastest_straight_flight(0.8, 0.3, Vector2d(3.0, 1.0), 1.0, 6.0, kInf));
+}
+
+TEST(InterceptVelocity, AChangingTurnGetsTheConstantVelocityAim) {
+  InterceptParams fastest, constant_velocity;
+  constant_velocity.fastest_straight_flight = false;
+  model::UgvMotion ugv = driving(0.8, 0.35);
+  const Vector3d p(-3.0, 2.0, 1.0);
+  const auto law = [&](const InterceptParams& params) {
+    return intercept_velocity(params, ugv, p, 1.0, eq30(ugv, p, 1.0), 1.0).velocity_m_s;
+  };
+  EXPECT_GT((law(fastest) - law(constant_velocity)).norm(), 1e-3);  // a steady turn
+  ugv.angular_acceleration_rad_s2.z() = 2.0 * fastest.fastest_flight_max_yaw_acceleration_rad_s2;
+  EXPECT_EQ(law(fastest), law(constant_velocity));
 }
 
 SampcInput transition_input(const model::UgvMotion& ugv) {
@@ -417,7 +512,8 @@ TEST(InterceptVelocity, ParamsLoadAndRejectBadValuesNamingTheKey) {
         "intercept: {max_time_to_go_s: .nan}", "intercept: {max_predicted_turn_rad: 7}",
         "intercept: {velocity_nodes: 21}", "intercept: {velocity_nodes: 0}",
         "intercept: {max_ugv_acceleration_m_s2: -0.1}",
-        "intercept: {max_ugv_acceleration_m_s2: .inf}"}) {
+        "intercept: {max_ugv_acceleration_m_s2: .inf}",
+        "intercept: {fastest_flight_max_yaw_acceleration_rad_s2: -1}"}) {
     try {
       load(bad);
       ADD_FAILURE() << bad;

@@ -13,6 +13,9 @@ InterceptParams InterceptParams::load(config::YamlReader reader) {
   reader.optional("max_predicted_turn_rad", p.max_predicted_turn_rad);
   reader.optional("velocity_nodes", p.velocity_nodes);
   reader.optional("solve_time_to_go", p.solve_time_to_go);
+  reader.optional("fastest_straight_flight", p.fastest_straight_flight);
+  reader.optional("fastest_flight_max_yaw_acceleration_rad_s2",
+                  p.fastest_flight_max_yaw_acceleration_rad_s2);
   reader.optional("use_ugv_acceleration", p.use_ugv_acceleration);
   reader.optional("max_ugv_acceleration_m_s2", p.max_ugv_acceleration_m_s2);
   reader.reject_unknown_keys();
@@ -31,6 +34,9 @@ void InterceptParams::validate(const std::string& context) const {
   config::check(std::isfinite(max_predicted_turn_rad) && max_predicted_turn_rad > 0.0 &&
                     max_predicted_turn_rad <= 6.3,
                 context + ".max_predicted_turn_rad", "must be in (0, 6.3]");
+  config::check(std::isfinite(fastest_flight_max_yaw_acceleration_rad_s2) &&
+                    fastest_flight_max_yaw_acceleration_rad_s2 >= 0.0,
+                context + ".fastest_flight_max_yaw_acceleration_rad_s2", "must be finite and >= 0");
   config::check(std::isfinite(max_ugv_acceleration_m_s2) && max_ugv_acceleration_m_s2 >= 0.0 &&
                     max_ugv_acceleration_m_s2 <= 10.0,
                 context + ".max_ugv_acceleration_m_s2", "must be in [0, 10]");
@@ -162,6 +168,98 @@ std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_ra
   return std::nullopt;
 }
 
+Eigen::Vector2d ugv_velocity_at(double speed_m_s, double yaw_rate_rad_s, double t_s,
+                                double forward_acceleration_m_s2) {
+  double speed = speed_m_s + forward_acceleration_m_s2 * t_s;
+  if (speed_m_s >= 0.0) speed = std::max(speed, 0.0);  // stopped, not reversing
+  const double heading = yaw_rate_rad_s * t_s;
+  return speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+}
+
+double fastest_speed_along(const Eigen::Vector2d& direction, const Eigen::Vector2d& velocity_m_s,
+                           double limit_m_s) {
+  // |lambda d - v| = s: lambda = d.v + sqrt(s^2 - |v|^2 + (d.v)^2), the far root.
+  const double along = direction.dot(velocity_m_s);
+  const double discriminant = limit_m_s * limit_m_s - velocity_m_s.squaredNorm() + along * along;
+  if (!(discriminant >= 0.0)) return 0.0;
+  return std::max(along + std::sqrt(discriminant), 0.0);
+}
+
+namespace {
+
+// How far a flight along `direction` gets in tau at the fastest speed the limit allows at
+// every instant against the UGV's predicted velocity: Simpson's rule on 16 intervals (the
+// integrand is smooth: the velocity turns by at most max_predicted_turn_rad over tau).
+double fastest_straight_distance_m(double u, double w, double a, const Eigen::Vector2d& direction,
+                                   double limit, double tau) {
+  constexpr int kIntervals = 16;
+  const double h = tau / kIntervals;
+  double sum = 0.0;
+  for (int i = 0; i <= kIntervals; ++i) {
+    const double weight = (i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+    sum += weight * fastest_speed_along(direction, ugv_velocity_at(u, w, i * h, a), limit);
+  }
+  return sum * h / 3.0;
+}
+
+// Where the fastest straight flight of `tau` must go, and how far short of it it falls
+// (<= 0: it gets there).
+double fastest_straight_shortfall_m(double u, double w, double a, const Eigen::Vector2d& p,
+                                    double limit, double tau, Eigen::Vector2d& direction) {
+  const Eigen::Vector2d to_target = ugv_mean_velocity(u, w, tau, a) * tau - p;
+  const double length = to_target.norm();
+  if (!(length > 0.0)) {
+    direction = -p.normalized();
+    return 0.0;
+  }
+  direction = to_target / length;
+  return length - fastest_straight_distance_m(u, w, a, direction, limit, tau);
+}
+
+}  // namespace
+
+std::optional<StraightFlight> earliest_fastest_straight_flight(
+    double speed_m_s, double yaw_rate_rad_s, const Eigen::Vector2d& p_m, double approach_speed_m_s,
+    double tau_max_s, double forward_acceleration_m_s2) {
+  if (!p_m.allFinite() || !std::isfinite(speed_m_s) || !std::isfinite(yaw_rate_rad_s) ||
+      !std::isfinite(approach_speed_m_s) || !std::isfinite(tau_max_s) ||
+      !std::isfinite(forward_acceleration_m_s2)) {
+    return std::nullopt;
+  }
+  const double distance = p_m.norm();
+  if (!(distance > 0.0)) return StraightFlight{};
+  const double u = speed_m_s, w = yaw_rate_rad_s, a = forward_acceleration_m_s2;
+  const double s = std::max(approach_speed_m_s, 0.0);
+  // No flight is faster than s + the UGV's fastest speed within tau_max: no arrival before.
+  const double fastest = s + std::abs(u) + std::abs(a) * std::max(tau_max_s, 0.0);
+  const double tau_lo = distance / (2.0 * fastest);
+  if (!(tau_lo < tau_max_s)) return std::nullopt;
+  Eigen::Vector2d direction;
+  const auto shortfall = [&](double tau) {
+    return fastest_straight_shortfall_m(u, w, a, p_m, s, tau, direction);
+  };
+  // As earliest_time_to_go_s: a grid for the first arrival, then bisection in its cell.
+  constexpr int kGrid = 24;
+  constexpr int kBisections = 24;
+  const double step = (tau_max_s - tau_lo) / kGrid;
+  double infeasible = tau_lo;
+  for (int i = 1; i <= kGrid; ++i) {
+    const double tau = tau_lo + step * i;
+    if (shortfall(tau) > 0.0) {
+      infeasible = tau;
+      continue;
+    }
+    double feasible = tau;
+    for (int j = 0; j < kBisections; ++j) {
+      const double mid = 0.5 * (infeasible + feasible);
+      (shortfall(mid) > 0.0 ? infeasible : feasible) = mid;
+    }
+    shortfall(feasible);  // the direction at the answer
+    return StraightFlight{feasible, direction};
+  }
+  return std::nullopt;
+}
+
 namespace {
 
 InterceptFallback why_not(const InterceptParams& params, const model::UgvMotion& ugv,
@@ -202,6 +300,24 @@ InterceptVelocity intercept_velocity(const InterceptParams& params, const model:
   // goes on top of eq. 30 as below, and vanishes with tau.
   const bool solves = params.solve_time_to_go && speed_xy_m_s > 0.0 &&
                       speed_xy_m_s >= speed_limit_m_s * (1.0 - 1e-9);
+  // The fastest flight leans on the UGV's whole predicted velocity profile: only while its
+  // yaw rate holds (on an S-curve the constant-velocity aim, which needs only the mean, flew
+  // shorter).
+  const bool steady_turn = std::abs(ugv.angular_acceleration_rad_s2.z()) <=
+                           params.fastest_flight_max_yaw_acceleration_rad_s2;
+  if (solves && params.fastest_straight_flight && steady_turn) {
+    if (const auto flight = earliest_fastest_straight_flight(u, w, p, speed_xy_m_s, tau_max, a)) {
+      out.time_to_go_s = flight->time_to_go_s;
+      if (flight->time_to_go_s > 0.0) {
+        const Eigen::Vector2d ugv_now(u, 0.0);
+        relative =
+            fastest_speed_along(flight->direction, ugv_now, speed_xy_m_s) * flight->direction -
+            ugv_now;
+      }
+      out.velocity_m_s = relative - rotation;
+      return out;
+    }
+  }
   const std::optional<double> earliest =
       solves ? earliest_time_to_go_s(u, w, p, speed_xy_m_s, tau_max, a) : std::nullopt;
   if (earliest) {

@@ -60,6 +60,16 @@ struct InterceptParams {
   // stops). Without it a straight-driving UGV's prediction is its velocity now, and the
   // law is exactly eq. 30's collision course: it copies every speed change of the target.
   bool use_ugv_acceleration = true;
+  // With solve_time_to_go: the straight flight to the predicted UGV goes at the fastest speed
+  // the limit allows at every instant against the UGV's predicted velocity (which turns),
+  // rather than at one constant velocity checked against the UGV's velocity now. Re-solved
+  // each step, a constant-velocity aim is no longer allowed once the UGV has turned, and the
+  // world path bends with each new aim; the fastest flight's tail is the next step's answer.
+  bool fastest_straight_flight = true;
+  // ... while the UGV's |yaw acceleration| is at most this (rad/s^2): the flight leans on the
+  // whole predicted velocity profile, which a changing turn (an S-curve) makes wrong within a
+  // second. Beyond it, the constant-velocity aim. Default 0.1.
+  double fastest_flight_max_yaw_acceleration_rad_s2 = 0.1;
   // |a| is clamped to this (m/s^2): a bump or a hard brake is not extrapolated for seconds.
   // In [0, 10]. Default 1.0.
   double max_ugv_acceleration_m_s2 = 1.0;
@@ -111,6 +121,29 @@ std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_ra
                                             const Eigen::Vector2d& p_m, double approach_speed_m_s,
                                             double tau_max_s,
                                             double forward_acceleration_m_s2 = 0.0);
+
+// The UGV's predicted velocity t_s from now, in G's axes now (speed u + a t; a forward-driving
+// UGV stops at zero, as ugv_mean_velocity).
+Eigen::Vector2d ugv_velocity_at(double speed_m_s, double yaw_rate_rad_s, double t_s,
+                                double forward_acceleration_m_s2 = 0.0);
+
+// The fastest speed along the unit `direction` whose velocity is within `limit_m_s` of
+// `velocity_m_s` (the far end of the ray's chord through that disc); 0 when the ray misses it.
+double fastest_speed_along(const Eigen::Vector2d& direction, const Eigen::Vector2d& velocity_m_s,
+                           double limit_m_s);
+
+struct StraightFlight {
+  double time_to_go_s = 0.0;
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  // unit, toward the meeting point
+};
+
+// The earliest meeting with the UGV on a straight line flown at the fastest speed within
+// `approach_speed_m_s` of the UGV's predicted velocity at every instant (tau in (0,
+// tau_max]); nullopt when none within the horizon, or for a non-finite input; time 0 at the
+// axis.
+std::optional<StraightFlight> earliest_fastest_straight_flight(
+    double speed_m_s, double yaw_rate_rad_s, const Eigen::Vector2d& p_m, double approach_speed_m_s,
+    double tau_max_s, double forward_acceleration_m_s2 = 0.0);
 
 // The intercept velocity reference at position `p_m` (in G), from eq. 30's value there
 // (`eq30_m_s`, computed by the caller for the same p, Omega and s) and the reference
