@@ -10,6 +10,7 @@
 #include "cover/model/angles.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 #include "cover/sampc/intercept_velocity.hpp"
+#include "cover/sampc/sampc.hpp"
 
 namespace cover::sampc {
 namespace {
@@ -495,6 +496,44 @@ TEST(InterceptVelocity, InterceptModeIsCoverWhereverThePredictionIsNotTrusted) {
     EXPECT_EQ(a.nodes[1].velocity_ref_m_s, b.nodes[1].velocity_ref_m_s);
     EXPECT_EQ(a.nodes[1].position_weight, b.nodes[1].position_weight);
   }
+}
+
+// After a frame switch the lead builds up over switch_smoothing_s: the first transition
+// solve references exactly cover's velocities, later ones intercept's own.
+TEST(InterceptVelocity, TheLeadBuildsUpOverTheSwitchSmoothing) {
+  SampcParams cover_params;
+  SampcParams intercept_params = cover_params;
+  intercept_params.mode = Mode::Intercept;
+  Sampc cover(cover_params), intercept(intercept_params);
+  SampcInput in = transition_input(driving(0.8, 0.35));
+  in.stage = model::Stage::Initial;  // the same cost for both methods before the switch
+  for (int step = 0; step < 5; ++step) {
+    cover.solve(in);
+    intercept.solve(in);
+  }
+  cover.reset_frame();
+  intercept.reset_frame();
+  in.stage = model::Stage::Transition;
+  const auto velocity_ref_gap = [&] {
+    double gap = 0.0;
+    for (int k = 1; k <= intercept_params.intercept.velocity_nodes; ++k) {
+      gap = std::max(gap, (cover.horizon_cost().nodes[k].velocity_ref_m_s -
+                           intercept.horizon_cost().nodes[k].velocity_ref_m_s)
+                              .norm());
+    }
+    return gap;
+  };
+  cover.solve(in);
+  intercept.solve(in);
+  EXPECT_LT(velocity_ref_gap(), 1e-12);
+  const int smoothing_steps =
+      static_cast<int>(std::ceil(cover_params.switch_smoothing_s / cover_params.control_period_s));
+  for (int step = 0; step < smoothing_steps; ++step) {
+    cover.solve(in);
+    intercept.solve(in);
+  }
+  EXPECT_EQ(intercept.horizon_cost().intercept.fallback, InterceptFallback::None);
+  EXPECT_GT(velocity_ref_gap(), 0.05);
 }
 
 TEST(InterceptVelocity, ParamsLoadAndRejectBadValuesNamingTheKey) {

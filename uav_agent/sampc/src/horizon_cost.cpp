@@ -241,7 +241,8 @@ Eigen::Vector2d reachable_velocity(const SampcParams& params, const SampcInput& 
 // axis; the eq. 30 velocity reference; nose turning toward the UGV.
 void build_transition_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
                            const YawTrack& previous_yaw, double elapsed_s,
-                           const model::UavState* predicted_states, HorizonCost& cost) {
+                           const model::UavState* predicted_states, double intercept_lead_fraction,
+                           HorizonCost& cost) {
   WeightSet w = params.transition_weights;
   if (params.mode == Mode::NoRefVxy) w.velocity.head<2>().setZero();
 
@@ -285,7 +286,7 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
       if (intercepting) {
         const InterceptVelocity law = intercept_velocity(
             params.intercept, input.ugv, at, reference_speed_xy, wanted, input.speed_limit_m_s);
-        wanted = law.velocity_m_s;
+        wanted += intercept_lead_fraction * (law.velocity_m_s - wanted);
         if (k == 0) cost.intercept = law;
       }
       node.velocity_ref_m_s.head<2>() = reachable_velocity(params, input, at, wanted, k);
@@ -308,7 +309,7 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
 
 void build_horizon_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
                         HorizonCost& cost, const YawTrack& previous_yaw, double elapsed_s,
-                        const model::UavState* predicted_states) {
+                        const model::UavState* predicted_states, double intercept_lead_fraction) {
   cost.horizon_steps = params.horizon_steps;
   cost.intercept = InterceptVelocity{};
   cost.reference_mode = reference_mode_for(params.mode, input.stage);
@@ -316,7 +317,7 @@ void build_horizon_cost(const SampcParams& params, const SampcInput& input, doub
     build_tracking_cost(params, input, previous_yaw, elapsed_s, cost);
   } else {
     build_transition_cost(params, input, held_yaw_rad, previous_yaw, elapsed_s, predicted_states,
-                          cost);
+                          intercept_lead_fraction, cost);
   }
   // Terminal node: scaled state weights, no input.
   NodeCost& terminal = cost.nodes[params.horizon_steps];

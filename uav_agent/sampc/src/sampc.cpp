@@ -128,6 +128,15 @@ struct Sampc::Workspace {
     }
   }
 
+  // The intercept law's lead builds up over the switch smoothing (0 at the switch, whole
+  // after switch_smoothing_s): at the switch the UAV still flies the old frame's velocity,
+  // and the whole lead at once asked for a tilt on top of the approach's (the star's thrust
+  // peak 0.416 against coni-mpc's 0.365 m/s^2; ramped 0.362, docs/benchmarks.md).
+  double intercept_lead_fraction() const {
+    if (!(smoothing_left_s > 0.0) || !(params.switch_smoothing_s > 0.0)) return 1.0;
+    return std::clamp(1.0 - smoothing_left_s / params.switch_smoothing_s, 0.0, 1.0);
+  }
+
   // Node 0's input-rate term after a frame switch (see SampcParams::switch_smoothing_s):
   // adds its gradient and weight, returns its cost.
   double add_switch_smoothing(const model::Input& u0, model::Input& grad_u,
@@ -212,7 +221,7 @@ struct Sampc::Workspace {
       reroll_states = false;
     }
     build_horizon_cost(params, input, held_yaw_rad, cost, previous_yaw_track,
-                       params.control_period_s, x.data());
+                       params.control_period_s, x.data(), intercept_lead_fraction());
     linearise();
     qp.prepare(N());
     prepared = true;

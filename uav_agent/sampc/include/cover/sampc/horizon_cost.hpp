@@ -75,9 +75,11 @@ struct HorizonCost {
 // it: the yaw reference moves on from there at the configured rate (default: start at the
 // measured yaw). `predicted_states` (horizon_steps + 1 entries, or null) is the solver's
 // warm start: the free nodes that carry eq. 30 evaluate it at their own predicted
-// position (null: at the measured one).
+// position (null: at the measured one). `intercept_lead_fraction` in [0, 1] scales the
+// intercept law's departure from eq. 30 (Sampc ramps it in after a frame switch).
 void build_horizon_cost(const SampcParams& params, const SampcInput& input, double held_yaw_rad,
                         HorizonCost& cost, const YawTrack& previous_yaw = {},
-                        double elapsed_s = 0.0, const model::UavState* predicted_states = nullptr);
+                        double elapsed_s = 0.0, const model::UavState* predicted_states = nullptr,
+                        double intercept_lead_fraction = 1.0);
 
 }  // namespace cover::sampc

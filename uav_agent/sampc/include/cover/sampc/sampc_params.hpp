@@ -120,7 +120,9 @@ struct SampcParams {
   // switch_input_rate_weight * (u0 - previous command)^2, the weight ramping linearly from
   // full to 0. The new stage's optimum can differ sharply from the old plan (e.g. a pitch
   // step of -1.3 rad/s on the circle); this lets the command walk there over a few steps
-  // instead of jumping. Order [F, wx, wy, wz], each >= 0; 0 s disables it.
+  // instead of jumping. Order [F, wx, wy, wz], each >= 0; 0 s disables it. Over the same
+  // time the intercept law's lead builds up from 0 (build_horizon_cost's
+  // intercept_lead_fraction).
   double switch_smoothing_s = 0.5;
   Eigen::Vector4d switch_input_rate_weight{30.0, 1000.0, 1000.0, 300.0};
 
