@@ -340,6 +340,7 @@ TEST(SampcParams, ShippedConfigLoadsAndEqualsTheDefaults) {
   EXPECT_EQ(loaded.frame_switch_iterations, defaults.frame_switch_iterations);
   EXPECT_EQ(loaded.switch_smoothing_s, defaults.switch_smoothing_s);
   EXPECT_EQ(loaded.switch_input_rate_weight, defaults.switch_input_rate_weight);
+  EXPECT_EQ(loaded.transition_input_rate_weight, defaults.transition_input_rate_weight);
 }
 
 TEST(SampcParams, RejectsBadValuesNamingTheKey) {
@@ -364,6 +365,7 @@ TEST(SampcParams, RejectsBadValuesNamingTheKey) {
   EXPECT_THROW(load("frame_switch_iterations: 0"), config::ConfigError);
   EXPECT_THROW(load("switch_smoothing_s: -0.1"), config::ConfigError);
   EXPECT_THROW(load("switch_input_rate_weight: [0, -1, 0, 0]"), config::ConfigError);
+  EXPECT_THROW(load("transition_input_rate_weight: [0, 0, .nan, 0]"), config::ConfigError);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -152,6 +153,9 @@ TEST(Sampc, ConvergedSqpMatchesTheNloptReferenceSolve) {
     params.mode = mode;
     params.max_sqp_iterations = 50;
     params.sqp_step_tolerance = 1e-9;
+    // The reference solves the horizon's own cost; the input-rate term pays for leaving the
+    // previous command, which it does not know (tested on its own below).
+    params.transition_input_rate_weight.setZero();
     std::mt19937 rng(100 + static_cast<int>(mode));
     for (int trial = 0; trial < 3; ++trial) {
       const SampcInput in = random_problem(rng, static_cast<Stage>(trial));
@@ -340,6 +344,49 @@ double peak_rate_step_after_switch(const SampcParams& params, SampcInput& in,
     in.uav_state = plant_step(in.uav_state, out.command, in.ugv);
   }
   return peak_step;
+}
+
+// The transition's input-rate term filters measurement noise: an approach flown on velocity
+// measurements with 0.05 m/s of white noise steps the body rates less with it than without,
+// and arrives all the same.
+TEST(Sampc, TransitionInputRateTermFiltersVelocityNoise) {
+  const auto noisy_approach = [](const SampcParams& params, SampcInput& in) {
+    Sampc mpc(params);
+    in = SampcInput{};
+    in.stage = Stage::Transition;
+    in.uav_state = model::uav_state_at_rest(Vector3d(2.0, -1.0, 1.5));
+    in.ugv.angular_velocity_rad_s = Vector3d(0.0, 0.0, 0.3);
+    in.reference = HorizonReference::hold(Vector3d(0.0, 0.0, 1.5));
+    std::mt19937 rng(7);
+    std::normal_distribution<double> noise(0.0, 0.05);
+    model::UavState truth = in.uav_state;
+    Vector3d previous_rates = Vector3d::Zero();
+    double rms_step = 0.0;
+    constexpr int kSteps = 500;
+    for (int step = 0; step < kSteps; ++step) {
+      in.uav_state = truth;
+      in.uav_state.segment<3>(3) += Vector3d(noise(rng), noise(rng), noise(rng));
+      const SampcOutput out = mpc.solve(in);
+      EXPECT_EQ(out.status, SolveStatus::Ok) << out.reason;
+      if (step > 0) rms_step += (out.command.tail<3>() - previous_rates).squaredNorm();
+      previous_rates = out.command.tail<3>();
+      truth = plant_step(truth, out.command, in.ugv);
+    }
+    in.uav_state = truth;
+    return std::sqrt(rms_step / (kSteps - 1));
+  };
+  const SampcParams with_term;
+  SampcParams without_term = with_term;
+  without_term.transition_input_rate_weight.setZero();
+  SampcInput filtered, raw;
+  const double filtered_step = noisy_approach(with_term, filtered);
+  const double raw_step = noisy_approach(without_term, raw);
+  EXPECT_LT(filtered_step, 0.7 * raw_step);  // measured 0.109 against 0.220 rad/s
+  // From 2.24 m to where the unfiltered run gets (0.27 m: a held reference asks for no
+  // approach speed), within 2 cm.
+  EXPECT_NEAR(filtered.uav_state.head<2>().norm(), raw.uav_state.head<2>().norm(), 0.02);
+  EXPECT_LT(filtered.uav_state.head<2>().norm(), 0.5);
+  EXPECT_NEAR(filtered.uav_state(2), 1.5, 0.05);
 }
 
 // reset_frame() keeps the body-frame inputs and walks the body rates to the new stage's

@@ -137,13 +137,26 @@ struct Sampc::Workspace {
     return std::clamp(1.0 - smoothing_left_s / params.switch_smoothing_s, 0.0, 1.0);
   }
 
-  // Node 0's input-rate term after a frame switch (see SampcParams::switch_smoothing_s):
-  // adds its gradient and weight, returns its cost.
-  double add_switch_smoothing(const model::Input& u0, model::Input& grad_u,
-                              model::Input& input_weight) const {
-    if (!(smoothing_left_s > 0.0) || !(params.switch_smoothing_s > 0.0)) return 0.0;
-    const double ramp = std::min(1.0, smoothing_left_s / params.switch_smoothing_s);
-    const model::Input weight = ramp * params.switch_input_rate_weight;
+  // Node 0's input-rate weight: after a frame switch (SampcParams::switch_smoothing_s), and
+  // at an xy-z-ref transition (SampcParams::transition_input_rate_weight), the larger.
+  model::Input input_rate_weight() const {
+    model::Input weight = model::Input::Zero();
+    if (smoothing_left_s > 0.0 && params.switch_smoothing_s > 0.0) {
+      weight = std::min(1.0, smoothing_left_s / params.switch_smoothing_s) *
+               params.switch_input_rate_weight;
+    }
+    if (cost.reference_mode == ReferenceMode::XyZRef) {
+      weight = weight.cwiseMax(params.transition_input_rate_weight);
+    }
+    return weight;
+  }
+
+  // Node 0's input-rate term (input_rate_weight() * (u0 - previous command)^2): adds its
+  // gradient and weight, returns its cost.
+  double add_input_rate_cost(const model::Input& u0, model::Input& grad_u,
+                             model::Input& input_weight) const {
+    const model::Input weight = input_rate_weight();
+    if (!(weight.array() > 0.0).any()) return 0.0;
     const model::Input change = u0 - last_command;
     grad_u += 2.0 * weight.cwiseProduct(change);
     input_weight += weight;
@@ -183,7 +196,7 @@ struct Sampc::Workspace {
       }
       if (terminal) break;
       model::Input input_weight = c.input_weight;
-      if (k == 0) cost_value += add_switch_smoothing(uk, grad_u, input_weight);
+      if (k == 0) cost_value += add_input_rate_cost(uk, grad_u, input_weight);
       node.r = grad_u;
       node.R = (2.0 * input_weight).asDiagonal();
       node.S.setZero();

@@ -108,6 +108,7 @@ SampcParams SampcParams::load(config::YamlReader& reader) {
   reader.optional("eq30_acceleration_limit_m_s2", p.eq30_acceleration_limit_m_s2);
   reader.optional("switch_smoothing_s", p.switch_smoothing_s);
   reader.optional("switch_input_rate_weight", p.switch_input_rate_weight);
+  reader.optional("transition_input_rate_weight", p.transition_input_rate_weight);
   reader.optional("yaw_flip_hysteresis_rad", p.yaw_flip_hysteresis_rad);
   reader.optional("yaw_reference_max_lag_rad", p.yaw_reference_max_lag_rad);
   reader.optional("max_sqp_iterations", p.max_sqp_iterations);
@@ -176,6 +177,9 @@ void SampcParams::validate() const {
   config::check(
       switch_input_rate_weight.allFinite() && (switch_input_rate_weight.array() >= 0.0).all(),
       c + ".switch_input_rate_weight", "must be finite and >= 0");
+  config::check(transition_input_rate_weight.allFinite() &&
+                    (transition_input_rate_weight.array() >= 0.0).all(),
+                c + ".transition_input_rate_weight", "must be finite and >= 0");
   intercept.validate(c + ".intercept");
   config::check(intercept.velocity_nodes >= 1 && intercept.velocity_nodes <= horizon_steps,
                 c + ".intercept.velocity_nodes", "must be in [1, horizon_steps]");

@@ -125,6 +125,13 @@ struct SampcParams {
   // intercept_lead_fraction).
   double switch_smoothing_s = 0.5;
   Eigen::Vector4d switch_input_rate_weight{30.0, 1000.0, 1000.0, 300.0};
+  // Node 0's input-rate weight throughout an xy-z-ref transition (cover, no-ref-vxy,
+  // intercept), order [F, wx, wy, wz], each >= 0 (the larger of this and the switch's
+  // ramp). The transition weighs the velocity error at 350 against the tracking stages'
+  // 100, so the relative velocity's measurement noise reached the body rates 3.5x amplified;
+  // a twentieth of the switch's weight filters it (docs/benchmarks.md: circle switch peaks
+  // 0.207 / 0.375 -> 0.161 / 0.271, paths within 0.002). 0 disables it.
+  Eigen::Vector4d transition_input_rate_weight{1.5, 50.0, 50.0, 15.0};
 
   // Solver: 1 SQP iteration per call is the real-time iteration. After reset() (no warm
   // start) `cold_start_iterations` are spent instead. `max_sqp_iterations` > 1 iterates
