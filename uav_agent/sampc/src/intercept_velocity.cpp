@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 namespace cover::sampc {
 
@@ -122,12 +123,43 @@ Eigen::Vector2d straight_relative_velocity(double u, double w, double a, const E
 
 }  // namespace
 
+namespace {
+
+bool all_finite(std::initializer_list<double> values) {
+  return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+// The first time in (lo, hi] at which `infeasibility` is <= 0: a 24-point grid for the first
+// feasible cell, then `bisections` halvings of it; nullopt when no grid point is feasible.
+template <typename Infeasibility>
+std::optional<double> first_feasible_time_s(double lo, double hi, int bisections,
+                                            const Infeasibility& infeasibility) {
+  constexpr int kGrid = 24;
+  const double step = (hi - lo) / kGrid;
+  double infeasible = lo;
+  for (int i = 1; i <= kGrid; ++i) {
+    const double t = lo + step * i;
+    if (infeasibility(t) > 0.0) {
+      infeasible = t;
+      continue;
+    }
+    double feasible = t;
+    for (int j = 0; j < bisections; ++j) {
+      const double mid = 0.5 * (infeasible + feasible);
+      (infeasibility(mid) > 0.0 ? infeasible : feasible) = mid;
+    }
+    return feasible;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_rad_s,
                                             const Eigen::Vector2d& p_m, double approach_speed_m_s,
                                             double tau_max_s, double forward_acceleration_m_s2) {
-  if (!p_m.allFinite() || !std::isfinite(speed_m_s) || !std::isfinite(yaw_rate_rad_s) ||
-      !std::isfinite(approach_speed_m_s) || !std::isfinite(tau_max_s) ||
-      !std::isfinite(forward_acceleration_m_s2)) {
+  if (!all_finite({speed_m_s, yaw_rate_rad_s, p_m.x(), p_m.y(), approach_speed_m_s, tau_max_s,
+                   forward_acceleration_m_s2})) {
     return std::nullopt;
   }
   const double distance = p_m.norm();
@@ -147,26 +179,8 @@ std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_ra
                .norm() -
            s;
   };
-  // A grid for the first feasible arrival (the excess need not be monotone: a turning UGV
-  // first comes closer, then recedes), then bisection inside its cell.
-  constexpr int kGrid = 24;
-  constexpr int kBisections = 30;
-  const double step = (tau_max_s - tau_lo) / kGrid;
-  double infeasible = tau_lo;
-  for (int i = 1; i <= kGrid; ++i) {
-    const double tau = tau_lo + step * i;
-    if (excess(tau) > 0.0) {
-      infeasible = tau;
-      continue;
-    }
-    double feasible = tau;
-    for (int j = 0; j < kBisections; ++j) {
-      const double mid = 0.5 * (infeasible + feasible);
-      (excess(mid) > 0.0 ? infeasible : feasible) = mid;
-    }
-    return feasible;
-  }
-  return std::nullopt;
+  // The excess need not be monotone: a turning UGV first comes closer, then recedes.
+  return first_feasible_time_s(tau_lo, tau_max_s, 30, excess);
 }
 
 Eigen::Vector2d ugv_velocity_at(double speed_m_s, double yaw_rate_rad_s, double t_s,
@@ -229,9 +243,8 @@ double fastest_straight_shortfall_m(double u, double w, double a, const Eigen::V
 std::optional<StraightFlight> earliest_fastest_straight_flight(
     double speed_m_s, double yaw_rate_rad_s, const Eigen::Vector2d& p_m, double approach_speed_m_s,
     double tau_max_s, double forward_acceleration_m_s2) {
-  if (!p_m.allFinite() || !std::isfinite(speed_m_s) || !std::isfinite(yaw_rate_rad_s) ||
-      !std::isfinite(approach_speed_m_s) || !std::isfinite(tau_max_s) ||
-      !std::isfinite(forward_acceleration_m_s2)) {
+  if (!all_finite({speed_m_s, yaw_rate_rad_s, p_m.x(), p_m.y(), approach_speed_m_s, tau_max_s,
+                   forward_acceleration_m_s2})) {
     return std::nullopt;
   }
   const double distance = p_m.norm();
@@ -246,26 +259,11 @@ std::optional<StraightFlight> earliest_fastest_straight_flight(
   const auto shortfall = [&](double tau) {
     return fastest_straight_shortfall_m(u, w, a, p_m, s, tau, direction);
   };
-  // As earliest_time_to_go_s: a grid for the first arrival, then bisection in its cell.
-  constexpr int kGrid = 24;
-  constexpr int kBisections = 20;  // the cell (<= 0.25 s) to 2.4e-7 s
-  const double step = (tau_max_s - tau_lo) / kGrid;
-  double infeasible = tau_lo;
-  for (int i = 1; i <= kGrid; ++i) {
-    const double tau = tau_lo + step * i;
-    if (shortfall(tau) > 0.0) {
-      infeasible = tau;
-      continue;
-    }
-    double feasible = tau;
-    for (int j = 0; j < kBisections; ++j) {
-      const double mid = 0.5 * (infeasible + feasible);
-      (shortfall(mid) > 0.0 ? infeasible : feasible) = mid;
-    }
-    shortfall(feasible);  // the direction at the answer
-    return StraightFlight{feasible, direction};
-  }
-  return std::nullopt;
+  // 20 bisections: the grid's cell (<= 0.25 s) to 2.4e-7 s.
+  const std::optional<double> tau = first_feasible_time_s(tau_lo, tau_max_s, 20, shortfall);
+  if (!tau) return std::nullopt;
+  shortfall(*tau);  // the direction at the answer
+  return StraightFlight{*tau, direction};
 }
 
 namespace {
