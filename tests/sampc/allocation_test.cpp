@@ -36,7 +36,11 @@ TEST(SampcAllocation, TheControlLoopDoesNotAllocate) {
   in.ugv.angular_velocity_rad_s = Eigen::Vector3d(0.0, 0.0, 0.4);
   in.ugv.speed_m_s = 0.8;  // the intercept method's prediction is in use
   in.ugv.speed_source = model::SpeedSource::WheelOdometry;
+  in.ugv.forward_acceleration_m_s2 = 0.2;
   in.reference = HorizonReference::hold(Eigen::Vector3d(0.0, 0.0, 1.5));
+  // An approach at the speed limit: intercept solves its fastest straight flight.
+  for (Eigen::Vector3d& v : in.reference.velocity_m_s)
+    v = Eigen::Vector3d(-in.speed_limit_m_s, 0, 0);
   mpc.solve(in);  // cold start outside the count
 
   const long before = g_allocations.load();
@@ -45,6 +49,7 @@ TEST(SampcAllocation, TheControlLoopDoesNotAllocate) {
     in.uav_state(0) -= 0.01;
     // A task's process may switch the method at run time.
     mpc.set_mode(kModes[(i / 5) % std::size(kModes)]);
+    if (i == 25) mpc.reset_frame();  // the switch's smoothing and intercept's lead ramp
     mpc.prepare(in);
     const SampcOutput out = mpc.feedback(in);
     ASSERT_FALSE(is_error(out.status));
