@@ -121,10 +121,6 @@ Eigen::Vector2d straight_relative_velocity(double u, double w, double a, const E
   return ugv_mean_velocity(u, w, tau, a) - p / tau - Eigen::Vector2d(u, 0.0);
 }
 
-}  // namespace
-
-namespace {
-
 bool all_finite(std::initializer_list<double> values) {
   return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
 }
@@ -183,10 +179,20 @@ std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_ra
   return first_feasible_time_s(tau_lo, tau_max_s, 30, excess);
 }
 
+namespace {
+
+// The UGV's predicted forward speed t_s from now: u + a t, a forward-driving UGV stopped at
+// zero rather than reversing.
+double predicted_speed_m_s(double speed_m_s, double forward_acceleration_m_s2, double t_s) {
+  const double speed = speed_m_s + forward_acceleration_m_s2 * t_s;
+  return speed_m_s >= 0.0 ? std::max(speed, 0.0) : speed;
+}
+
+}  // namespace
+
 Eigen::Vector2d ugv_velocity_at(double speed_m_s, double yaw_rate_rad_s, double t_s,
                                 double forward_acceleration_m_s2) {
-  double speed = speed_m_s + forward_acceleration_m_s2 * t_s;
-  if (speed_m_s >= 0.0) speed = std::max(speed, 0.0);  // stopped, not reversing
+  const double speed = predicted_speed_m_s(speed_m_s, forward_acceleration_m_s2, t_s);
   const double heading = yaw_rate_rad_s * t_s;
   return speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
 }
@@ -216,9 +222,8 @@ double fastest_straight_distance_m(double u, double w, double a, const Eigen::Ve
   double sum = 0.0;
   for (int i = 0; i <= kIntervals; ++i) {
     const double weight = (i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
-    double speed = u + a * (i * h);
-    if (u >= 0.0) speed = std::max(speed, 0.0);  // stopped, as ugv_velocity_at
-    sum += weight * fastest_speed_along(direction, speed * heading, limit);
+    sum +=
+        weight * fastest_speed_along(direction, predicted_speed_m_s(u, a, i * h) * heading, limit);
     heading = step * heading;
   }
   return sum * h / 3.0;

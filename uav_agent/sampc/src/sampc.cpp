@@ -132,19 +132,18 @@ struct Sampc::Workspace {
   // after switch_smoothing_s): at the switch the UAV still flies the old frame's velocity,
   // and the whole lead at once asked for a tilt on top of the approach's (the star's thrust
   // peak 0.416 against coni-mpc's 0.365 m/s^2; ramped 0.362, docs/benchmarks.md).
-  double intercept_lead_fraction() const {
-    if (!(smoothing_left_s > 0.0) || !(params.switch_smoothing_s > 0.0)) return 1.0;
-    return std::clamp(1.0 - smoothing_left_s / params.switch_smoothing_s, 0.0, 1.0);
+  double intercept_lead_fraction() const { return 1.0 - switch_smoothing_left_fraction(); }
+
+  // What is left of the switch smoothing: 1 at the frame switch, 0 once it is over (or off).
+  double switch_smoothing_left_fraction() const {
+    if (!(smoothing_left_s > 0.0) || !(params.switch_smoothing_s > 0.0)) return 0.0;
+    return std::min(1.0, smoothing_left_s / params.switch_smoothing_s);
   }
 
   // Node 0's input-rate weight: after a frame switch (SampcParams::switch_smoothing_s), and
   // at an xy-z-ref transition (SampcParams::transition_input_rate_weight), the larger.
   model::Input input_rate_weight() const {
-    model::Input weight = model::Input::Zero();
-    if (smoothing_left_s > 0.0 && params.switch_smoothing_s > 0.0) {
-      weight = std::min(1.0, smoothing_left_s / params.switch_smoothing_s) *
-               params.switch_input_rate_weight;
-    }
+    model::Input weight = switch_smoothing_left_fraction() * params.switch_input_rate_weight;
     if (cost.reference_mode == ReferenceMode::XyZRef) {
       weight = weight.cwiseMax(params.transition_input_rate_weight);
     }
