@@ -52,6 +52,11 @@ inline constexpr std::tuple kAccess{
     AccessRule<msg::ManagerRequest>{{kStation}, {{Role::TaskManager}}},
     AccessRule<msg::ManagerReply>{{{Role::TaskManager}}, {kStation}},
     AccessRule<msg::TaskStatus>{{{Role::UavAgent}}, {{Role::TaskManager}, {Role::Sim}, kStation}},
+    AccessRule<msg::FcState>{{{Role::FcBridge, kOwn}},
+                             {{Role::UavAgent, kOwn}, {Role::TaskManager}, kStation}},
+    // Operators only: nothing but a ground station may arm, switch or land an autopilot.
+    AccessRule<msg::FcRequest>{{kStation}, {{Role::FcBridge}}},
+    AccessRule<msg::FcReply>{{{Role::FcBridge}}, {kStation}},
 };
 
 struct RoleName {
@@ -59,10 +64,11 @@ struct RoleName {
   std::string_view prefix;
   bool numbered;
 };
-constexpr std::array<RoleName, 5> kRoleNames{{{Role::Sim, "sim", false},
+constexpr std::array<RoleName, 6> kRoleNames{{{Role::Sim, "sim", false},
                                               {Role::TaskManager, "task-manager", false},
                                               {Role::UgvAgent, "ugv-agent-", true},
                                               {Role::UavAgent, "uav-agent-", true},
+                                              {Role::FcBridge, "fc-bridge-", true},
                                               {Role::GroundStation, "ground-station-", true}}};
 
 // The UGV and UAV ids a concrete topic name was bound to.
@@ -89,9 +95,10 @@ bool granted(const Grants& grants, const Identity& who, const Binding& binding) 
     const Grant& grant = grants.items[i];
     if (grant.role != who.role) continue;
     if (!grant.own_id_only) return true;
-    const std::optional<std::uint32_t> own = who.role == Role::UgvAgent   ? binding.ugv
-                                             : who.role == Role::UavAgent ? binding.uav
-                                                                          : std::nullopt;
+    const std::optional<std::uint32_t> own =
+        who.role == Role::UgvAgent                                    ? binding.ugv
+        : who.role == Role::UavAgent || who.role == Role::FcBridge ? binding.uav
+                                                                      : std::nullopt;
     if (own && *own == who.id) return true;
   }
   return false;
@@ -155,6 +162,7 @@ std::vector<Identity> fleet_identities(const Fleet& fleet) {
   std::vector<Identity> all{{Role::Sim, 0}, {Role::TaskManager, 0}};
   for (std::uint32_t k = 0; k < fleet.ugvs; ++k) all.push_back({Role::UgvAgent, k});
   for (std::uint32_t u = 0; u < fleet.uavs; ++u) all.push_back({Role::UavAgent, u});
+  for (std::uint32_t u = 0; u < fleet.uavs; ++u) all.push_back({Role::FcBridge, u});
   for (std::uint32_t n = 0; n < fleet.ground_stations; ++n) all.push_back({Role::GroundStation, n});
   return all;
 }

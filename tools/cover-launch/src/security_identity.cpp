@@ -34,6 +34,7 @@ std::optional<dds::Identity> identity_by_role(const std::string& executable,
   if (!id) return std::nullopt;
   if (program == "cover-ugv-agent") return dds::Identity{dds::Role::UgvAgent, *id};
   if (program == "cover-uav-agent") return dds::Identity{dds::Role::UavAgent, *id};
+  if (program == "cover-fc-bridge") return dds::Identity{dds::Role::FcBridge, *id};
   return std::nullopt;
 }
 

@@ -59,6 +59,15 @@ inline constexpr std::tuple kCatalog{
     TopicDescriptor<msg::TaskStatus>{"cover/task/status", &state_qos, "on change",
                                      "uav_agent -> task_manager, ground station",
                                      "progress and outcome of each task"},
+    TopicDescriptor<msg::FcState, UavId>{
+        "cover/uav/<u>/fc", &state_qos, "10 Hz", "fc_bridge u -> uav_agent, task_manager, ground station",
+        "UAV u's autopilot: link, mode, armed, landed state, battery, hover thrust"},
+    TopicDescriptor<msg::FcRequest>{"cover/fc/request", &request_qos, "on demand",
+                                    "ground station -> fc_bridge",
+                                    "arm, disarm, offboard or land one UAV's autopilot"},
+    TopicDescriptor<msg::FcReply>{"cover/fc/reply", &request_qos, "on demand",
+                                  "fc_bridge -> ground station",
+                                  "the autopilot's answer to one request, by request id"},
 };
 
 // The row of message type T, bound to `ids`; does not compile when T has no row or the
@@ -106,6 +115,15 @@ inline Topic<msg::ManagerReply> manager_reply() {
 }
 inline Topic<msg::SimClock> sim_clock() {
   return bind<msg::SimClock>();
+}
+inline Topic<msg::FcState> fc_state(std::uint32_t uav) {
+  return bind<msg::FcState>(UavId{uav});
+}
+inline Topic<msg::FcRequest> fc_request() {
+  return bind<msg::FcRequest>();
+}
+inline Topic<msg::FcReply> fc_reply() {
+  return bind<msg::FcReply>();
 }
 
 }  // namespace topics
