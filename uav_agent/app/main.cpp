@@ -56,7 +56,7 @@ cover::uav_agent::AgentOptions agent_options(const CommandLine& cli) {
   cover::uav_agent::AgentOptions options;
   options.uav_id = static_cast<std::uint32_t>(cli.uav_id);
   options.ugv_count = cli.ugv_count;
-  options.clock = *cover::uav_agent::parse_clock_mode(cli.clock);
+  options.clock = *cover::sim_clock::parse_clock_mode(cli.clock);
   if (!cli.task_file.empty())
     options.task = cover::mission::load_task_file(cli.task_file, cli.ugv_count);
   options.intake = cover::wire::IntakeLimits::load_file(cli.config_dir + "/intake.yaml");

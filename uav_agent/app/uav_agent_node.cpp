@@ -62,7 +62,7 @@ UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
 }
 
 int UavAgentNode::run() {
-  if (options_.clock == ClockMode::Lockstep) {
+  if (options_.clock == sim_clock::ClockMode::Lockstep) {
     run_lockstep();
   } else {
     run_realtime();

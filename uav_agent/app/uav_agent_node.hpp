@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "agent_clock.hpp"
+#include "cover/sim_clock/agent_clock.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/uav/uav_loop.hpp"
 #include "cover/wire/intake.hpp"
@@ -16,7 +16,7 @@ namespace cover::uav_agent {
 struct AgentOptions {
   std::uint32_t uav_id = 0;
   int ugv_count = 8;
-  ClockMode clock = ClockMode::Lockstep;
+  sim_clock::ClockMode clock = sim_clock::ClockMode::Lockstep;
   std::optional<mission::Task> task;  // from --task FILE; otherwise from cover/task/request
   double status_period_s = 0.1;       // cover/uav/<u>/status at 10 Hz
   // Lockstep: how long a tick waits for its relative states and IMU before stepping anyway.
@@ -56,7 +56,7 @@ class UavAgentNode {
   dds::Writer<msg::TaskStatus> task_status_writer_;
   dds::Writer<msg::ReferenceTrajectory> reference_writer_;
   TaskIntake intake_;
-  AgentClock clock_;
+  sim_clock::AgentClock clock_;
   double next_status_s_ = 0.0;
   double last_step_s_ = 0.0;  // time of the last control step (the status stamp between steps)
   std::uint64_t answers_repeated_ = 0;  // lockstep ticks answered again (a lost answer)

@@ -1,11 +1,10 @@
-#include "agent_clock.hpp"
+#include "cover/sim_clock/agent_clock.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include "cover/clock/clock.hpp"
-#include "cover/wire/eigen.hpp"
 
-namespace cover::uav_agent {
+namespace cover::sim_clock {
 
 namespace {
 constexpr std::int64_t kClockBackLogPeriodNs = 1'000'000'000;
@@ -63,11 +62,11 @@ std::optional<LockstepTick> AgentClock::next_tick(std::chrono::milliseconds time
 }
 
 std::optional<double> AgentClock::now_s() const {
-  if (mode_ == ClockMode::System) return wire::to_seconds(clock::system_ns());
+  if (mode_ == ClockMode::System) return clock::ns_to_s(clock::system_ns());
   std::lock_guard<std::mutex> lock(mutex_);
   if (!last_tick_) return std::nullopt;
   const std::int64_t since_ns = clock::monotonic_ns() - last_tick_monotonic_ns_;
-  return wire::to_seconds(last_tick_->stamp_ns + since_ns);
+  return clock::ns_to_s(last_tick_->stamp_ns + since_ns);
 }
 
-}  // namespace cover::uav_agent
+}  // namespace cover::sim_clock

@@ -11,7 +11,7 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 
-namespace cover::uav_agent {
+namespace cover::sim_clock {
 
 // Where the agent's time comes from:
 //  lockstep: the simulator's ticks (cover/sim/clock): one control step per tick;
@@ -55,4 +55,4 @@ class AgentClock {
   dds::Reader<msg::SimClock> reader_;                 // last: its callback uses the members above
 };
 
-}  // namespace cover::uav_agent
+}  // namespace cover::sim_clock
