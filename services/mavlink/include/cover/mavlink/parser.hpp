@@ -10,21 +10,27 @@
 
 namespace cover::mavlink {
 
-// What a stream parser saw, counted since construction. Every byte read ends up in a
-// frame, or in exactly one of the refusal counts' frames, or in `garbage_bytes`.
+// What a stream parser saw, counted since construction. Every candidate (a start marker
+// followed by a header) is either delivered (`frames`) or counted in exactly one refusal
+// count; a refused candidate gives back every byte after its start marker to be scanned
+// again. So every byte fed is exactly one of: a byte of a delivered frame, the start
+// marker of a refused candidate, a garbage byte, or still pending:
+//   bytes fed == delivered frame bytes + refusals() + garbage_bytes + pending_bytes().
 struct ParserStats {
-  std::uint64_t frames = 0;             // delivered (checksum ok; signature ok if checked)
-  std::uint64_t garbage_bytes = 0;      // bytes skipped while looking for a start marker
-  std::uint64_t crc_errors = 0;         // known id, checksum wrong
-  std::uint64_t unknown_ids = 0;        // id not in the message table (not delivered)
-  std::uint64_t bad_length = 0;         // a known id with a payload longer than it can be
-                                        // (v1) or an incompat flag we do not know
-  std::uint64_t signature_errors = 0;   // signed, key configured, signature wrong
-  std::uint64_t unsigned_refused = 0;   // key configured and require_signed, frame unsigned
-  std::uint64_t sequence_gaps = 0;      // frames lost, from each sender's sequence numbers
+  std::uint64_t candidates = 0;        // frames judged: frames + refusals()
+  std::uint64_t frames = 0;            // delivered (checksum ok; signature ok if checked)
+  std::uint64_t garbage_bytes = 0;     // bytes skipped while looking for a start marker
+  std::uint64_t crc_errors = 0;        // known id, checksum wrong
+  std::uint64_t unknown_ids = 0;       // id not in the message table (not delivered)
+  std::uint64_t bad_length = 0;        // a known id with a payload longer than it can be
+                                       // (v1) or an incompat flag we do not know
+  std::uint64_t signature_errors = 0;  // signed, key configured, signature wrong
+  std::uint64_t unsigned_refused = 0;  // key configured and require_signed, frame unsigned
+  std::uint64_t sequence_gaps = 0;     // frames lost, from each sender's sequence numbers
   std::uint64_t errors() const {
     return crc_errors + bad_length + signature_errors + unsigned_refused;
   }
+  std::uint64_t refusals() const { return errors() + unknown_ids; }
 };
 
 struct ParserOptions {
@@ -48,14 +54,28 @@ class StreamParser {
   // Forgets a partial frame (the link was reopened).
   void reset();
   const ParserStats& stats() const { return stats_; }
+  // Bytes of a frame begun but not complete yet.
+  std::size_t pending_bytes() const { return buffered_; }
 
  private:
-  // Implementation-defined state (the codec helper fills this in).
-  struct Impl;
+  enum class Verdict { NeedMore, Deliver, Refuse };
+  std::size_t header_length() const;
+  Verdict judge_header();
+  Verdict judge_frame();
+  void deliver(const FrameHandler& on_frame);
+  void settle(const FrameHandler& on_frame);
+  void drop_until_magic(std::size_t from);
+  void count_sequence(std::uint8_t system_id, std::uint8_t component_id, std::uint8_t seq);
+
   ParserOptions options_;
   ParserStats stats_;
+  // buffer_[0, buffered_) is one candidate frame: it starts with a start marker.
   std::array<std::uint8_t, kMaxFrameLength> buffer_{};
   std::size_t buffered_ = 0;
+  std::size_t frame_length_ = 0;   // the candidate's full length once its header is judged
+  std::uint8_t crc_extra_ = 0;     // of the candidate's message, once its header is judged
+  std::uint8_t known_length_ = 0;  // the candidate's message's full payload length
+  Frame frame_;                    // the frame being delivered, reused
   std::array<std::int16_t, 256 * 256> last_seq_{};  // per (system, component), -1: none
 };
 

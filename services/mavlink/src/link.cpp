@@ -1,0 +1,29 @@
+#include "cover/mavlink/link.hpp"
+
+#include "link_factories.hpp"
+
+namespace cover::mavlink {
+
+std::unique_ptr<Link> make_link(const ConnectionUrl& url) {
+  switch (url.kind) {
+    case ConnectionUrl::Kind::UdpIn:
+      return detail::make_udp(detail::UdpPeerMode::LearnFromSender, {url.host, url.port, "", 0},
+                              url.to_string());
+    case ConnectionUrl::Kind::UdpOut:
+      return detail::make_udp(detail::UdpPeerMode::Connected, {"", 0, url.host, url.port},
+                              url.to_string());
+    case ConnectionUrl::Kind::Serial:
+      return detail::make_serial(url.device, url.baud);
+  }
+  return nullptr;
+}
+
+std::unique_ptr<Link> make_udp_link(const std::string& bind_host, std::uint16_t bind_port,
+                                    const std::string& peer_host, std::uint16_t peer_port) {
+  const std::string description = "udp://" + bind_host + ":" + std::to_string(bind_port) + " -> " +
+                                  peer_host + ":" + std::to_string(peer_port);
+  return detail::make_udp(detail::UdpPeerMode::Fixed, {bind_host, bind_port, peer_host, peer_port},
+                          description);
+}
+
+}  // namespace cover::mavlink
