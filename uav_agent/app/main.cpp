@@ -27,6 +27,7 @@ struct CommandLine {
   std::string config_dir = cover::config::default_config_dir();
   std::string method;
   int ugv_count = 8;
+  bool fc_bridge = false;
   cover::dds::DdsCliOptions dds;
 };
 
@@ -49,6 +50,11 @@ void add_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--ugv-count", cli.ugv_count, "UGV ids accepted in tasks are 0..N-1")
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
+  app.add_flag("--fc-bridge", cli.fc_bridge,
+               "a flight-controller bridge (cover-fc-bridge) flies this UAV: a task starts only "
+               "while its autopilot is armed and in OFFBOARD / GUIDED_NOGPS (cover/uav/U/fc), "
+               "and fails the moment it is not. Without the flag a bridge heard on that topic "
+               "gates tasks all the same");
   cli.dds.add_to(app);
 }
 
@@ -57,6 +63,7 @@ cover::uav_agent::AgentOptions agent_options(const CommandLine& cli) {
   options.uav_id = static_cast<std::uint32_t>(cli.uav_id);
   options.ugv_count = cli.ugv_count;
   options.clock = *cover::sim_clock::parse_clock_mode(cli.clock);
+  options.fc_bridge = cli.fc_bridge;
   if (!cli.task_file.empty())
     options.task = cover::mission::load_task_file(cli.task_file, cli.ugv_count);
   options.intake = cover::wire::IntakeLimits::load_file(cli.config_dir + "/intake.yaml");

@@ -57,6 +57,7 @@ UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
       task_status_writer_(participant.make_writer(dds::topics::task_status())),
       reference_writer_(participant.make_writer(dds::topics::uav_reference(options_.uav_id))),
       intake_(participant, options_.uav_id),
+      fc_gate_(participant, options_.uav_id, options_.fc_bridge, options_.fc_stale_after_s),
       clock_(participant, options_.clock) {
   if (options_.task) accept(*options_.task, 0.0);
 }
@@ -172,6 +173,7 @@ void UavAgentNode::run_realtime() {
 void UavAgentNode::step(double now_s) {
   last_step_s_ = now_s;
   take_requests(now_s);
+  follow_autopilot(now_s);
   inputs_.set_now(now_s);
   loop_.step(now_s, inputs_, command_);
   publish_reference_if_replanned();
@@ -194,6 +196,16 @@ void UavAgentNode::take_requests(double now_s) {
     accept(wire::from_msg(*request), now_s);
   }
   while (const auto abort = intake_.take_abort()) {
+    if (held_task_ && (abort->task_id.empty() || abort->task_id == held_task_->task_id)) {
+      spdlog::warn("task '{}' aborted ({}) before the autopilot was ready", held_task_->task_id,
+                   abort->reason);
+      msg::TaskStatus status = wire::rejected_task_status(
+          wire::to_msg(*held_task_, now_s), options_.uav_id, now_s, "aborted: " + abort->reason);
+      status.state = msg::TaskState::TASK_CANCELLED;
+      task_status_writer_.write(status);
+      held_task_.reset();
+      continue;
+    }
     const mission::Task* task = loop_.task();
     if (!task || (!abort->task_id.empty() && abort->task_id != task->task_id)) {
       spdlog::warn("abort of task '{}' ignored: not the running task", abort->task_id);
@@ -207,6 +219,19 @@ void UavAgentNode::take_requests(double now_s) {
 }
 
 void UavAgentNode::accept(const mission::Task& task, double now_s) {
+  if (fc_gate_.bridge_present() && !held_task_ &&
+      (!loop_.task() || mission::is_terminal(loop_.task_state()))) {
+    if (const auto reason = fc_gate_.not_ready_reason()) {
+      held_task_ = task;
+      held_reason_.clear();
+      spdlog::info("task '{}' waits for the autopilot: {}", task.task_id, *reason);
+      return;
+    }
+  }
+  start(task, now_s);
+}
+
+void UavAgentNode::start(const mission::Task& task, double now_s) {
   const uav::TaskDecision decision = loop_.give_task(task);
   if (!decision.accepted) {
     spdlog::error("task '{}' rejected: {}", task.task_id, decision.reason);
@@ -221,6 +246,44 @@ void UavAgentNode::accept(const mission::Task& task, double now_s) {
     return ugvs;
   }());
   reported_key_.clear();
+}
+
+// The autopilot decides who flies: a held task starts once it flies our setpoints; a
+// flight fails the moment it stops (a pilot's mode switch, its own failsafe, its link
+// lost), and holds afresh once it flies them again.
+void UavAgentNode::follow_autopilot(double now_s) {
+  const std::optional<std::string> reason = fc_gate_.not_ready_reason();
+  if (held_task_) {
+    if (!reason) {
+      spdlog::info("autopilot ready: starting task '{}'", held_task_->task_id);
+      const mission::Task task = std::move(*held_task_);
+      held_task_.reset();
+      start(task, now_s);
+    } else if (*reason != held_reason_) {
+      held_reason_ = *reason;
+      publish_held_status(now_s);
+    }
+  }
+  const mission::MissionController* controller = loop_.controller();
+  if (!controller) return;
+  if (!controller->yielded() && reason && loop_.output().command.armed) {
+    autopilot_failure_ = *reason;
+    spdlog::error("task '{}' fails: {}; not commanding, observers stopped", loop_.task()->task_id,
+                  *reason);
+    loop_.yield_to_autopilot(now_s);
+  } else if (controller->yielded() && !reason) {
+    spdlog::warn("autopilot flies COVER's setpoints again: holding the UAV where it is");
+    loop_.take_back(now_s);
+  }
+}
+
+void UavAgentNode::publish_held_status(double now_s) {
+  spdlog::info("task '{}' waits for the autopilot: {}", held_task_->task_id, held_reason_);
+  msg::TaskStatus status =
+      wire::rejected_task_status(wire::to_msg(*held_task_, now_s), options_.uav_id, now_s,
+                                 "waiting for the autopilot: " + held_reason_);
+  status.state = msg::TaskState::TASK_PENDING;
+  task_status_writer_.write(status);
 }
 
 void UavAgentNode::publish_reference_if_replanned() {
@@ -266,9 +329,12 @@ void UavAgentNode::publish_task_status_on_change(double now_s) {
   const bool failsafe_changed = failsafe != reported_failsafe_ && !failsafe_event_.empty() &&
                                 (on_ladder(failsafe) || on_ladder(reported_failsafe_));
   reported_failsafe_ = failsafe;
-  msg::TaskStatus status =
-      wire::to_task_status(task->task_id, options_.uav_id, now_s, d, task->processes.size(),
-                           failsafe_changed ? failsafe_event_ : loop_.describe());
+  const std::string message = failsafe == mission::Failsafe::AutopilotControl
+                                  ? "failed: " + autopilot_failure_
+                              : failsafe_changed ? failsafe_event_
+                                                 : loop_.describe();
+  msg::TaskStatus status = wire::to_task_status(task->task_id, options_.uav_id, now_s, d,
+                                                task->processes.size(), message);
   status.state = wire::to_msg(loop_.task_state());
   task_status_writer_.write(status);
 }

@@ -4,11 +4,12 @@
 #include <optional>
 #include <string>
 
-#include "cover/sim_clock/agent_clock.hpp"
 #include "cover/dds/participant.hpp"
+#include "cover/sim_clock/agent_clock.hpp"
 #include "cover/uav/uav_loop.hpp"
 #include "cover/wire/intake.hpp"
 #include "dds_uav_io.hpp"
+#include "fc_gate.hpp"
 #include "task_intake.hpp"
 
 namespace cover::uav_agent {
@@ -27,6 +28,12 @@ struct AgentOptions {
   // Lockstep: before answering the first tick, wait this long for the inputs' publishers.
   double connect_timeout_s = 20.0;
   wire::IntakeLimits intake;  // config/intake.yaml
+  // A flight-controller bridge flies this UAV (--fc-bridge): tasks wait for its autopilot
+  // even before its first state is heard. Without it, a bridge heard on cover/uav/<u>/fc
+  // gates tasks all the same.
+  bool fc_bridge = false;
+  // The bridge publishes at 10 Hz: silent this long (wall clock) counts as not ready.
+  double fc_stale_after_s = 1.0;
 };
 
 // The UAV agent: DDS inputs -> UavLoop -> DDS command, trace, status, task status.
@@ -43,6 +50,9 @@ class UavAgentNode {
   void step(double now_s);
   void take_requests(double now_s);
   void accept(const mission::Task& task, double now_s);
+  void start(const mission::Task& task, double now_s);
+  void follow_autopilot(double now_s);
+  void publish_held_status(double now_s);
   void publish_status(double now_s);
   void publish_reference_if_replanned();
   void publish_task_status_on_change(double now_s);
@@ -56,6 +66,10 @@ class UavAgentNode {
   dds::Writer<msg::TaskStatus> task_status_writer_;
   dds::Writer<msg::ReferenceTrajectory> reference_writer_;
   TaskIntake intake_;
+  FcGate fc_gate_;
+  std::optional<mission::Task> held_task_;  // accepted, waiting for the autopilot
+  std::string held_reason_;                 // why it waits (last published)
+  std::string autopilot_failure_;           // why the autopilot took the task over
   sim_clock::AgentClock clock_;
   double next_status_s_ = 0.0;
   double last_step_s_ = 0.0;  // time of the last control step (the status stamp between steps)

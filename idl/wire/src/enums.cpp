@@ -42,7 +42,7 @@ constexpr std::array<std::pair<MissionState, msg::TaskState>, 5> kTaskStates{{
     {MissionState::Aborted, msg::TaskState::TASK_CANCELLED},
 }};
 
-constexpr std::array<std::pair<Failsafe, msg::FailsafeState>, 10> kFailsafes{{
+constexpr std::array<std::pair<Failsafe, msg::FailsafeState>, 11> kFailsafes{{
     {Failsafe::None, msg::FailsafeState::FAILSAFE_NONE},
     {Failsafe::WaitingForInputs, msg::FailsafeState::FAILSAFE_WAITING_FOR_INPUTS},
     {Failsafe::EmergencyHover, msg::FailsafeState::FAILSAFE_EMERGENCY_HOVER},
@@ -53,6 +53,7 @@ constexpr std::array<std::pair<Failsafe, msg::FailsafeState>, 10> kFailsafes{{
     {Failsafe::ImuHold, msg::FailsafeState::FAILSAFE_IMU_HOLD},
     {Failsafe::EmergencyLanding, msg::FailsafeState::FAILSAFE_EMERGENCY_LANDING},
     {Failsafe::EmergencyLanded, msg::FailsafeState::FAILSAFE_EMERGENCY_LANDED},
+    {Failsafe::AutopilotControl, msg::FailsafeState::FAILSAFE_AUTOPILOT_CONTROL},
 }};
 
 constexpr std::array<std::pair<SolveStatus, msg::SolverStatus>, 5> kSolveStatuses{{

@@ -96,9 +96,9 @@ bool granted(const Grants& grants, const Identity& who, const Binding& binding) 
     if (grant.role != who.role) continue;
     if (!grant.own_id_only) return true;
     const std::optional<std::uint32_t> own =
-        who.role == Role::UgvAgent                                    ? binding.ugv
+        who.role == Role::UgvAgent                                 ? binding.ugv
         : who.role == Role::UavAgent || who.role == Role::FcBridge ? binding.uav
-                                                                      : std::nullopt;
+                                                                   : std::nullopt;
     if (own && *own == who.id) return true;
   }
   return false;

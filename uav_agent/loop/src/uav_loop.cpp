@@ -69,6 +69,14 @@ bool UavLoop::abort(double now_s) {
   return controller_ && controller_->abort(now_s);
 }
 
+void UavLoop::yield_to_autopilot(double now_s) {
+  if (controller_) controller_->yield_to_autopilot(now_s);
+}
+
+void UavLoop::take_back(double now_s) {
+  if (controller_) controller_->take_back(now_s);
+}
+
 const mission::ControllerOutput& UavLoop::step(double now_s, UavInputs& inputs,
                                                CommandOutput& output) {
   StepOutput step;

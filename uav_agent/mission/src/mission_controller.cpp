@@ -32,6 +32,8 @@ const char* to_string(Failsafe failsafe) {
       return "emergency-landing";
     case Failsafe::EmergencyLanded:
       return "emergency-landed";
+    case Failsafe::AutopilotControl:
+      return "autopilot-control";
   }
   return "unknown";
 }
@@ -142,6 +144,14 @@ const ControllerOutput& MissionController::step(double now_s) {
   output_.command.release_payload = false;
   output_.status.planned = false;
   output_.status.solve_us = 0.0;
+  if (yielded_) {
+    output_.command.thrust_m_s2 = ladder_.hover_thrust_m_s2();
+    output_.command.body_rate_rad_s.setZero();
+    output_.command.armed = true;
+    output_.status.failsafe = Failsafe::AutopilotControl;
+    output_.status.stage = machine_.decision();
+    return output_;
+  }
   if (ladder_.level() == LadderLevel::Disarmed) {
     idle(Failsafe::EmergencyLanded);
     return output_;
@@ -223,6 +233,22 @@ bool MissionController::abort(double now_s) {
   abort_time_s_ = now_s;
   output_.status.stage = machine_.decision();
   return true;
+}
+
+void MissionController::yield_to_autopilot(double now_s) {
+  machine_.fail(FailureReason::AutopilotControl, now_s);
+  yielded_ = true;
+  output_.status.stage = machine_.decision();
+}
+
+void MissionController::take_back(double now_s) {
+  if (!yielded_) return;
+  yielded_ = false;
+  sampc_.reset_frame();
+  observer_.reset();
+  observer_time_s_ = -1.0;
+  disturbance_m_s2_.head<2>().setZero();
+  hold_current_point(now_s);
 }
 
 void MissionController::use_process_method(std::size_t process_index) {

@@ -36,6 +36,8 @@ const char* to_string(FailureReason reason) {
       return "stale-input";
     case FailureReason::PlanningFailed:
       return "planning-failed";
+    case FailureReason::AutopilotControl:
+      return "autopilot-control";
   }
   return "unknown";
 }

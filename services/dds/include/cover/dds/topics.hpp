@@ -60,7 +60,8 @@ inline constexpr std::tuple kCatalog{
                                      "uav_agent -> task_manager, ground station",
                                      "progress and outcome of each task"},
     TopicDescriptor<msg::FcState, UavId>{
-        "cover/uav/<u>/fc", &state_qos, "10 Hz", "fc_bridge u -> uav_agent, task_manager, ground station",
+        "cover/uav/<u>/fc", &state_qos, "10 Hz",
+        "fc_bridge u -> uav_agent, task_manager, ground station",
         "UAV u's autopilot: link, mode, armed, landed state, battery, hover thrust"},
     TopicDescriptor<msg::FcRequest>{"cover/fc/request", &request_qos, "on demand",
                                     "ground station -> fc_bridge",

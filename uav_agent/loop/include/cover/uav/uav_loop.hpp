@@ -32,6 +32,10 @@ class UavLoop {
   TaskDecision give_task(const mission::Task& task);
   // Aborts the running task (MissionController::abort); false when none runs.
   bool abort(double now_s);
+  // The autopilot stopped flying COVER's setpoints, or flies them again
+  // (MissionController::yield_to_autopilot / take_back); no-ops without a task.
+  void yield_to_autopilot(double now_s);
+  void take_back(double now_s);
 
   const mission::ControllerOutput& step(double now_s, UavInputs& inputs, CommandOutput& output);
 

@@ -33,15 +33,17 @@ struct UgvImuMeasurement {
 // Why the command is not the optimised one.
 enum class Failsafe : std::uint8_t {
   None = 0,
-  WaitingForInputs = 1,  // no valid state/IMU of the start UGV yet: stay idle, disarmed
-  EmergencyHover = 2,    // reference UGV's state or IMU lost or non-finite: level, hover thrust
-  SolverError = 3,       // SAMPC returned its hover fallback
-  MissionFailed = 4,     // the stage machine failed: hold position in the frame
-  Landed = 5,            // disarmed on the landing point: motors idle
-  Aborted = 6,           // the task was aborted: holding its point, then the safe action
-  ImuHold = 7,           // reference UGV's IMU stale: SAMPC flies on its last sample
-  EmergencyLanding = 8,  // inputs not back after the emergency hover: controlled descent
-  EmergencyLanded = 9,   // disarmed on contact after an emergency landing
+  WaitingForInputs = 1,   // no valid state/IMU of the start UGV yet: stay idle, disarmed
+  EmergencyHover = 2,     // reference UGV's state or IMU lost or non-finite: level, hover thrust
+  SolverError = 3,        // SAMPC returned its hover fallback
+  MissionFailed = 4,      // the stage machine failed: hold position in the frame
+  Landed = 5,             // disarmed on the landing point: motors idle
+  Aborted = 6,            // the task was aborted: holding its point, then the safe action
+  ImuHold = 7,            // reference UGV's IMU stale: SAMPC flies on its last sample
+  EmergencyLanding = 8,   // inputs not back after the emergency hover: controlled descent
+  EmergencyLanded = 9,    // disarmed on contact after an emergency landing
+  AutopilotControl = 10,  // the flight controller does not fly COVER's setpoints: level hover
+                          // command, nothing planned or integrated until it hands back
 };
 
 const char* to_string(Failsafe failsafe);
@@ -94,6 +96,17 @@ class MissionController {
   // task had already ended.
   bool abort(double now_s);
 
+  // The flight controller no longer flies COVER's setpoints (a pilot switched its mode, its
+  // own failsafe, its link lost): the task fails with FailureReason::AutopilotControl, and
+  // until take_back() the controller neither plans nor integrates its observers (a hand-back
+  // must not start from state wound up against a vehicle it was not flying). Meanwhile it
+  // commands a level hover on its hover thrust: what a pilot switching back gets first.
+  void yield_to_autopilot(double now_s);
+  // COVER's setpoints fly the UAV again: hold the point where it is, in the current frame,
+  // with SAMPC's frame and the observers started afresh.
+  void take_back(double now_s);
+  bool yielded() const { return yielded_; }
+
   const ControllerOutput& output() const { return output_; }
   const StageMachine& stage_machine() const { return machine_; }
   const planner::Trajectory& reference_trajectory() const { return trajectory_; }
@@ -145,6 +158,7 @@ class MissionController {
   bool descending_ = false;          // the abort's landing descent is under way
   double touchdown_since_s_ = -1.0;  // land detector: held up since then, < 0: not
   bool disarmed_after_abort_ = false;
+  bool yielded_ = false;  // the autopilot does not fly our setpoints (yield_to_autopilot)
   int ignored_inputs_ = 0;
   // Integral estimate of the acceleration SAMPC's model misses, in the reference frame.
   Eigen::Vector3d disturbance_m_s2_ = Eigen::Vector3d::Zero();
