@@ -5,7 +5,9 @@
 //   exit    exit with --code=N after --after-ms=T
 //   ignore  ignore SIGINT and SIGTERM: only SIGKILL ends it
 //   signal  die at once by SIGUSR1 (a crash without a core dump)
-// It also lists any descriptor above 2 it inherited ("open fd: N"). Other options: --ready=PATH
+// It also lists any descriptor above 2 it inherited ("open fd: N"), whether it leads its
+// own session ("session leader: yes|no") and whether SIGHUP is ignored ("sighup: ignored" or
+// "sighup: default"). Other options: --ready=PATH
 // (create PATH once signals are handled, so a test knows the process is up), --await=PATH (mode
 // exit: first wait until PATH exists; repeatable),
 // --shm=NAME (create /dev/shm/NAME and leave it), --result=PATH (write {"fake": true}),
@@ -68,6 +70,10 @@ void print_environment(int argc, char** argv) {
   const char* domain = std::getenv("COVER_DDS_DOMAIN");
   std::printf("pid: %d\n", static_cast<int>(getpid()));
   std::printf("COVER_DDS=%s\nCOVER_DDS_DOMAIN=%s\n", vendor ? vendor : "", domain ? domain : "");
+  std::printf("session leader: %s\n", getsid(0) == getpid() ? "yes" : "no");
+  struct sigaction hangup {};
+  sigaction(SIGHUP, nullptr, &hangup);
+  std::printf("sighup: %s\n", hangup.sa_handler == SIG_IGN ? "ignored" : "default");
   for (int i = 1; i < argc; ++i) std::printf("arg: %s\n", argv[i]);
   // Descriptors beyond stdin, stdout and stderr that the launcher let through.
   if (DIR* fds = opendir("/proc/self/fd")) {

@@ -205,6 +205,78 @@ launch:
                "grace_period_s"));
 }
 
+TEST(LaunchFile, KindSetsTheDefaultsOfRespawnAndKeepRunning) {
+  const LaunchFile mission = parse(kValid);
+  EXPECT_EQ(mission.kind, LaunchKind::Mission);  // the default
+  EXPECT_FALSE(mission.processes[0].respawn.enabled);
+  EXPECT_FALSE(mission.processes[0].keep_running);
+
+  const LaunchFile field = parse(R"(
+launch:
+  name: vehicle
+  kind: field
+  processes:
+    - {name: bridge, executable: /opt/cover/bin/cover-fc-bridge}
+    - {name: uav0, executable: cover-uav-agent}
+    - {name: ugv0, executable: cover-ugv-agent, respawn: false}
+    - {name: watcher, executable: cover-fc-bridge, keep_running: false}
+    - {name: mission, executable: x, ends_run: true}
+)");
+  EXPECT_EQ(field.kind, LaunchKind::Field);
+  const auto& p = field.processes;
+  EXPECT_TRUE(p[0].respawn.enabled);
+  EXPECT_TRUE(p[0].keep_running) << "the bridge is kept running by default";
+  EXPECT_TRUE(p[1].respawn.enabled);
+  EXPECT_FALSE(p[1].keep_running);
+  EXPECT_FALSE(p[2].respawn.enabled) << "an explicit respawn: false stands";
+  EXPECT_FALSE(p[3].keep_running) << "an explicit keep_running: false stands";
+  EXPECT_FALSE(p[4].respawn.enabled) << "the ends_run process is never respawned";
+
+  // A standing launch may have no ends_run process: it serves until stopped.
+  const LaunchFile standing = parse(
+      "launch: {name: s, kind: standing, processes: [{name: p, executable: cover-fc-bridge}]}");
+  EXPECT_EQ(standing.kind, LaunchKind::Standing);
+  EXPECT_TRUE(standing.processes[0].keep_running);
+
+  // In a mission the bridge stops with the run like every process.
+  const LaunchFile sitl = parse(
+      "launch: {name: m, processes: [{name: b, executable: cover-fc-bridge, ends_run: true}]}");
+  EXPECT_FALSE(sitl.processes[0].keep_running);
+}
+
+TEST(LaunchFile, KindErrors) {
+  const auto contains = [](const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+  };
+  EXPECT_TRUE(
+      contains(error_of("launch: {name: a, kind: vehicle, processes: [{name: p, executable: x}]}"),
+               "'vehicle' (valid: mission, standing, field)"));
+  EXPECT_TRUE(contains(error_of("launch: {name: a, processes: [{name: p, executable: x, ends_run: "
+                                "true}, {name: q, executable: x, keep_running: true}]}"),
+                       "keep_running: true needs launch.kind standing or field"));
+  EXPECT_TRUE(contains(error_of("launch: {name: a, kind: field, processes: [{name: p, executable: "
+                                "x, ends_run: true, keep_running: true}]}"),
+                       "keep_running: true and ends_run: true exclude each other"));
+  EXPECT_TRUE(contains(error_of("launch: {name: a, kind: standing, processes: [{name: p, "
+                                "executable: x, ends_run: true}, {name: q, executable: x, "
+                                "ends_run: true}]}"),
+                       "at most one process may have ends_run: true in a standing launch"));
+  EXPECT_TRUE(contains(error_of("launch: {name: a, kind: standing, processes: [{name: p, "
+                                "executable: x, ends_run: true, respawn: true}]}"),
+                       "respawn: true and ends_run: true"));
+}
+
+// The shipped standing system: a dying agent is respawned, the simulator ends the run.
+TEST(LaunchFile, ShippedSystemIsAStandingLaunch) {
+  const LaunchFile file =
+      LaunchFile::load_file(std::string(COVER_SOURCE_DIR) + "/config/launch/system.yaml");
+  EXPECT_EQ(file.kind, LaunchKind::Standing);
+  for (const auto& process : file.processes) {
+    EXPECT_EQ(process.respawn.enabled, !process.ends_run) << process.name;
+    EXPECT_EQ(process.ends_run, process.name == "sim") << process.name;
+  }
+}
+
 // The documented example must stay a valid launch file.
 TEST(LaunchFile, ShippedExampleLoads) {
   const LaunchFile file =

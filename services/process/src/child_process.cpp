@@ -69,7 +69,12 @@ void close_others(int keep) {
   // process running. A parent that died before the prctl is seen in getppid().
   if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0) fail();
   if (getppid() != setup.parent) _exit(127);
-  if (options.new_process_group && setpgid(0, 0) != 0) fail();
+  if (options.new_session) {
+    if (setsid() < 0) fail();
+  } else if (options.new_process_group && setpgid(0, 0) != 0) {
+    fail();
+  }
+  if (options.ignore_hangup && signal(SIGHUP, SIG_IGN) == SIG_ERR) fail();
   // The child must not inherit blocked SIGINT/SIGTERM from a ShutdownSignal parent.
   sigset_t empty;
   sigemptyset(&empty);

@@ -24,7 +24,20 @@ bool is_identifier(const std::string& text) {
   return only_chars(text, "_") && !std::isdigit(static_cast<unsigned char>(text[0]));
 }
 
-ProcessSpec parse_process(const YAML::Node& node, const std::string& context) {
+// The flight-controller bridge: kept running by default in standing and field launches.
+bool is_fc_bridge(const std::string& executable) {
+  return std::filesystem::path(executable).filename() == "cover-fc-bridge";
+}
+
+// `respawn` and `keep_running` default by the launch's kind where the file does not say.
+void apply_kind_defaults(ProcessSpec& spec, const config::YamlReader& process, LaunchKind kind) {
+  if (!process.has("respawn")) spec.respawn.enabled = serves_until_stopped(kind) && !spec.ends_run;
+  if (!process.has("keep_running")) {
+    spec.keep_running = serves_until_stopped(kind) && is_fc_bridge(spec.executable);
+  }
+}
+
+ProcessSpec parse_process(const YAML::Node& node, const std::string& context, LaunchKind kind) {
   // Errors name the process as well as its index: "launch.processes[2] (ugv1)".
   std::string label = context;
   if (node.IsMap() && node["name"] && node["name"].IsScalar()) {
@@ -43,7 +56,9 @@ ProcessSpec parse_process(const YAML::Node& node, const std::string& context) {
   process.optional("respawn", spec.respawn.enabled);
   process.optional("respawn_delay_s", spec.respawn.delay_s);
   process.optional("max_respawns", spec.respawn.max_respawns);
+  process.optional("keep_running", spec.keep_running);
   process.reject_unknown_keys();
+  apply_kind_defaults(spec, process, kind);
   return spec;
 }
 
@@ -72,7 +87,18 @@ void validate_respawn(const ProcessSpec& spec, const std::string& context) {
   config::check(respawn.max_respawns >= 1, context, "max_respawns must be >= 1");
 }
 
-void validate_process(const ProcessSpec& spec, const std::set<std::string>& known) {
+void validate_keep_running(const ProcessSpec& spec, LaunchKind kind, const std::string& context) {
+  if (!spec.keep_running) return;
+  config::check(serves_until_stopped(kind), context,
+                "keep_running: true needs launch.kind standing or field (a mission stops every "
+                "process when it ends)");
+  config::check(!spec.ends_run, context,
+                "keep_running: true and ends_run: true exclude each other (the ends_run "
+                "process's exit ends the run)");
+}
+
+void validate_process(const ProcessSpec& spec, const std::set<std::string>& known,
+                      LaunchKind kind) {
   const std::string context = "process '" + spec.name + "'";
   config::check(only_chars(spec.name, "_-"), "process name '" + spec.name + "'",
                 "use letters, digits, '_' and '-' only (it names the log file)");
@@ -89,6 +115,7 @@ void validate_process(const ProcessSpec& spec, const std::set<std::string>& know
                   "env: " + key + " is set by the launcher (use launch.security / identity:)");
   }
   validate_respawn(spec, context);
+  validate_keep_running(spec, kind, context);
   validate_arguments(spec, known);
 }
 
@@ -114,14 +141,21 @@ void LaunchFile::validate() const {
   std::set<std::string> names;
   int ends_run_count = 0;
   for (const auto& spec : processes) {
-    validate_process(spec, known);
+    validate_process(spec, known, kind);
     config::check(names.insert(spec.name).second, "launch.processes",
                   "duplicate process name '" + spec.name + "'");
     ends_run_count += spec.ends_run ? 1 : 0;
   }
-  config::check(ends_run_count == 1, "launch.processes",
-                "exactly one process must have ends_run: true (found " +
-                    std::to_string(ends_run_count) + ")");
+  if (serves_until_stopped(kind)) {
+    config::check(ends_run_count <= 1, "launch.processes",
+                  std::string("at most one process may have ends_run: true in a ") +
+                      to_string(kind) + " launch (found " + std::to_string(ends_run_count) + ")");
+  } else {
+    config::check(ends_run_count == 1, "launch.processes",
+                  "exactly one process must have ends_run: true (found " +
+                      std::to_string(ends_run_count) +
+                      "); a standing or field launch (launch.kind) may have none");
+  }
 }
 
 LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& context,
@@ -134,6 +168,12 @@ LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& con
   LaunchFile file;
   file.directory = directory;
   launch.require("name", file.name);
+  std::string kind = to_string(file.kind);
+  launch.optional("kind", kind);
+  const auto parsed_kind = parse_launch_kind(kind);
+  config::check(parsed_kind.has_value(), launch.context() + ".kind",
+                "'" + kind + "' (valid: mission, standing, field)");
+  file.kind = *parsed_kind;
   launch.optional("grace_period_s", file.grace_period_s);
   launch.optional("variables", file.variables);
   launch.optional("security", file.security);
@@ -143,8 +183,8 @@ LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& con
   config::check(processes.IsSequence(), launch.context() + ".processes",
                 "expected a list of processes");
   for (std::size_t i = 0; i < processes.size(); ++i) {
-    file.processes.push_back(
-        parse_process(processes[i], launch.context() + ".processes[" + std::to_string(i) + "]"));
+    file.processes.push_back(parse_process(
+        processes[i], launch.context() + ".processes[" + std::to_string(i) + "]", file.kind));
   }
   try {
     file.validate();

@@ -35,6 +35,7 @@ PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& va
   planned.netns = spec.netns;
   planned.ends_run = spec.ends_run;
   planned.respawn = spec.respawn;
+  planned.keep_running = spec.keep_running;
   for (const auto& [key, value] : spec.env) planned.env.push_back(key + "=" + value);
   planned.env.push_back("COVER_DDS=" + spec.dds);
   planned.env.push_back("COVER_DDS_DOMAIN=" + std::to_string(domain_id));
@@ -59,6 +60,7 @@ LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options) {
 
   LaunchPlan plan;
   plan.name = file.name;
+  plan.kind = file.kind;
   plan.run_id = make_run_id(file.name, options.launcher_pid);
   plan.run_dir = std::filesystem::absolute(options.run_dir).lexically_normal().string();
   plan.launch_dir = file.directory;

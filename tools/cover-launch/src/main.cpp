@@ -9,6 +9,7 @@
 #include "cover/config/config_error.hpp"
 #include "cover/dds/security_check.hpp"
 #include "cover/launch/exit_codes.hpp"
+#include "cover/launch/hangup_guard.hpp"
 #include "cover/launch/launch_plan.hpp"
 #include "cover/launch/run_naming.hpp"
 #include "cover/launch/run_report.hpp"
@@ -24,6 +25,7 @@ constexpr const char* kFooter = R"(
 Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
   launch:
     name: NAME               run folder runs/NAME_<date-time>, run id NAME_<pid>
+    kind: mission            mission | standing | field (below)
     grace_period_s: 3.0      per signal when stopping: SIGINT, SIGTERM, then SIGKILL
     variables: {clock: lockstep, seed: ""}
     security: DIR            DDS-Security fleet directory (relative to the file; --security)
@@ -35,18 +37,28 @@ Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
         env: {KEY: value}
         netns: cwifi-sim     run in this network namespace (ip netns exec; root)
         identity: sim        DDS-Security identity when secure (default: by role)
-        ends_run: true       exactly one process: its exit ends the run
-        respawn: false       restart it when it dies (not with ends_run)
+        ends_run: true       its exit ends the run (mission: exactly one; else at most one)
+        respawn: false       restart it when it dies (not with ends_run); default: false in
+                             a mission, true in a standing or field launch
         respawn_delay_s: 1.0 wait before each restart (>= 0)
-        max_respawns: 10     one more death is an unexpected death (exit 4)
+        max_respawns: 10     then: mission: an unexpected death (exit 4); else: not restarted
+        keep_running: false  standing/field: not stopped when the run ends by another
+                             process's exit (default: true for cover-fc-bridge)
   Placeholders: {run_dir} {run_id} {domain} {config_dir} and every variable; an argument
   whose placeholder is empty is dropped. {{ and }} are literal braces.
+
+Kinds: mission (default): any process that dies for good ends the run (exit 4). standing
+  and field: a dying process is respawned by default; one that dies for good is logged and
+  the others go on; only the ends_run process (if any) or a signal ends the run.
+SIGHUP (the terminal closed, an SSH session dropped) stops nothing: it is logged and
+  ignored, and every child runs in a session of its own. Stop a launch with SIGINT/SIGTERM.
 
 Exit codes:
   0    run completed (the ends_run process exited with 0)
   2    usage or launch-file error
   3    the ends_run process failed (non-zero exit)
-  4    a process died unexpectedly or could not be started
+  4    a process died unexpectedly or could not be started (standing/field: every
+       process has ended for good)
   130  interrupted (SIGINT/SIGTERM to cover-launch))";
 
 const CLI::Validator kNonNegativeInteger(
@@ -147,8 +159,8 @@ void prepare_run_dir(const LaunchPlan& plan) {
 }
 
 int run(const LaunchPlan& plan, bool json) {
-  spdlog::info("launch {}: run id {}, run dir {}, domain {}, DDS-Security {}", plan.name,
-               plan.run_id, plan.run_dir, plan.domain_id,
+  spdlog::info("launch {} ({}): run id {}, run dir {}, domain {}, DDS-Security {}", plan.name,
+               to_string(plan.kind), plan.run_id, plan.run_dir, plan.domain_id,
                plan.security_directory.empty() ? "off" : plan.security_directory);
   const RunOutcome outcome = supervise(plan);
   if (json) {
@@ -162,7 +174,8 @@ int run(const LaunchPlan& plan, bool json) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();  // before any thread exists
+  HangupGuard::install();                     // before any thread exists
+  cover::process::ShutdownSignal::install();  // (it starts one)
   CLI::App app{"cover-launch: start a local COVER system from a launch file"};
   app.footer(kFooter);
   Flags flags;

@@ -37,6 +37,8 @@ struct Child {
   // Set while a dead respawning process waits for its restart. A deadline checked by the
   // watch loop, not a sleep: the others stay watched and a signal is still seen at once.
   std::optional<steady_clock::time_point> respawn_at;
+  // Standing and field launches: died and not to be restarted; the others went on.
+  bool ended = false;
 };
 
 std::string join(const std::vector<std::string>& words) {
@@ -120,7 +122,11 @@ class Supervisor {
 
   void run() {
     if (resolve_all() && start_all()) watch();
-    stop_all();
+    if (keep_some_running()) {
+      stop_all(/*spare_keepers=*/true);
+      hold_keepers();
+    }
+    stop_all(/*spare_keepers=*/false);
     remove_leftovers();
     spdlog::info("run over: {} (exit code {})", outcome_.reason, outcome_.exit_code);
   }
@@ -196,7 +202,10 @@ class Supervisor {
     options.log_file = (std::filesystem::path(plan_.run_dir) / (spec.name + ".log")).string();
     options.append_log = restart;
     options.null_stdin = true;
-    options.new_process_group = true;
+    // A session of its own: a hang-up of the launcher's terminal (SIGHUP to that session)
+    // cannot reach it, nor a Ctrl-C there; the launcher stops it in its own order.
+    options.new_session = true;
+    options.ignore_hangup = true;
     options.close_other_fds = true;
     return std::make_unique<process::ChildProcess>(argv_of(index), options);
   }
@@ -225,14 +234,21 @@ class Supervisor {
         return;
       }
       for (auto& child : children_) {
-        if (!watch_one(child)) return;
+        if (!watch_one(child, /*holding=*/false)) return;
+      }
+      if (all_ended()) {
+        finish(kExitProcessDied, "every process has ended");
+        spdlog::error("{}", outcome_.reason);
+        return;
       }
       process::ShutdownSignal::wait_for(kWatchPeriod);
     }
   }
 
-  // One look at one child: a due respawn, or an exit. False when the run is over.
-  bool watch_one(Child& child) {
+  // One look at one child: a due respawn, or an exit. False when the run is over. While
+  // `holding` (the run is over, keep_running processes go on) no death ends anything.
+  bool watch_one(Child& child, bool holding) {
+    if (child.ended) return true;
     if (child.respawn_at) return steady_clock::now() < *child.respawn_at || respawn(child);
     if (!poll_exit(child)) return true;
     if (may_respawn(child)) {
@@ -240,8 +256,72 @@ class Supervisor {
       return true;
     }
     log_exit(child);
+    if (holding || (serves_until_stopped(plan_.kind) && !child.spec->ends_run)) {
+      end_for_good(child);
+      return true;
+    }
     judge_exit(child);
     return false;
+  }
+
+  // Standing and field launches: a process that dies without a restart left is logged, and
+  // the others go on (ros2 launch's way); only the ends_run process ends the run.
+  void end_for_good(Child& child) {
+    child.ended = true;
+    const std::string why =
+        child.spec->respawn.enabled
+            ? "max_respawns " + std::to_string(child.spec->respawn.max_respawns) + " used up"
+            : "respawn: false";
+    spdlog::error("{} (pid {}) died: {}; not restarted ({}); the other processes go on",
+                  child.spec->name, child.process->pid(), describe_exit(*child.process), why);
+  }
+
+  bool all_ended() const {
+    for (const auto& child : children_) {
+      if (!child.ended) return false;
+    }
+    return !children_.empty();
+  }
+
+  bool is_keeper(const Child& child) const {
+    return serves_until_stopped(plan_.kind) && child.spec->keep_running && !child.ended;
+  }
+
+  // After a run that ended without a signal to the launcher, keep_running processes go on.
+  bool keep_some_running() const {
+    if (outcome_.exit_code == kExitInterrupted || outcome_.reason.empty()) return false;
+    for (const auto& child : children_) {
+      if (is_keeper(child)) return true;
+    }
+    return false;
+  }
+
+  // Watches (and respawns) the keep_running processes until a signal reaches the launcher
+  // or none is left. The run's exit code stays that of its end.
+  void hold_keepers() {
+    std::string names;
+    for (const auto& child : children_) {
+      if (is_keeper(child)) names += (names.empty() ? "" : ", ") + child.spec->name;
+    }
+    spdlog::warn(
+        "{} keep running (keep_running: true) after the run's end: {}; stop with SIGINT "
+        "or SIGTERM",
+        names, outcome_.reason);
+    while (true) {
+      if (process::ShutdownSignal::requested()) {
+        spdlog::warn("interrupted: stopping {}", names);
+        outcome_.reason += "; then " + names + " stopped by a signal";
+        return;
+      }
+      bool any_left = false;
+      for (auto& child : children_) {
+        if (!is_keeper(child)) continue;
+        watch_one(child, /*holding=*/true);
+        any_left = any_left || !child.ended;
+      }
+      if (!any_left) return;
+      process::ShutdownSignal::wait_for(kWatchPeriod);
+    }
   }
 
   void schedule_respawn(Child& child) {
@@ -254,7 +334,7 @@ class Supervisor {
   }
 
   // Same argv and environment as the first start. False when the restart itself fails,
-  // which ends the run as a process that could not be started.
+  // which ends a mission as a process that could not be started.
   bool respawn(Child& child) {
     child.respawn_at.reset();
     const std::string& name = child.spec->name;
@@ -262,6 +342,11 @@ class Supervisor {
       child.process = spawn(child.index, /*restart=*/true);
     } catch (const std::exception& e) {
       spdlog::error("{}: {}", name, e.what());
+      if (serves_until_stopped(plan_.kind) && !child.spec->ends_run) {
+        child.ended = true;  // the others go on, as after any final death
+        spdlog::error("{} could not be restarted; the other processes go on", name);
+        return true;
+      }
       finish(kExitProcessDied, name + " could not be restarted: " + e.what());
       return false;
     }
@@ -292,9 +377,11 @@ class Supervisor {
     }
   }
 
-  void stop_all() {
+  // In reverse start order. `spare_keepers`: all but the keep_running processes.
+  void stop_all(bool spare_keepers) {
     const milliseconds grace(static_cast<long>(plan_.grace_period_s * 1000.0));
     for (auto child = children_.rbegin(); child != children_.rend(); ++child) {
+      if (spare_keepers && is_keeper(*child)) continue;
       if (child->respawn_at) {
         spdlog::info("{}: waiting for its respawn, not restarted", child->spec->name);
         child->respawn_at.reset();

@@ -23,6 +23,14 @@ struct SpawnOptions {
   // The child leads a new process group, so a Ctrl-C at the terminal reaches only the
   // parent, which then stops its children in its own order.
   bool new_process_group = false;
+  // The child leads a new session (setsid; a new process group too), with no controlling
+  // terminal: closing the terminal or dropping the SSH session the parent runs in sends
+  // SIGHUP to that terminal's session, which then cannot reach the child.
+  bool new_session = false;
+  // SIGHUP ignored in the child (an ignored disposition survives exec): a process that opens
+  // a serial port as a session leader would otherwise get that port as its controlling
+  // terminal, and die of SIGHUP when the cable is pulled.
+  bool ignore_hangup = false;
   // Only stdin, stdout and stderr reach the child: open files of the parent (a log it
   // writes, a test harness's pipes) must not be held open by every process it starts.
   bool close_other_fds = false;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cover/launch/launch_kind.hpp"
 #include "cover/launch/respawn_policy.hpp"
 
 namespace cover::launch {
@@ -23,13 +24,21 @@ struct ProcessSpec {
   // The DDS-Security identity when the launch is secure; empty: by role (see
   // security_identity.hpp).
   std::string identity;
-  bool ends_run = false;  // exactly one process ends the run when it exits
-  RespawnPolicy respawn;  // keys respawn, respawn_delay_s, max_respawns
+  bool ends_run = false;  // its exit ends the run: exactly one in a mission, at most one else
+  // Keys respawn, respawn_delay_s, max_respawns. `respawn` defaults to true in a standing or
+  // field launch (except for the ends_run process), false in a mission.
+  RespawnPolicy respawn;
+  // Standing and field launches: the process is not stopped when the run ends by another
+  // process's exit, only by a signal to the launcher (or its own end). Default: true for
+  // cover-fc-bridge, whose autopilot must never lose its last line of defence to a
+  // sibling's death; false for any other.
+  bool keep_running = false;
 };
 
 // A whole local system: `launch:` in a launch file. See config/launch/example.yaml.
 struct LaunchFile {
-  std::string name;  // [A-Za-z0-9_.-]+; names the run folder and the run id
+  std::string name;                       // [A-Za-z0-9_.-]+; names the run folder and the run id
+  LaunchKind kind = LaunchKind::Mission;  // `kind:`
   double grace_period_s = 3.0;
   std::map<std::string, std::string> variables;  // placeholder defaults
   std::vector<ProcessSpec> processes;            // start order; stopped in reverse

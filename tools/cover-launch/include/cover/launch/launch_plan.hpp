@@ -37,10 +37,12 @@ struct PlannedProcess {
   std::string identity;  // DDS-Security identity; empty: plain DDS
   bool ends_run = false;
   RespawnPolicy respawn;
+  bool keep_running = false;  // standing / field: outlives the run's end (not a signal)
 };
 
 struct LaunchPlan {
   std::string name;
+  LaunchKind kind = LaunchKind::Mission;
   std::string run_id;
   std::string run_dir;
   std::string launch_dir;

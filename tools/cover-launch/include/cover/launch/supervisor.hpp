@@ -25,13 +25,16 @@ struct RunOutcome {
   std::vector<std::string> leftover_segments;  // removed from /dev/shm
 };
 
-// Starts the plan's processes in order, each with its log in the run folder, watches them
-// until the run is over (the ends_run process exits, another one dies, or SIGINT/SIGTERM
-// reaches the launcher through ShutdownSignal), then stops the survivors one after
-// another in reverse start order: SIGINT, grace period, SIGTERM, grace period, SIGKILL.
-// A process with respawn: true that dies is restarted after its delay instead, up to
-// max_respawns times; one waiting for its restart when the run ends is not restarted.
-// Finally removes /dev/shm entries named with the run id. Logs every decision.
+// Starts the plan's processes in order, each with its log in the run folder and in a
+// session of its own, watches them until the run is over (the ends_run process exits,
+// SIGINT/SIGTERM reaches the launcher through ShutdownSignal, or, in a mission, another
+// process dies for good), then stops the survivors one after another in reverse start
+// order: SIGINT, grace period, SIGTERM, grace period, SIGKILL. A process with respawn: true
+// that dies is restarted after its delay instead, up to max_respawns times; one waiting for
+// its restart when the run ends is not restarted. In a standing or field launch a process
+// that dies for good is logged and the others go on, and keep_running processes outlive a
+// run that ended without a signal, watched until a signal comes or they end. Finally
+// removes /dev/shm entries named with the run id. Logs every decision.
 RunOutcome supervise(const LaunchPlan& plan);
 
 }  // namespace cover::launch
