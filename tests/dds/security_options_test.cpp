@@ -185,6 +185,21 @@ TEST(AccessRules, LeastPrivilegeOverTheWholeCatalogue) {
   const TopicAccess uav0 = topic_access({Role::UavAgent, 0}, fleet);
   EXPECT_TRUE(contains(uav0.subscribe, topics::relative_state(0, 1).name()));
   EXPECT_FALSE(contains(uav0.subscribe, topics::relative_state(1, 1).name()));
+  // Only its own bridge flies a UAV's commands and reports its autopilot; only ground
+  // stations may arm, switch or land an autopilot.
+  const TopicAccess bridge0 = topic_access({Role::FcBridge, 0}, fleet);
+  EXPECT_TRUE(contains(bridge0.subscribe, topics::uav_command(0).name()));
+  EXPECT_FALSE(contains(bridge0.subscribe, topics::uav_command(1).name()));
+  EXPECT_TRUE(contains(bridge0.publish, topics::fc_state(0).name()));
+  EXPECT_FALSE(contains(bridge0.publish, topics::fc_state(1).name()));
+  EXPECT_FALSE(contains(bridge0.publish, topics::uav_command(0).name()));
+  EXPECT_TRUE(contains(bridge0.subscribe, topics::fc_request().name()));
+  EXPECT_FALSE(contains(uav0.publish, topics::fc_request().name()));
+  EXPECT_TRUE(contains(uav0.subscribe, topics::fc_state(0).name()));
+  const TopicAccess station = topic_access({Role::GroundStation, 0}, fleet);
+  EXPECT_TRUE(contains(station.publish, topics::fc_request().name()));
+  EXPECT_EQ(identity_name({Role::FcBridge, 1}), "fc-bridge-1");
+  EXPECT_EQ(parse_identity("fc-bridge-1")->role, Role::FcBridge);
 }
 
 }  // namespace

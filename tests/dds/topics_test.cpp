@@ -91,6 +91,9 @@ TEST(TopicCatalog, EveryAccessorBindsItsRowAndEveryRowHasOne) {
   expect_catalogued(topics::manager_request(), "cover/manager/request", patterns);
   expect_catalogued(topics::manager_reply(), "cover/manager/reply", patterns);
   expect_catalogued(topics::sim_clock(), "cover/sim/clock", patterns);
+  expect_catalogued(topics::fc_state(3), "cover/uav/3/fc", patterns);
+  expect_catalogued(topics::fc_request(), "cover/fc/request", patterns);
+  expect_catalogued(topics::fc_reply(), "cover/fc/reply", patterns);
   std::set<std::string> catalogued;
   for (const auto& entry : dds::topic_catalog()) catalogued.insert(entry.pattern);
   EXPECT_EQ(patterns, catalogued) << "a catalogue row without an accessor (or a test)";

@@ -83,8 +83,9 @@ INSTANTIATE_TEST_SUITE_P(
                       HoverCase{"ardupilot", 0.2, 224}, HoverCase{"ardupilot", -0.2, 225}),
     [](const ::testing::TestParamInfo<HoverCase>& info) {
       const double e = info.param.hover_error;
-      return std::string(info.param.autopilot) +
-             (e == 0.0 ? "_hover_right" : e > 0.0 ? "_hover_plus20" : "_hover_minus20");
+      return std::string(info.param.autopilot) + (e == 0.0  ? "_hover_right"
+                                                  : e > 0.0 ? "_hover_plus20"
+                                                            : "_hover_minus20");
     });
 
 // The safety pilot's RC switch mid-flight: the task fails at once with the reason, and the

@@ -224,3 +224,40 @@ TEST(MissionController, FliesEachProcessWithItsOwnMethod) {
     EXPECT_EQ(controller.method(), expected) << method;
   }
 }
+
+// The autopilot stops flying COVER's setpoints mid-flight (a pilot's RC switch, its link
+// lost): the task fails at once, nothing is planned or integrated, a level hover is
+// commanded; handed back, the controller holds where the UAV is, observers restarted.
+TEST(MissionController, YieldingToTheAutopilotFailsTheTaskAndFreezesTheController) {
+  MissionController controller = make_controller();
+  feed_at_rest(controller, 0.0);
+  controller.step(0.0);
+  feed_at_rest(controller, 0.01);
+  ASSERT_EQ(controller.step(0.01).status.stage.state, MissionState::Running);
+  controller.yield_to_autopilot(0.02);
+  EXPECT_TRUE(controller.yielded());
+  for (double t = 0.02; t < 1.0; t += 0.01) {
+    feed_at_rest(controller, t);
+    const auto& out = controller.step(t);
+    ASSERT_EQ(out.status.failsafe, Failsafe::AutopilotControl);
+    ASSERT_EQ(out.status.stage.state, MissionState::Failed);
+    ASSERT_EQ(out.status.stage.failure, FailureReason::AutopilotControl);
+    ASSERT_FALSE(out.status.planned);
+    ASSERT_EQ(out.status.solve_us, 0.0);  // SAMPC not stepped
+    ASSERT_TRUE(out.command.armed);
+    ASSERT_TRUE(out.command.body_rate_rad_s.isZero());
+    ASSERT_GT(out.command.thrust_m_s2, 0.5 * cover::model::kGravity_m_s2);
+    expect_finite(out.command);
+  }
+  controller.take_back(1.0);
+  EXPECT_FALSE(controller.yielded());
+  feed_at_rest(controller, 1.0);
+  const auto& back = controller.step(1.0);
+  EXPECT_EQ(back.status.stage.state, MissionState::Failed);  // the task stays failed
+  EXPECT_NE(back.status.failsafe, Failsafe::AutopilotControl);
+  EXPECT_TRUE(back.command.armed);
+  expect_finite(back.command);
+  // Holding the point where it was handed back (at rest on the deck here).
+  const Eigen::Vector3d held = controller.reference_trajectory().position(0.0);
+  EXPECT_NEAR(held.z(), 0.0, 0.2);
+}

@@ -7,6 +7,7 @@
 #include "cover/wire/control.hpp"
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/enums.hpp"
+#include "cover/wire/fc_state.hpp"
 #include "cover/wire/reference.hpp"
 #include "cover/wire/sensors.hpp"
 #include "cover/wire/task.hpp"
@@ -255,8 +256,8 @@ TEST(Wire, EnumsMapOneToOne) {
   expect_bijective<Failsafe, msg::FailsafeState>(
       {Failsafe::None, Failsafe::WaitingForInputs, Failsafe::EmergencyHover, Failsafe::SolverError,
        Failsafe::MissionFailed, Failsafe::Landed, Failsafe::Aborted, Failsafe::ImuHold,
-       Failsafe::EmergencyLanding, Failsafe::EmergencyLanded});
-  EXPECT_EQ(msg::EnumCount<msg::FailsafeState>::value, 10u);  // no wire value left unmapped
+       Failsafe::EmergencyLanding, Failsafe::EmergencyLanded, Failsafe::AutopilotControl});
+  EXPECT_EQ(msg::EnumCount<msg::FailsafeState>::value, 11u);  // no wire value left unmapped
   expect_bijective<MissionState, msg::TaskState>({MissionState::NotStarted, MissionState::Running,
                                                   MissionState::Complete, MissionState::Failed,
                                                   MissionState::Aborted});
@@ -319,3 +320,27 @@ TEST(Wire, ReferenceSamplesTheWholeStage) {
 }
 
 }  // namespace
+
+TEST(Wire, FcNotReadyReasonNamesWhatTheAutopilotLacks) {
+  msg::FcState s;
+  s.link_ok = true;
+  s.armed = true;
+  s.mode = msg::FcMode::FC_MODE_OFFBOARD;
+  s.offboard_ready = true;
+  EXPECT_FALSE(wire::fc_not_ready_reason(s));
+  s.armed = false;
+  EXPECT_EQ(*wire::fc_not_ready_reason(s), "autopilot disarmed");
+  s.armed = true;
+  s.mode = msg::FcMode::FC_MODE_MANUAL;
+  s.mode_name = "POSCTL";
+  EXPECT_EQ(*wire::fc_not_ready_reason(s), "autopilot not in its offboard mode (mode POSCTL)");
+  s.mode_name.clear();
+  EXPECT_NE(wire::fc_not_ready_reason(s)->find("FC_MODE_MANUAL"), std::string::npos);
+  s.link_ok = false;  // the link first: nothing else it says is current
+  EXPECT_EQ(*wire::fc_not_ready_reason(s), "flight-controller link lost (no autopilot HEARTBEAT)");
+  s = msg::FcState{};
+  s.link_ok = true;
+  s.armed = true;
+  s.mode = msg::FcMode::FC_MODE_OFFBOARD;  // the bridge's own verdict counts too
+  EXPECT_EQ(*wire::fc_not_ready_reason(s), "autopilot not ready for offboard flight");
+}
