@@ -33,6 +33,8 @@ inline constexpr std::uint8_t kCritical = 5;
 namespace mav_cmd {
 inline constexpr std::uint16_t kNavLand = 21;
 inline constexpr std::uint16_t kDoSetMode = 176;
+// param1: gripper instance (1), param2: 0 release / 1 grab (GRIPPER_ACTIONS).
+inline constexpr std::uint16_t kDoGripper = 211;
 inline constexpr std::uint16_t kComponentArmDisarm = 400;
 }  // namespace mav_cmd
 

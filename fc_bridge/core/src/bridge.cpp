@@ -1,0 +1,475 @@
+#include "cover/fc_bridge/bridge.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "cover/mavlink/messages.hpp"
+#include "cover/mavlink/protocol.hpp"
+
+namespace cover::fc_bridge {
+namespace {
+
+namespace mav = cover::mavlink;
+
+// Our HEARTBEAT carries this system id until the autopilot's is known, so that a udpout
+// peer hears us first; nothing is targeted at it. Replaced by the autopilot's own id (the
+// convention for a companion) as soon as its HEARTBEAT arrives.
+constexpr std::uint8_t kProvisionalSystemId = 1;
+constexpr double kCompanionHeartbeatPeriod_s = 1.0;
+constexpr double kSequencerRetry_s = 1.0;
+constexpr double kMilliGToMS2 = 9.80665e-3;  // SCALED_IMU's accelerations are in mG
+// A command older than the last one by more than this is a new time base (the simulator
+// started again), not a late sample.
+constexpr std::int64_t kTimeBaseJump_ns = 1'000'000'000;
+
+HoverThrustEstimatorParams estimator_params(const FcBridgeParams& p) {
+  HoverThrustEstimatorParams e;
+  e.initial = p.hover_thrust;
+  e.min = p.hover_thrust_min;
+  e.max = p.hover_thrust_max;
+  e.initial_std = p.hover_thrust_initial_std;
+  e.noise_per_sqrt_s = p.hover_thrust_noise_per_sqrt_s;
+  e.accel_noise_m_s2 = p.accel_noise_m_s2;
+  e.gravity_m_s2 = p.gravity_m_s2;
+  return e;
+}
+
+std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
+  char text[200];
+  std::snprintf(text, sizeof(text), fmt, a, b, c);
+  return text;
+}
+
+const char* autopilot_name(std::uint8_t mav_autopilot) {
+  switch (mav_autopilot) {
+    case mav::mav_autopilot::kPx4:
+      return "PX4";
+    case mav::mav_autopilot::kArdupilotMega:
+      return "ArduPilot";
+    case mav::mav_autopilot::kGeneric:
+      return "generic";
+    default:
+      return "another autopilot";
+  }
+}
+
+Notice::Level severity_level(std::uint8_t severity) {
+  if (severity <= 3) return Notice::Level::Error;  // emergency .. error
+  if (severity == 4) return Notice::Level::Warning;
+  return Notice::Level::Info;
+}
+
+}  // namespace
+
+const char* to_string(OperatorCommand command) {
+  switch (command) {
+    case OperatorCommand::Arm:
+      return "arm";
+    case OperatorCommand::Disarm:
+      return "disarm";
+    case OperatorCommand::Offboard:
+      return "offboard";
+    case OperatorCommand::Land:
+      return "land";
+  }
+  return "unknown";
+}
+
+Bridge::Bridge(const BridgeConfig& config)
+    : config_(config),
+      profile_(config.autopilot),
+      session_(profile_, config.params.heartbeat_timeout_s),
+      sender_(config.params.ack_timeout_s, config.params.command_retries),
+      mapper_(config.params.gravity_m_s2),
+      estimator_(estimator_params(config.params)),
+      supervisor_(config.params.cmd_timeout_s, config.params.heartbeat_timeout_s,
+                  2.0 * config.params.ack_timeout_s),
+      sequencer_(config.params.offboard_stream_s, config.params.auto_arm, kSequencerRetry_s),
+      encoder_(config.params.system_id != 0 ? static_cast<std::uint8_t>(config.params.system_id)
+                                            : kProvisionalSystemId,
+               static_cast<std::uint8_t>(config.params.component_id), config.signing_key) {
+  out_.reserve(8);
+  resend_.reserve(8);
+  in_flight_.reserve(8);
+  notices_.reserve(16);
+  replies_.reserve(4);
+  seen_.hover_logged = estimator_.estimate();
+  if (config.params.auto_arm) {
+    note(Notice::Level::Warning,
+         "auto_arm is on: the bridge switches the autopilot to offboard and ARMS IT BY ITSELF "
+         "(simulation only, never on a vehicle with people near)");
+  }
+}
+
+double Bridge::advance(double now_s) {
+  if (std::isfinite(now_s) && now_s > now_s_) now_s_ = now_s;
+  return now_s_;
+}
+
+AutopilotView Bridge::view(double now_s) const {
+  AutopilotView v;
+  v.link_ok = session_.link_ok(now_s);
+  v.armed = session_.armed();
+  v.mode = session_.mode();
+  return v;
+}
+
+void Bridge::note(Notice::Level level, std::string text) {
+  notices_.push_back({level, std::move(text)});
+}
+
+// --- frames from the autopilot ---------------------------------------------------------
+
+void Bridge::on_frame(const mavlink::Frame& frame, double now_s) {
+  const double now = advance(now_s);
+  if (!session_.accept(frame, now)) return;
+  if (!seen_.known) learn_identity();
+  switch (frame.message_id) {
+    case mav::CommandAck::kId:
+      sender_.on_ack(mav::CommandAck::unpack(frame.payload.data()), encoder_.system_id(),
+                     encoder_.component_id(), now);
+      take_results(now);
+      break;
+    case mav::HighresImu::kId:
+    case mav::ScaledImu::kId:
+      on_imu(frame, now);
+      break;
+    default:
+      break;
+  }
+  note_session_changes(now);
+}
+
+void Bridge::learn_identity() {
+  seen_.known = true;
+  const std::uint8_t system_id = config_.params.system_id != 0
+                                     ? static_cast<std::uint8_t>(config_.params.system_id)
+                                     : session_.system_id();
+  encoder_ = mavlink::Encoder(system_id, static_cast<std::uint8_t>(config_.params.component_id),
+                              config_.signing_key);
+  note(Notice::Level::Info, "autopilot found: system " + std::to_string(session_.system_id()) +
+                                " component " + std::to_string(session_.component_id()) + ", " +
+                                autopilot_name(session_.reported_autopilot()) +
+                                "; the bridge speaks as system " + std::to_string(system_id) +
+                                " component " + std::to_string(config_.params.component_id));
+  if (session_.reported_autopilot() != profile_.mav_autopilot()) {
+    note(Notice::Level::Error,
+         std::string("--autopilot ") + to_string(profile_.kind()) + ", but the autopilot says " +
+             autopilot_name(session_.reported_autopilot()) + " (MAV_AUTOPILOT " +
+             std::to_string(session_.reported_autopilot()) +
+             "): its modes will be misread and the mode commands will be wrong");
+  }
+}
+
+void Bridge::note_session_changes(double now_s) {
+  const bool link_ok = session_.link_ok(now_s);
+  if (link_ok != seen_.link_ok) {
+    seen_.link_ok = link_ok;
+    if (link_ok) {
+      note(Notice::Level::Info, "autopilot link up (HEARTBEAT from system " +
+                                    std::to_string(session_.system_id()) + ")");
+    } else {
+      note(Notice::Level::Error,
+           format("autopilot link LOST: no HEARTBEAT for %.2f s (limit %.2f s)",
+                  now_s - session_.last_heartbeat_s(), config_.params.heartbeat_timeout_s));
+    }
+  }
+  if (!link_ok) return;
+  if (session_.armed() != seen_.armed) {
+    seen_.armed = session_.armed();
+    note(Notice::Level::Info, seen_.armed ? "autopilot ARMED" : "autopilot disarmed");
+  }
+  if (session_.mode_name() != seen_.mode_name) {
+    note(Notice::Level::Info, "autopilot mode " + session_.mode_name() + " (" +
+                                  to_string(session_.mode()) + ")" +
+                                  (seen_.mode_name.empty() ? "" : ", was " + seen_.mode_name));
+    seen_.mode_name = session_.mode_name();
+  }
+  if (session_.landed_state() != seen_.landed) {
+    seen_.landed = session_.landed_state();
+    note(Notice::Level::Info, std::string("autopilot landed state: ") + to_string(seen_.landed));
+  }
+  if (session_.status_text_count() != seen_.status_texts) {
+    seen_.status_texts = session_.status_text_count();
+    note(severity_level(session_.status_severity()), "autopilot says: " + session_.status_text());
+  }
+}
+
+void Bridge::on_imu(const mavlink::Frame& frame, double now_s) {
+  double specific_force_up = 0.0;
+  if (frame.message_id == mav::HighresImu::kId) {
+    highres_imu_seen_ = true;
+    specific_force_up = -mav::HighresImu::unpack(frame.payload.data()).zacc;  // FRD z is down
+  } else if (!highres_imu_seen_) {
+    specific_force_up = -mav::ScaledImu::unpack(frame.payload.data()).zacc * kMilliGToMS2;
+  } else {
+    return;
+  }
+  // Our thrust flies the UAV only in offboard, with our stream flowing, in the air.
+  const bool ours = view(now_s).cover_flying() && stream_.streaming_for_s(now_s) > 0.0 &&
+                    session_.landed_state() == LandedState::InAir &&
+                    last_thrust_ >= config_.params.estimator_min_thrust;
+  if (!ours || !estimator_.update(last_thrust_, specific_force_up, now_s)) return;
+  const double estimate = estimator_.estimate();
+  if (std::abs(estimate - seen_.hover_logged) > 0.01) {
+    note(Notice::Level::Info, format("hover thrust estimate %.3f (was %.3f, +-%.3f)", estimate,
+                                     seen_.hover_logged, estimator_.standard_deviation()));
+    seen_.hover_logged = estimate;
+  }
+}
+
+// --- the agent's commands --------------------------------------------------------------
+
+const std::vector<mavlink::EncodedFrame>& Bridge::on_agent_command(const AgentCommand& command,
+                                                                   double now_s) {
+  out_.clear();
+  const double now = advance(now_s);
+  if (!fresh(command, now)) return out_;
+  supervisor_.on_command(command.handover, now);
+  if (command.release_payload && !last_release_) {
+    CommandSpec gripper;
+    gripper.command = mav::mav_cmd::kDoGripper;
+    gripper.param[0] = 1.0F;  // gripper instance 1
+    gripper.param[1] = 0.0F;  // GRIPPER_ACTION_RELEASE
+    send_command(gripper, Origin::Gripper, "payload release", "", now, true);
+  }
+  last_release_ = command.release_payload;
+  send_setpoint(command, now);
+  if (command.handover) supervise(now);  // at once, not at the next tick
+  return out_;
+}
+
+bool Bridge::fresh(const AgentCommand& command, double now_s) {
+  const char* why = nullptr;
+  if (!is_flyable(command)) {
+    why = "not flyable (NaN or out of range)";
+  } else if (last_stamp_ns_ >= 0 && command.stamp_ns == last_stamp_ns_ &&
+             command.seq == last_seq_) {
+    why = "a repeat of the previous one (same stamp and seq)";
+  } else if (last_stamp_ns_ >= 0 && command.stamp_ns < last_stamp_ns_ &&
+             last_stamp_ns_ - command.stamp_ns < kTimeBaseJump_ns) {
+    why = "older than the previous one";
+  }
+  if (why != nullptr) {
+    if (!rejecting_) {
+      note(Notice::Level::Warning, "UAV agent command seq " + std::to_string(command.seq) +
+                                       " ignored: " + why +
+                                       "; such commands count as missing (logged once a run)");
+      rejecting_ = true;
+    }
+    return false;
+  }
+  if (rejecting_) {
+    note(Notice::Level::Info, "UAV agent commands usable again");
+    rejecting_ = false;
+  }
+  last_stamp_ns_ = command.stamp_ns;
+  last_seq_ = command.seq;
+  return true;
+}
+
+void Bridge::send_setpoint(const AgentCommand& command, double now_s) {
+  if (!session_.known()) return;  // no autopilot to target yet
+  const mav::SetAttitudeTarget target =
+      mapper_.map(command, estimator_.estimate(), session_.system_id(), session_.component_id());
+  last_thrust_ = target.thrust;
+  out_.push_back(encoder_.encode(target));
+  stream_.on_sent(now_s);
+}
+
+// --- commands to the autopilot ---------------------------------------------------------
+
+bool Bridge::send_command(const CommandSpec& spec, Origin origin, std::string what,
+                          const std::string& request_id, double now_s, bool preempt) {
+  if (!session_.known()) return false;
+  const std::uint64_t token = next_token_++;
+  const auto message =
+      sender_.start(spec, session_.system_id(), session_.component_id(), token, now_s, preempt);
+  take_results(now_s);  // a command it superseded
+  if (!message) return false;
+  note(origin == Origin::Failsafe ? Notice::Level::Error : Notice::Level::Info,
+       what + " requested (" + command_name(spec.command) + ")" +
+           (request_id.empty() ? "" : " for request '" + request_id + "'"));
+  in_flight_.push_back({token, origin, request_id, std::move(what)});
+  out_.push_back(encoder_.encode(*message));
+  return true;
+}
+
+void Bridge::take_results(double now_s) {
+  auto& results = sender_.results();
+  for (const CommandResult& result : results) {
+    for (std::size_t i = 0; i < in_flight_.size(); ++i) {
+      if (in_flight_[i].token != result.token) continue;
+      const InFlight flight = std::move(in_flight_[i]);
+      in_flight_.erase(in_flight_.begin() + static_cast<std::ptrdiff_t>(i));
+      finish(flight, result, now_s);
+      break;
+    }
+  }
+  results.clear();
+}
+
+void Bridge::finish(const InFlight& flight, const CommandResult& result, double now_s) {
+  const std::string text =
+      flight.what + ": " + to_string(result.outcome) + " (" + result.message + ")";
+  note(result.outcome == CommandOutcome::Accepted ? Notice::Level::Info : Notice::Level::Warning,
+       text);
+  switch (flight.origin) {
+    case Origin::Operator:
+      replies_.push_back({flight.request_id, result.outcome, text});
+      break;
+    case Origin::Failsafe:
+      supervisor_.on_land_result(result.outcome, now_s);
+      break;
+    case Origin::AutoOffboard:
+      sequencer_.on_result(OffboardSequencer::Step::RequestOffboard, result.outcome, now_s);
+      break;
+    case Origin::AutoArm:
+      sequencer_.on_result(OffboardSequencer::Step::RequestArm, result.outcome, now_s);
+      break;
+    case Origin::Gripper:
+      break;
+  }
+}
+
+const std::vector<mavlink::EncodedFrame>& Bridge::on_operator_request(OperatorCommand command,
+                                                                      const std::string& request_id,
+                                                                      double now_s) {
+  out_.clear();
+  const double now = advance(now_s);
+  note(Notice::Level::Info,
+       std::string("operator request '") + request_id + "': " + to_string(command));
+  if (!session_.known() || !session_.link_ok(now)) {
+    refuse(request_id, "no HEARTBEAT from the autopilot: the link is down");
+    return out_;
+  }
+  CommandSpec spec;
+  bool preempt = false;
+  switch (command) {
+    case OperatorCommand::Arm:
+      spec = profile_.arm_command(true);
+      break;
+    case OperatorCommand::Disarm:
+      spec = profile_.arm_command(false);
+      preempt = true;
+      break;
+    case OperatorCommand::Offboard:
+      if (const auto why = sequencer_.offboard_refusal(stream_.streaming_for_s(now))) {
+        refuse(request_id, *why);
+        return out_;
+      }
+      spec = profile_.offboard_command();
+      break;
+    case OperatorCommand::Land:
+      spec = profile_.land_command();
+      preempt = true;
+      break;
+  }
+  const std::string what = std::string(to_string(command)) +
+                           (command == OperatorCommand::Offboard
+                                ? std::string(" (") + profile_.offboard_mode_name() + ")"
+                                : std::string());
+  if (!send_command(spec, Origin::Operator, what, request_id, now, preempt)) {
+    refuse(request_id, std::string("a ") + command_name(spec.command) +
+                           " is still waiting for the autopilot's answer; try again");
+  }
+  return out_;
+}
+
+void Bridge::refuse(const std::string& request_id, std::string why) {
+  note(Notice::Level::Warning, "request '" + request_id + "' refused: " + why);
+  replies_.push_back({request_id, CommandOutcome::Refused, std::move(why)});
+}
+
+// --- housekeeping ----------------------------------------------------------------------
+
+const std::vector<mavlink::EncodedFrame>& Bridge::tick(double now_s) {
+  out_.clear();
+  const double now = advance(now_s);
+  note_session_changes(now);
+  resend_.clear();
+  sender_.poll(now, resend_);
+  for (const mav::CommandLong& message : resend_) out_.push_back(encoder_.encode(message));
+  take_results(now);
+  supervise(now);
+  sequence(now);
+  if (now >= next_heartbeat_s_) send_heartbeat(now);
+  return out_;
+}
+
+void Bridge::supervise(double now_s) {
+  const SafetySupervisor::Decision decision = supervisor_.check(view(now_s), now_s);
+  if (decision.triggered) {
+    note(Notice::Level::Error, "LAND commanded: " + supervisor_.reason());
+    if (sequencer_.automatic()) {
+      sequencer_.stop();
+      note(Notice::Level::Warning, "automatic offboard/arm procedure ended by the failsafe");
+    }
+  }
+  if (decision.reached) {
+    note(Notice::Level::Info, "the autopilot is in its land mode (or disarmed): failsafe done");
+  }
+  if (decision.request_land && !send_command(profile_.land_command(), Origin::Failsafe,
+                                             "land (failsafe)", "", now_s, true)) {
+    supervisor_.on_land_result(CommandOutcome::NoAnswer, now_s);
+  }
+}
+
+void Bridge::sequence(double now_s) {
+  const bool was_automatic = sequencer_.automatic();
+  const double streamed_s = stream_.streaming_for_s(now_s);
+  const OffboardSequencer::Step step = sequencer_.next(view(now_s), streamed_s, now_s);
+  if (was_automatic && !sequencer_.automatic()) {
+    note(Notice::Level::Warning,
+         "automatic offboard/arm procedure ended: the autopilot left offboard or disarmed (" +
+             session_.mode_name() + "); the bridge will not take it back");
+  }
+  bool sent = true;
+  if (step == OffboardSequencer::Step::RequestOffboard) {
+    sent = send_command(profile_.offboard_command(), Origin::AutoOffboard,
+                        std::string(profile_.offboard_mode_name()) +
+                            format(" (auto_arm; setpoints streamed %.2f s at %.0f Hz)", streamed_s,
+                                   stream_.rate_hz(now_s)),
+                        "", now_s, false);
+  } else if (step == OffboardSequencer::Step::RequestArm) {
+    sent = send_command(profile_.arm_command(true), Origin::AutoArm, "arm (auto_arm)", "", now_s,
+                        false);
+  }
+  if (!sent) sequencer_.on_result(step, CommandOutcome::Refused, now_s);
+}
+
+void Bridge::send_heartbeat(double now_s) {
+  mav::Heartbeat heartbeat;
+  heartbeat.type = mav::mav_type::kOnboardController;
+  heartbeat.autopilot = mav::mav_autopilot::kInvalid;
+  heartbeat.base_mode = 0;
+  heartbeat.custom_mode = 0;
+  heartbeat.system_status = mav::mav_state::kActive;
+  out_.push_back(encoder_.encode(heartbeat));
+  next_heartbeat_s_ = now_s + kCompanionHeartbeatPeriod_s;
+}
+
+FcStatus Bridge::state(double now_s) const {
+  const double now = std::isfinite(now_s) && now_s > now_s_ ? now_s : now_s_;
+  FcStatus s;
+  s.link_ok = session_.link_ok(now);
+  s.reported_autopilot = session_.reported_autopilot();
+  s.system_id = session_.system_id();
+  s.armed = session_.armed();
+  s.mode = session_.mode();
+  s.mode_name = session_.mode_name();
+  s.custom_mode = session_.custom_mode();
+  s.landed_state = session_.landed_state();
+  s.battery_voltage_v = session_.battery_voltage_v();
+  s.battery_remaining = session_.battery_remaining();
+  s.hover_thrust = estimator_.estimate();
+  s.setpoint_rate_hz = stream_.rate_hz(now);
+  s.rx_errors = parser_stats_.errors();
+  s.rx_dropped = parser_stats_.sequence_gaps;
+  s.status_text = session_.status_text();
+  s.offboard_ready = view(now).cover_flying();
+  s.failsafe = supervisor_.reason();
+  return s;
+}
+
+}  // namespace cover::fc_bridge

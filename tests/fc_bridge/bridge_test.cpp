@@ -1,0 +1,470 @@
+#include "cover/fc_bridge/bridge.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "fake_autopilot.hpp"
+
+namespace cover::fc_bridge {
+namespace {
+
+namespace mav = cover::mavlink;
+using test::commands;
+using test::decoded;
+using test::FakeAutopilot;
+
+constexpr std::uint8_t kSys = 7;  // not 1: the bridge must learn it
+constexpr double kStep_s = 0.01;  // the agent's 100 Hz
+
+// A bridge and a hand-written autopilot, stepped at 100 Hz: the agent's command every
+// step (while `agent_alive`), the bridge's tick every second step (50 Hz), the autopilot's
+// HEARTBEAT at 1 Hz and landed state at 5 Hz. With `obey`, the autopilot acks every
+// COMMAND_LONG as accepted and does what it asks.
+struct Rig {
+  explicit Rig(AutopilotKind kind = AutopilotKind::Px4, bool auto_arm = false)
+      : Rig(config(kind, auto_arm)) {}
+  explicit Rig(const BridgeConfig& config)
+      : kind(config.autopilot),
+        bridge(config),
+        autopilot(kSys, AutopilotProfile(config.autopilot).mav_autopilot()) {
+    custom_mode = kind == AutopilotKind::Px4
+                      ? mav::px4_mode::custom_mode(mav::px4_mode::kMainPosctl)
+                      : mav::copter_mode::kStabilize;
+  }
+  static BridgeConfig config(AutopilotKind kind, bool auto_arm) {
+    BridgeConfig c;
+    c.autopilot = kind;
+    c.params.auto_arm = auto_arm;
+    return c;
+  }
+  std::uint32_t offboard_mode() const {
+    return kind == AutopilotKind::Px4 ? mav::px4_mode::custom_mode(mav::px4_mode::kMainOffboard)
+                                      : mav::copter_mode::kGuidedNoGps;
+  }
+  std::uint32_t land_mode() const {
+    return kind == AutopilotKind::Px4
+               ? mav::px4_mode::custom_mode(mav::px4_mode::kMainAuto, mav::px4_mode::kAutoSubLand)
+               : mav::copter_mode::kLand;
+  }
+  std::uint32_t mode_of(const mav::CommandLong& c) const {
+    const auto main = static_cast<std::uint8_t>(c.param[1]);
+    const auto sub = static_cast<std::uint8_t>(c.param[2]);
+    return kind == AutopilotKind::Px4 ? mav::px4_mode::custom_mode(main, sub) : main;
+  }
+  void heartbeat() { bridge.on_frame(autopilot.heartbeat(armed, custom_mode), t); }
+  void flying() {  // armed in offboard, in the air
+    armed = true;
+    custom_mode = offboard_mode();
+    landed = mav::mav_landed_state::kInAir;
+    heartbeat();
+    bridge.on_frame(autopilot.landed(landed), t);
+  }
+  AgentCommand command() {
+    AgentCommand c;
+    c.stamp_ns = static_cast<std::int64_t>(std::llround(t * 1e9));
+    c.seq = ++seq;
+    c.thrust_m_s2 = 9.81;
+    c.armed = true;
+    c.handover = handover;
+    return c;
+  }
+  void take(const std::vector<mav::EncodedFrame>& frames) {
+    written.insert(written.end(), frames.begin(), frames.end());
+    if (obey) answer(frames);
+  }
+  void answer(const std::vector<mav::EncodedFrame>& frames) {
+    for (const auto& c : commands(frames)) {
+      if (c.command == mav::mav_cmd::kDoSetMode) custom_mode = mode_of(c);
+      if (c.command == mav::mav_cmd::kNavLand) custom_mode = land_mode();
+      if (c.command == mav::mav_cmd::kComponentArmDisarm) armed = c.param[0] > 0.5F;
+      bridge.on_frame(autopilot.ack(c.command, mav::mav_result::kAccepted, 7, 191), t);
+    }
+  }
+  void step() {
+    t += kStep_s;
+    ++steps;
+    if (steps % 100 == 0 && heartbeats) heartbeat();
+    if (steps % 20 == 0 && heartbeats) bridge.on_frame(autopilot.landed(landed), t);
+    if (agent_alive) take(bridge.on_agent_command(command(), t));
+    if (steps % 2 == 0) take(bridge.tick(t));
+  }
+  void run(double seconds) {
+    const int n = static_cast<int>(std::lround(seconds / kStep_s));
+    for (int i = 0; i < n; ++i) step();
+  }
+  std::vector<mav::CommandLong> sent_commands(std::uint16_t id) const {
+    std::vector<mav::CommandLong> out;
+    for (const auto& c : commands(written)) {
+      if (c.command == id) out.push_back(c);
+    }
+    return out;
+  }
+  bool noticed(const std::string& text) const {
+    for (const auto& n : bridge_notices) {
+      if (n.text.find(text) != std::string::npos) return true;
+    }
+    return false;
+  }
+  void collect_notices() {
+    auto& n = bridge.notices();
+    bridge_notices.insert(bridge_notices.end(), n.begin(), n.end());
+    n.clear();
+  }
+
+  AutopilotKind kind;
+  Bridge bridge;
+  FakeAutopilot autopilot;
+  double t = 100.0;
+  long steps = 0;
+  std::uint32_t seq = 0;
+  bool armed = false;
+  std::uint32_t custom_mode = 0;
+  std::uint8_t landed = mav::mav_landed_state::kOnGround;
+  bool agent_alive = true;
+  bool handover = false;
+  bool heartbeats = true;
+  bool obey = true;
+  std::vector<mav::EncodedFrame> written;
+  std::vector<Notice> bridge_notices;
+};
+
+TEST(Bridge, LearnsTheAutopilotsSystemIdAndTargetsIt) {
+  Rig rig;
+  FakeAutopilot ground_station(255, mav::mav_autopilot::kInvalid, 190);
+  FakeAutopilot gimbal(kSys, mav::mav_autopilot::kPx4, 154);
+  rig.bridge.on_frame(ground_station.heartbeat(false, 0), rig.t);
+  rig.bridge.on_frame(gimbal.heartbeat(false, 0), rig.t);
+  EXPECT_TRUE(rig.bridge.on_agent_command(rig.command(), rig.t).empty());  // no target yet
+  EXPECT_EQ(rig.bridge.state(rig.t).system_id, 0);
+  rig.heartbeat();
+  rig.t += 0.01;
+  const auto setpoints =
+      decoded<mav::SetAttitudeTarget>(rig.bridge.on_agent_command(rig.command(), rig.t));
+  ASSERT_EQ(setpoints.size(), 1U);
+  EXPECT_EQ(setpoints[0].target_system, kSys);
+  EXPECT_EQ(setpoints[0].target_component, 1);
+  EXPECT_EQ(setpoints[0].type_mask, 128);
+  const FcStatus s = rig.bridge.state(rig.t);
+  EXPECT_EQ(s.system_id, kSys);
+  EXPECT_TRUE(s.link_ok);
+  EXPECT_EQ(s.reported_autopilot, mav::mav_autopilot::kPx4);
+  rig.collect_notices();
+  EXPECT_TRUE(rig.noticed("autopilot found: system 7 component 1, PX4"));
+}
+
+TEST(Bridge, IgnoresOtherSystemsOnceItKnowsItsAutopilot) {
+  Rig rig;
+  rig.heartbeat();
+  FakeAutopilot other(kSys + 1, mav::mav_autopilot::kPx4);
+  rig.bridge.on_frame(other.heartbeat(true, rig.offboard_mode()), rig.t);
+  rig.bridge.on_frame(other.landed(mav::mav_landed_state::kInAir), rig.t);
+  const FcStatus s = rig.bridge.state(rig.t);
+  EXPECT_EQ(s.system_id, kSys);
+  EXPECT_FALSE(s.armed);
+  EXPECT_EQ(s.mode_name, "POSCTL");
+  EXPECT_EQ(s.landed_state, LandedState::Undefined);
+}
+
+TEST(Bridge, CompanionHeartbeatAt1HzAsOnboardControllerOnTheAutopilotsSystem) {
+  Rig rig;
+  rig.run(0.5);  // nothing heard yet: provisional id, so a udpout peer hears us first
+  rig.heartbeat();
+  rig.written.clear();
+  rig.run(3.0);
+  const auto beats = test::parse(rig.written);
+  int count = 0;
+  for (const auto& f : beats) {
+    const auto hb = mav::decode<mav::Heartbeat>(f);
+    if (!hb) continue;
+    ++count;
+    EXPECT_EQ(f.system_id, kSys);
+    EXPECT_EQ(f.component_id, 191);
+    EXPECT_EQ(hb->type, 18);
+    EXPECT_EQ(hb->autopilot, 8);
+  }
+  EXPECT_EQ(count, 3);
+}
+
+TEST(Bridge, HeartbeatLossAfterItsTimeoutEvenWhileOtherFramesArrive) {
+  Rig rig;
+  rig.flying();
+  rig.run(0.5);
+  rig.heartbeats = false;
+  const double last_heartbeat = 100.0;
+  while (rig.t < last_heartbeat + 1.49) {
+    rig.step();
+    rig.bridge.on_frame(rig.autopilot.imu(-9.81F), rig.t);
+    rig.bridge.on_frame(rig.autopilot.landed(mav::mav_landed_state::kInAir), rig.t);
+    ASSERT_TRUE(rig.bridge.state(rig.t).link_ok) << rig.t;
+  }
+  rig.run(0.03);
+  EXPECT_FALSE(rig.bridge.state(rig.t).link_ok);
+  EXPECT_FALSE(rig.bridge.state(rig.t).offboard_ready);
+  rig.collect_notices();
+  EXPECT_TRUE(rig.noticed("autopilot link LOST"));
+  rig.heartbeat();
+  EXPECT_TRUE(rig.bridge.state(rig.t).link_ok);
+}
+
+TEST(Bridge, AgentSilentForTheTimeoutLandsWithinOneTick) {
+  Rig rig;
+  rig.run(1.0);
+  rig.flying();
+  rig.run(0.5);
+  EXPECT_TRUE(rig.bridge.state(rig.t).offboard_ready);
+  EXPECT_TRUE(rig.sent_commands(mav::mav_cmd::kNavLand).empty());
+  rig.agent_alive = false;
+  const double last_command = rig.t;
+  double landed_at = -1.0;
+  while (rig.t < last_command + 0.5 && landed_at < 0.0) {
+    rig.step();
+    if (!rig.sent_commands(mav::mav_cmd::kNavLand).empty()) landed_at = rig.t;
+  }
+  ASSERT_GT(landed_at, 0.0);
+  EXPECT_GT(landed_at - last_command, 0.1);
+  EXPECT_LE(landed_at - last_command, 0.1 + 0.02 + 1e-9);  // one 50 Hz tick
+  rig.heartbeat();                                         // shows AUTO.LAND: the request ends
+  rig.run(3.0);
+  EXPECT_EQ(rig.sent_commands(mav::mav_cmd::kNavLand).size(), 1U);
+  const FcStatus s = rig.bridge.state(rig.t);
+  EXPECT_EQ(s.mode, FcMode::Land);
+  EXPECT_NE(s.failsafe.find("no command from the UAV agent for"), std::string::npos) << s.failsafe;
+  rig.collect_notices();
+  EXPECT_TRUE(rig.noticed("LAND commanded: no command from the UAV agent"));
+}
+
+TEST(Bridge, LandRequestedAgainUntilTheAutopilotIsInLandMode) {
+  Rig rig;
+  rig.flying();
+  rig.run(0.5);
+  rig.obey = false;  // the autopilot does not answer
+  rig.agent_alive = false;
+  rig.heartbeats = false;
+  for (int i = 0; i < 150; ++i) {
+    rig.step();
+    if (rig.steps % 50 == 0) rig.heartbeat();  // still armed in offboard
+  }
+  // 0.1 s silent, then 4 sends per request (0.25 s each) and a new request: > 1 request.
+  const auto lands = rig.sent_commands(mav::mav_cmd::kNavLand);
+  EXPECT_GE(lands.size(), 5U);
+  EXPECT_EQ(lands[0].confirmation, 0);
+  EXPECT_EQ(lands[1].confirmation, 1);
+}
+
+TEST(Bridge, HandoverCommandsLandAtOnce) {
+  Rig rig(AutopilotKind::ArduPilot);
+  rig.run(1.0);
+  rig.flying();
+  rig.run(0.3);
+  rig.handover = true;
+  rig.t += kStep_s;
+  const auto& frames = rig.bridge.on_agent_command(rig.command(), rig.t);
+  const auto sent = commands(frames);
+  ASSERT_EQ(sent.size(), 1U);
+  EXPECT_EQ(sent[0].command, mav::mav_cmd::kDoSetMode);
+  EXPECT_EQ(sent[0].param[1], 9.0F);  // ArduPilot LAND
+  EXPECT_EQ(sent[0].target_system, kSys);
+  EXPECT_EQ(decoded<mav::SetAttitudeTarget>(frames).size(), 1U);  // the setpoint still goes
+  EXPECT_NE(rig.bridge.state(rig.t).failsafe.find("handed over"), std::string::npos);
+}
+
+TEST(Bridge, NaNAndRepeatedCommandsCountAsMissing) {
+  Rig rig;
+  rig.heartbeat();
+  rig.t += kStep_s;
+  AgentCommand c = rig.command();
+  EXPECT_EQ(rig.bridge.on_agent_command(c, rig.t).size(), 1U);
+  EXPECT_TRUE(rig.bridge.on_agent_command(c, rig.t + 0.01).empty());  // verbatim repeat
+  AgentCommand bad = rig.command();
+  bad.stamp_ns += 20'000'000;
+  bad.pitch_rate_rad_s = std::nan("");
+  EXPECT_TRUE(rig.bridge.on_agent_command(bad, rig.t + 0.02).empty());
+  AgentCommand older = rig.command();
+  older.stamp_ns -= 5'000'000;
+  EXPECT_TRUE(rig.bridge.on_agent_command(older, rig.t + 0.03).empty());
+  rig.collect_notices();
+  EXPECT_TRUE(rig.noticed("a repeat of the previous one"));
+  // Only the first bad one of a run is logged; the NaN came in the same run.
+  EXPECT_FALSE(rig.noticed("not flyable"));
+}
+
+TEST(Bridge, NeverArmsWithoutAnOperatorOrAutoArm) {
+  Rig rig;  // auto_arm false
+  rig.run(1.0);
+  rig.heartbeat();
+  rig.run(10.0);
+  EXPECT_TRUE(rig.sent_commands(mav::mav_cmd::kComponentArmDisarm).empty());
+  EXPECT_TRUE(rig.sent_commands(mav::mav_cmd::kDoSetMode).empty());
+  EXPECT_FALSE(rig.armed);
+  rig.take(rig.bridge.on_operator_request(OperatorCommand::Arm, "req-1", rig.t));
+  const auto arms = rig.sent_commands(mav::mav_cmd::kComponentArmDisarm);
+  ASSERT_EQ(arms.size(), 1U);
+  EXPECT_EQ(arms[0].param[0], 1.0F);
+  EXPECT_EQ(arms[0].param[1], 0.0F);
+  ASSERT_EQ(rig.bridge.replies().size(), 1U);
+  EXPECT_EQ(rig.bridge.replies()[0].request_id, "req-1");
+  EXPECT_EQ(rig.bridge.replies()[0].outcome, CommandOutcome::Accepted);
+}
+
+TEST(Bridge, AutoArmStreamsThenOffboardThenArms) {
+  for (const AutopilotKind kind : {AutopilotKind::Px4, AutopilotKind::ArduPilot}) {
+    Rig rig(kind, true);
+    rig.heartbeat();
+    double offboard_at = -1.0;
+    double arm_at = -1.0;
+    const double start = rig.t;
+    for (int i = 0; i < 500; ++i) {
+      rig.step();
+      if (offboard_at < 0.0 && !rig.sent_commands(mav::mav_cmd::kDoSetMode).empty())
+        offboard_at = rig.t;
+      if (arm_at < 0.0 && !rig.sent_commands(mav::mav_cmd::kComponentArmDisarm).empty())
+        arm_at = rig.t;
+    }
+    ASSERT_GT(offboard_at, 0.0) << to_string(kind);
+    ASSERT_GT(arm_at, 0.0) << to_string(kind);
+    EXPECT_GE(offboard_at - start, 1.0);  // after a second of setpoints
+    EXPECT_LE(offboard_at - start, 1.1);
+    EXPECT_GT(arm_at, offboard_at);
+    EXPECT_EQ(rig.sent_commands(mav::mav_cmd::kDoSetMode)[0].param[1],
+              kind == AutopilotKind::Px4 ? 6.0F : 20.0F);
+    EXPECT_EQ(rig.sent_commands(mav::mav_cmd::kComponentArmDisarm).size(), 1U);
+    EXPECT_TRUE(rig.bridge.state(rig.t).offboard_ready) << to_string(kind);
+  }
+}
+
+TEST(Bridge, AutoArmGivesUpWhenThePilotTakesOver) {
+  Rig rig(AutopilotKind::Px4, true);
+  rig.heartbeat();
+  rig.run(4.0);
+  ASSERT_TRUE(rig.bridge.state(rig.t).offboard_ready);
+  rig.custom_mode = mav::px4_mode::custom_mode(mav::px4_mode::kMainPosctl);  // RC switch
+  rig.run(5.0);
+  EXPECT_EQ(rig.sent_commands(mav::mav_cmd::kDoSetMode).size(), 1U);
+  EXPECT_TRUE(rig.sent_commands(mav::mav_cmd::kNavLand).empty());  // the pilot flies
+}
+
+TEST(Bridge, OperatorOffboardBeforeTheStreamIsRefusedWithTheReason) {
+  Rig rig;
+  rig.agent_alive = false;
+  rig.heartbeat();
+  rig.run(0.1);
+  rig.take(rig.bridge.on_operator_request(OperatorCommand::Offboard, "r1", rig.t));
+  EXPECT_TRUE(rig.sent_commands(mav::mav_cmd::kDoSetMode).empty());
+  ASSERT_EQ(rig.bridge.replies().size(), 1U);
+  EXPECT_EQ(rig.bridge.replies()[0].outcome, CommandOutcome::Refused);
+  EXPECT_NE(rig.bridge.replies()[0].message.find("setpoints have streamed for 0.00 s"),
+            std::string::npos)
+      << rig.bridge.replies()[0].message;
+  rig.bridge.replies().clear();
+  rig.agent_alive = true;
+  rig.run(1.05);
+  rig.take(rig.bridge.on_operator_request(OperatorCommand::Offboard, "r2", rig.t));
+  EXPECT_EQ(rig.sent_commands(mav::mav_cmd::kDoSetMode).size(), 1U);
+  ASSERT_EQ(rig.bridge.replies().size(), 1U);
+  EXPECT_EQ(rig.bridge.replies()[0].outcome, CommandOutcome::Accepted);
+}
+
+TEST(Bridge, OperatorRequestWithoutAutopilotIsRefusedAtOnce) {
+  Rig rig;
+  rig.bridge.on_operator_request(OperatorCommand::Land, "r", rig.t);
+  ASSERT_EQ(rig.bridge.replies().size(), 1U);
+  EXPECT_EQ(rig.bridge.replies()[0].outcome, CommandOutcome::Refused);
+  EXPECT_NE(rig.bridge.replies()[0].message.find("link is down"), std::string::npos);
+}
+
+TEST(Bridge, UnansweredOperatorCommandIsRetriedThenNoAnswer) {
+  Rig rig;
+  rig.heartbeat();
+  rig.obey = false;
+  rig.take(rig.bridge.on_operator_request(OperatorCommand::Disarm, "r", rig.t));
+  rig.run(1.1);
+  const auto sent = rig.sent_commands(mav::mav_cmd::kComponentArmDisarm);
+  ASSERT_EQ(sent.size(), 4U);
+  for (std::size_t i = 0; i < sent.size(); ++i) EXPECT_EQ(sent[i].confirmation, i);
+  ASSERT_EQ(rig.bridge.replies().size(), 1U);
+  EXPECT_EQ(rig.bridge.replies()[0].outcome, CommandOutcome::NoAnswer);
+}
+
+TEST(Bridge, PayloadReleaseOnTheRisingEdgeOnly) {
+  Rig rig;
+  rig.heartbeat();
+  for (int i = 0; i < 10; ++i) {
+    rig.t += kStep_s;
+    AgentCommand c = rig.command();
+    c.release_payload = i >= 3;
+    rig.take(rig.bridge.on_agent_command(c, rig.t));
+  }
+  const auto grips = rig.sent_commands(mav::mav_cmd::kDoGripper);
+  ASSERT_EQ(grips.size(), 1U);
+  EXPECT_EQ(grips[0].param[0], 1.0F);
+  EXPECT_EQ(grips[0].param[1], 0.0F);  // release
+}
+
+// The closed loop of a hover: the autopilot's IMU measures g u / u_true for the thrust u
+// the bridge sends, the agent's command makes up for the error as a height loop would.
+double hover_estimate_after(double hover_setting, double seconds) {
+  const double truth = 9.81 / 20.0;
+  BridgeConfig config = Rig::config(AutopilotKind::Px4, false);
+  config.params.hover_thrust = hover_setting;
+  Rig tuned(config);
+  tuned.flying();
+  double thrust = 0.0;
+  double climb = 0.0;
+  for (int i = 0; i < static_cast<int>(seconds / kStep_s); ++i) {
+    tuned.t += kStep_s;
+    ++tuned.steps;
+    AgentCommand c = tuned.command();
+    c.thrust_m_s2 = 9.81 - 2.0 * climb;  // the agent's vertical speed loop
+    for (const auto& sp :
+         decoded<mav::SetAttitudeTarget>(tuned.bridge.on_agent_command(c, tuned.t))) {
+      thrust = sp.thrust;
+    }
+    const double force = 9.81 * thrust / truth;
+    climb += (force - 9.81) * kStep_s;
+    if (tuned.steps % 2 == 0) {
+      tuned.bridge.on_frame(tuned.autopilot.imu(static_cast<float>(-force)), tuned.t);
+      tuned.bridge.tick(tuned.t);
+    }
+    if (tuned.steps % 100 == 0) tuned.heartbeat();
+    if (tuned.steps % 20 == 0) tuned.bridge.on_frame(tuned.autopilot.landed(tuned.landed), tuned.t);
+  }
+  tuned.collect_notices();
+  EXPECT_TRUE(tuned.noticed("hover thrust estimate"));
+  return tuned.bridge.state(tuned.t).hover_thrust;
+}
+
+TEST(Bridge, HoverThrustMisSetByTwentyPercentConvergesInFlight) {
+  const double truth = 9.81 / 20.0;
+  EXPECT_NEAR(hover_estimate_after(1.2 * truth, 3.0), truth, 0.03 * truth);
+  EXPECT_NEAR(hover_estimate_after(0.8 * truth, 3.0), truth, 0.03 * truth);
+}
+
+TEST(Bridge, HoverThrustRestsOnTheGround) {
+  Rig rig;
+  rig.heartbeat();
+  for (int i = 0; i < 200; ++i) {
+    rig.step();
+    rig.bridge.on_frame(rig.autopilot.imu(-5.0F), rig.t);  // would pull the estimate up
+  }
+  EXPECT_DOUBLE_EQ(rig.bridge.state(rig.t).hover_thrust, 9.81 / 20.0);
+}
+
+TEST(Bridge, NoCommandNoFrameAndNeverNaNOnTheWire) {
+  Rig rig;
+  rig.heartbeat();
+  rig.t += kStep_s;
+  AgentCommand c = rig.command();
+  c.thrust_m_s2 = 1e300;
+  EXPECT_TRUE(rig.bridge.on_agent_command(c, rig.t).empty());
+  c.seq += 1;
+  c.thrust_m_s2 = 500.0;
+  const auto sp = decoded<mav::SetAttitudeTarget>(rig.bridge.on_agent_command(c, rig.t));
+  ASSERT_EQ(sp.size(), 1U);
+  EXPECT_EQ(sp[0].thrust, 1.0F);
+}
+
+}  // namespace
+}  // namespace cover::fc_bridge
