@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
                   "Seconds to wait for a subscriber before publishing")
       ->capture_default_str();
   pub_dds.add_to(*pub);
+  pub->footer(cover::cli::pub_help_footer());
 
   // Task commands (the task manager's ground-station side).
   cover::cli::TaskCommandOptions task_options;

@@ -30,7 +30,13 @@ struct PubRequest {
   int count = 1;
   double wait_for_reader_s = 5.0;
 };
-// `cover pub`: publishes a JSON sample (missing fields zero, unknown fields an error).
+// `cover pub`: publishes a JSON sample (missing fields zero, unknown fields an error), with
+// ros2's stamping conventions: any field whose name ends with "stamp_ns" given as "now" is
+// each sample's send time (host system clock, ns), "seq": "auto" counts up from 0 per
+// sample ("auto:N": from N). Without them every sample is the same.
 int publish(const dds::ParticipantOptions& options, const PubRequest& request);
+
+// The `cover pub --help` footer: the stamping conventions, with an example.
+const char* pub_help_footer();
 
 }  // namespace cover::cli
