@@ -337,8 +337,6 @@ const std::vector<mavlink::EncodedFrame>& Bridge::on_operator_request(OperatorCo
                                                                       double now_s) {
   out_.clear();
   const double now = advance(now_s);
-  note(Notice::Level::Info,
-       std::string("operator request '") + request_id + "': " + to_string(command));
   if (!session_.known() || !session_.link_ok(now)) {
     refuse(request_id, "no HEARTBEAT from the autopilot: the link is down");
     return out_;

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+
+#include "cover/dds/participant.hpp"
+#include "cover/sim_clock/agent_clock.hpp"
+
+namespace cover::fc_bridge {
+
+// The bridge's time, on the clock the agent stamps its commands with:
+//  lockstep: the simulator's newest tick, not extrapolated (while the simulator waits for a
+//            slow agent its time stands still, and so do the bridge's timeouts);
+//  realtime: the simulator's time, extrapolated between its ticks;
+//  system:   the host's clock (the field).
+class BridgeClock {
+ public:
+  BridgeClock(dds::Participant& participant, sim_clock::ClockMode mode);
+
+  // Waits up to `timeout` (lockstep: for ticks, taking every one that arrived) or for a
+  // shutdown request.
+  void wait(std::chrono::milliseconds timeout);
+  // nullopt before the simulator's first tick (lockstep, realtime). Thread-safe.
+  std::optional<double> now_s() const;
+
+ private:
+  sim_clock::ClockMode mode_;
+  sim_clock::AgentClock clock_;
+  std::atomic<std::int64_t> tick_ns_{-1};
+};
+
+}  // namespace cover::fc_bridge

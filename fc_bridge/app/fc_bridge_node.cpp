@@ -1,0 +1,183 @@
+#include "fc_bridge_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "cover/clock/clock.hpp"
+#include "cover/process/shutdown_signal.hpp"
+#include "fc_messages.hpp"
+
+namespace cover::fc_bridge {
+namespace {
+constexpr std::chrono::milliseconds kHousekeepingPeriod{20};  // 50 Hz
+constexpr std::size_t kRecentRequests = 64;
+double monotonic_s() {
+  return clock::ns_to_s(clock::monotonic_ns());
+}
+}  // namespace
+
+FcBridgeNode::FcBridgeNode(dds::Participant& participant, NodeOptions options,
+                           std::unique_ptr<mavlink::Link> link)
+    : options_(std::move(options)),
+      clock_(participant, options_.clock),
+      bridge_(options_.bridge),
+      state_writer_(participant.make_writer(dds::topics::fc_state(options_.uav_id))),
+      reply_writer_(participant.make_writer(dds::topics::fc_reply())),
+      link_(std::move(link), options_.parser),
+      command_reader_(
+          participant.make_reader(dds::topics::uav_command(options_.uav_id),
+                                  [this](const msg::UavCommand& command) { on_command(command); })),
+      request_reader_(participant.make_reader(
+          dds::topics::fc_request(),
+          [this](const msg::FcRequest& request) { on_request(request); })) {}
+
+FcBridgeNode::~FcBridgeNode() {
+  // The readers' callbacks and the link's thread go before the members they use.
+  command_reader_ = {};
+  request_reader_ = {};
+  link_.stop();
+}
+
+bool FcBridgeNode::start() {
+  return link_.start([this](const mavlink::Frame& frame, const mavlink::ParserStats& stats) {
+    on_frame(frame, stats);
+  });
+}
+
+void FcBridgeNode::run() {
+  while (!process::ShutdownSignal::requested()) {
+    clock_.wait(kHousekeepingPeriod);
+    if (const auto now = clock_.now_s()) housekeeping(*now);
+  }
+  spdlog::info("stopping: {} frame(s) could not be written to the link", write_failures_);
+}
+
+// --- the three inputs ------------------------------------------------------------------
+
+void FcBridgeNode::on_command(const msg::UavCommand& command) {
+  const auto now = clock_.now_s();
+  if (!now) return;  // no simulator time yet
+  const AgentCommand c = from_msg(command);
+  Events events;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    write_locked(bridge_.on_agent_command(c, *now));
+    take_events_locked(events);
+  }
+  if (!events.empty()) report(events);
+}
+
+void FcBridgeNode::on_request(const msg::FcRequest& request) {
+  if (request.uav_id != options_.uav_id || seen_before(request.request_id)) return;
+  const auto kind = from_msg(request.kind);
+  spdlog::info("operator request '{}' from {}: {}", request.request_id, request.submitter,
+               kind ? to_string(*kind) : "unknown");
+  const auto now = clock_.now_s();
+  if (!kind || !now) {
+    reply(request.request_id, msg::FcCommandResult::FC_RESULT_REFUSED,
+          !kind ? "unknown command kind" : "the bridge has no time yet (no simulator clock)");
+    return;
+  }
+  Events events;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    write_locked(bridge_.on_operator_request(*kind, request.request_id, *now));
+    take_events_locked(events);
+  }
+  report(events);
+}
+
+void FcBridgeNode::on_frame(const mavlink::Frame& frame, const mavlink::ParserStats& stats) {
+  const auto now = clock_.now_s();
+  if (!now) return;
+  Events events;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    bridge_.set_parser_stats(stats);
+    bridge_.on_frame(frame, *now);
+    take_events_locked(events);
+  }
+  if (!events.empty()) report(events);
+}
+
+void FcBridgeNode::housekeeping(double now_s) {
+  Events events;
+  FcStatus status;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    write_locked(bridge_.tick(now_s));
+    status = bridge_.state(now_s);
+    take_events_locked(events);
+  }
+  if (!events.empty()) report(events);
+  publish_state(status, now_s);
+}
+
+// --- outputs ---------------------------------------------------------------------------
+
+void FcBridgeNode::write_locked(const std::vector<mavlink::EncodedFrame>& frames) {
+  // A frame the link cannot take is counted, not logged: the link's loss and return are
+  // logged by its keeper, and a udpin link without a peer yet is not news.
+  for (const mavlink::EncodedFrame& frame : frames) {
+    if (!link_.write(frame.bytes.data(), frame.size)) ++write_failures_;
+  }
+}
+
+void FcBridgeNode::take_events_locked(Events& events) {
+  if (!bridge_.notices().empty()) events.notices.swap(bridge_.notices());
+  if (!bridge_.replies().empty()) events.replies.swap(bridge_.replies());
+}
+
+void FcBridgeNode::report(Events& events) {
+  for (const Notice& notice : events.notices) {
+    switch (notice.level) {
+      case Notice::Level::Info:
+        spdlog::info("{}", notice.text);
+        break;
+      case Notice::Level::Warning:
+        spdlog::warn("{}", notice.text);
+        break;
+      case Notice::Level::Error:
+        spdlog::error("{}", notice.text);
+        break;
+    }
+  }
+  for (const OperatorReply& r : events.replies) reply(r.request_id, to_msg(r.outcome), r.message);
+}
+
+void FcBridgeNode::reply(const std::string& request_id, msg::FcCommandResult result,
+                         const std::string& message) {
+  msg::FcReply r;
+  r.request_id = request_id;
+  r.uav_id = options_.uav_id;
+  r.stamp_ns = clock::system_ns();
+  r.result = result;
+  r.message = message;
+  reply_writer_.write(r);
+  spdlog::info("reply to '{}': {}", request_id, message);
+}
+
+bool FcBridgeNode::seen_before(const std::string& request_id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (std::find(recent_requests_.begin(), recent_requests_.end(), request_id) !=
+      recent_requests_.end()) {
+    return true;
+  }
+  recent_requests_.push_back(request_id);
+  if (recent_requests_.size() > kRecentRequests) recent_requests_.pop_front();
+  return false;
+}
+
+void FcBridgeNode::publish_state(const FcStatus& status, double now_s) {
+  msg::FcState state = to_msg(status, options_.uav_id, clock::s_to_ns(now_s));
+  // Paced on the host's clock: readers judge a silent bridge by wall time.
+  const double wall_s = monotonic_s();
+  const bool due = wall_s >= next_state_monotonic_s_;
+  if (!due && last_state_ && !differs(state, *last_state_)) return;
+  state_writer_.write(state);
+  last_state_ = std::move(state);
+  next_state_monotonic_s_ = wall_s + 1.0 / options_.bridge.params.state_rate_hz;
+}
+
+}  // namespace cover::fc_bridge
