@@ -7,19 +7,22 @@
 namespace cover::sim {
 
 Fleet::Fleet(const Scenario& scenario, const SimProcessParams& params,
-             const mission::MissionParams& mission)
+             const mission::MissionParams& mission, const FleetAutopilots& autopilots)
     : scenario_(scenario),
       physics_per_control_(
-          static_cast<int>(std::lround(scenario.world.physics_rate_hz / params.control_rate_hz))) {
+          static_cast<int>(std::lround(scenario.world.physics_rate_hz / params.control_rate_hz))),
+      autopilots_(autopilots) {
   options_.control_rate_hz = params.control_rate_hz;
   for (int u = 0; u < scenario.uav_count(); ++u) {
-    Uav uav{std::make_unique<World>(scenario.world_of(u)),
-            nullptr,
-            OffboardFailsafe(params.offboard_timeout_s, params.loss_descent_rate_m_s),
-            {},
-            {}};
+    Uav uav{std::make_unique<World>(scenario.world_of(u)), nullptr,
+            OffboardFailsafe(params.offboard_timeout_s, params.loss_descent_rate_m_s)};
     uav.recorder =
         std::make_unique<RunRecorder>(scenario_, scenario_.task_of(u), mission, options_);
+    if (autopilots_.profile) {
+      uav.autopilot = std::make_unique<fc::SimulatedAutopilot>(
+          *autopilots_.profile, static_cast<std::uint8_t>(autopilots_.params.system_id_base + u),
+          autopilots_.params);
+    }
     uavs_.push_back(std::move(uav));
   }
   shared_.ugv_count = uavs_[0].world->ugv_count();
@@ -39,6 +42,24 @@ void Fleet::apply(int u, const mission::ControllerStatus& status,
   }
   uav.recorder->record(status, command, world);
   uav.last_status = status;
+}
+
+std::vector<mavlink::EncodedFrame> Fleet::apply_autopilot(int u,
+                                                          const mission::ControllerStatus& status) {
+  Uav& uav = uavs_[u];
+  World& world = *uav.world;
+  fc::AutopilotStep step = uav.autopilot->step(world.state().time_s, world);
+  uav.plant_command = step.plant_command;
+  if (step.release_payload && world.release_payload()) uav.recorder->record_release(world);
+  // What the plant got, in the controller's terms (the agent's own command went to the bridge).
+  mission::ControlCommand flown;
+  flown.thrust_m_s2 = step.plant_command.thrust_m_s2;
+  flown.body_rate_rad_s = step.plant_command.body_rate_rad_s.eigen();
+  flown.armed = uav.autopilot->armed();
+  uav.recorder->record(status, flown, world);
+  uav.last_status = status;
+  uav.autopilot_view = offboard_view(*uav.autopilot);
+  return std::move(step.frames);
 }
 
 void Fleet::advance() {
@@ -75,8 +96,21 @@ void Fleet::fill_shared() {
     s.contact = w.uav_contact;
     s.payload = w.payload;
     s.command = w.last_command;
-    s.offboard = uavs_[u].failsafe.state();
+    s.offboard = uavs_[u].autopilot ? uavs_[u].autopilot_view : uavs_[u].failsafe.state();
   }
+}
+
+// The segment's OffboardState of a UAV flown by a simulated autopilot: flying the
+// companion's setpoints, descending in land mode, disarmed after it (or before the first
+// arming).
+OffboardState Fleet::offboard_view(const fc::SimulatedAutopilot& autopilot) {
+  const bool landing = autopilot.mode() == fc::FlightMode::Land;
+  if (autopilot.armed()) {
+    if (landing) return OffboardState::LossDescent;
+    return autopilot.mode() == fc::FlightMode::Offboard ? OffboardState::Offboard
+                                                        : OffboardState::WaitingForAgent;
+  }
+  return landing ? OffboardState::LossDisarmed : OffboardState::WaitingForAgent;
 }
 
 bool Fleet::finished() const {

@@ -1,9 +1,11 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "cover/mission/mission_controller.hpp"
+#include "cover/sim/fc/simulated_autopilot.hpp"
 #include "cover/sim/run_recorder.hpp"
 #include "cover/sim/scenario.hpp"
 #include "cover/sim/world.hpp"
@@ -13,6 +15,14 @@
 
 namespace cover::sim {
 
+// Which flight controller sits between a UAV agent and its plant: the direct path (the
+// agent's cover/uav/<u>/cmd through OffboardFailsafe), or a simulated PX4 / ArduPilot
+// autopilot that a flight-controller bridge talks MAVLink to.
+struct FleetAutopilots {
+  std::optional<fc::AutopilotProfile> profile;  // nullopt: direct
+  fc::SimFcParams params;
+};
+
 // The simulated fleet: one World per UAV over the same UGVs (UAVs do not interact
 // physically, so each keeps its own plant, sensors and payload; UAV 0's world is exactly
 // the in-process harness's), each with its flight controller and its run recorder. UGV
@@ -20,7 +30,7 @@ namespace cover::sim {
 class Fleet {
  public:
   Fleet(const Scenario& scenario, const SimProcessParams& params,
-        const mission::MissionParams& mission);
+        const mission::MissionParams& mission, const FleetAutopilots& autopilots = {});
 
   int uav_count() const { return static_cast<int>(uavs_.size()); }
   const World& world(int uav) const { return *uavs_[uav].world; }
@@ -32,6 +42,15 @@ class Fleet {
   // `command_age_s` < 0 when it has never commanded.
   void apply(int uav, const mission::ControllerStatus& status,
              const mission::ControlCommand& command, double command_age_s);
+  // With simulated autopilots: one control period of UAV `uav`'s autopilot (the plant
+  // gets what it commands; the recorder records that, beside the agent's trace). Returns
+  // the frames it sends now.
+  std::vector<mavlink::EncodedFrame> apply_autopilot(int uav,
+                                                     const mission::ControllerStatus& status);
+  bool has_autopilots() const { return autopilots_.profile.has_value(); }
+  // UAV `uav`'s simulated autopilot; only when has_autopilots().
+  fc::SimulatedAutopilot& autopilot(int uav) { return *uavs_[uav].autopilot; }
+  const fc::SimulatedAutopilot& autopilot(int uav) const { return *uavs_[uav].autopilot; }
   // Advances every world one control period (each holding its applied command).
   void advance();
   bool finished() const;
@@ -53,15 +72,21 @@ class Fleet {
     std::unique_ptr<World> world;
     std::unique_ptr<RunRecorder> recorder;
     OffboardFailsafe failsafe;
+    std::unique_ptr<fc::SimulatedAutopilot> autopilot;  // with FleetAutopilots::profile
+    // The autopilot's state as the segment shows it, taken at its last step (the autopilot
+    // itself changes on its link's thread; advance() must not read it).
+    OffboardState autopilot_view = OffboardState::WaitingForAgent;
     QuadrotorCommand plant_command;
     mission::ControllerStatus last_status;
   };
   void capture_imu();
   void fill_shared();
+  static OffboardState offboard_view(const fc::SimulatedAutopilot& autopilot);
 
   const Scenario& scenario_;
   int physics_per_control_;
   ClosedLoopOptions options_;
+  FleetAutopilots autopilots_;
   std::vector<Uav> uavs_;
   SharedWorld shared_;
   std::uint64_t tick_ = 0;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 #include "cover/config/config_error.hpp"
@@ -28,7 +29,7 @@ namespace {
 
 constexpr const char* kExitCodes =
     "Exit codes: 0 every task succeeded; 1 a task failed (the result says which);\n"
-    "2 usage or configuration error; 3 DDS or shared memory could not start;\n"
+    "2 usage or configuration error; 3 DDS, shared memory or a MAVLink port could not start;\n"
     "4 lockstep stalled or a UAV agent never connected (the log names it); 130 interrupted.";
 
 struct CommandLine {
@@ -42,6 +43,16 @@ struct CommandLine {
   bool standing = false;
   std::vector<double> relative_gap;  // start_s, duration_s
   std::string params_file = cover::config::default_config_dir() + "/sim/sim_process.yaml";
+  // Flight controllers and UGV IMUs over MAVLink.
+  std::string fc = "direct";
+  std::string fc_params_file = cover::config::default_config_dir() + "/sim/sim_fc.yaml";
+  int fc_bind_port_base = 14580;
+  int fc_peer_port_base = 14540;
+  std::string fc_mode_switch;  // T_S:MODE
+  double fc_heartbeat_stop_s = -1.0;
+  std::string ugv_imu = "shm";
+  int ugv_imu_bind_port_base = 14680;
+  int ugv_imu_peer_port_base = 14640;
   cover::dds::DdsCliOptions dds;
 };
 
@@ -51,6 +62,36 @@ std::string scenario_file(const std::string& name_or_path) {
     return name_or_path;
   }
   return cover::sim::scenario_path(name_or_path);
+}
+
+// UAV u's autopilot at the end of the run: its mode, arming, failsafes and link counts.
+nlohmann::json autopilot_json(const cover::sim::Fleet& fleet, const cover::sim::SimNode& node,
+                              int u) {
+  namespace fc = cover::sim::fc;
+  const fc::SimulatedAutopilot& autopilot = fleet.autopilot(u);
+  nlohmann::json failsafes = nlohmann::json::array();
+  nlohmann::json events = nlohmann::json::array();
+  for (const fc::AutopilotEvent& e : autopilot.events()) {
+    const nlohmann::json one = {
+        {"t_s", e.time_s}, {"kind", fc::to_string(e.kind)}, {"text", e.text}};
+    if (e.kind == fc::AutopilotEvent::Kind::Failsafe) failsafes.push_back(one);
+    events.push_back(one);
+  }
+  nlohmann::json out = {{"autopilot", fc::to_string(autopilot.profile())},
+                        {"system_id", autopilot.system_id()},
+                        {"mode", autopilot.mode_name()},
+                        {"armed", autopilot.armed()},
+                        {"setpoints_accepted", autopilot.setpoints_accepted()},
+                        {"setpoints_ignored", autopilot.setpoints_ignored()},
+                        {"failsafe_events", failsafes},
+                        {"events", events}};
+  if (const auto* links = node.autopilot_links()) {
+    const cover::mavlink::ParserStats& rx = links->stats(u);
+    out["link"] = {{"url", links->describe(u)},         {"frames_received", rx.frames},
+                   {"rx_errors", rx.errors()},          {"unknown_ids", rx.unknown_ids},
+                   {"sequence_gaps", rx.sequence_gaps}, {"send_failures", links->send_failures(u)}};
+  }
+  return out;
 }
 
 nlohmann::json result_json(cover::sim::Fleet& fleet, const cover::sim::SimNode& node,
@@ -68,6 +109,7 @@ nlohmann::json result_json(cover::sim::Fleet& fleet, const cover::sim::SimNode& 
     nlohmann::json one = cover::sim::summary_json(r);
     one["uav"] = u;
     one["task_id"] = fleet.scenario().task_of(u).task_id;
+    if (fleet.has_autopilots()) one["fc"] = autopilot_json(fleet, node, u);
     uavs.push_back(one);
     all_succeeded = all_succeeded && r.success;
   }
@@ -111,6 +153,96 @@ int finish(cover::sim::Fleet& fleet, const cover::sim::SimNode& node, const Comm
   return out["success"].get<bool>() ? 0 : 1;
 }
 
+void add_mavlink_options(CLI::App& app, CommandLine& cli) {
+  app.add_option("--fc", cli.fc,
+                 "the UAVs' flight controller: direct (the agent's cover/uav/<u>/cmd flies the "
+                 "plant), px4 or ardupilot (a simulated autopilot per UAV speaking MAVLink over "
+                 "UDP; a cover-fc-bridge turns the agent's commands into its setpoints)")
+      ->check(CLI::IsMember({"direct", "px4", "ardupilot"}))
+      ->capture_default_str();
+  app.add_option("--fc-params", cli.fc_params_file, "simulated autopilots' settings")
+      ->capture_default_str();
+  app.add_option("--fc-bind-port-base", cli.fc_bind_port_base,
+                 "UAV u's autopilot binds UDP 127.0.0.1:(this + u), as PX4 SITL")
+      ->check(CLI::Range(1, 65535))
+      ->capture_default_str();
+  app.add_option("--fc-peer-port-base", cli.fc_peer_port_base,
+                 "UAV u's autopilot sends to 127.0.0.1:(this + u), where its bridge listens")
+      ->check(CLI::Range(1, 65535))
+      ->capture_default_str();
+  app.add_option("--fc-mode-switch", cli.fc_mode_switch,
+                 "T_S:MODE: at simulated time T_S the safety pilot switches UAV 0's autopilot to "
+                 "MODE (POSCTL, LOITER, MANUAL, STABILIZE, LAND, ...), e.g. 25:POSCTL");
+  app.add_option("--fc-heartbeat-stop", cli.fc_heartbeat_stop_s,
+                 "T_S: UAV 0's autopilot sends no HEARTBEAT from simulated time T_S (its other "
+                 "streams go on)");
+  app.add_option("--ugv-imu", cli.ugv_imu,
+                 "how the UGV agents read their IMU: shm (the world segment) or mavlink (UGV k's "
+                 "simulated PX4 rover sends HIGHRES_IMU for every sample over UDP; the segment "
+                 "stays)")
+      ->check(CLI::IsMember({"shm", "mavlink"}))
+      ->capture_default_str();
+  app.add_option("--ugv-imu-bind-port-base", cli.ugv_imu_bind_port_base,
+                 "UGV k's rover autopilot binds UDP 127.0.0.1:(this + k)")
+      ->check(CLI::Range(1, 65535))
+      ->capture_default_str();
+  app.add_option("--ugv-imu-peer-port-base", cli.ugv_imu_peer_port_base,
+                 "UGV k's rover autopilot sends to 127.0.0.1:(this + k) (cover-ugv-agent --source "
+                 "mavlink --url udpin://127.0.0.1:PORT)")
+      ->check(CLI::Range(1, 65535))
+      ->capture_default_str();
+}
+
+// A port base plus `count` vehicles stays below 65536.
+cover::sim::MavlinkPorts checked_ports(int bind_base, int peer_base, int count,
+                                       const std::string& flag) {
+  if (bind_base + count > 65536 || peer_base + count > 65536) {
+    throw cover::config::ConfigError(flag + ": base + " + std::to_string(count) +
+                                     " vehicles passes port 65535");
+  }
+  return {static_cast<std::uint16_t>(bind_base), static_cast<std::uint16_t>(peer_base)};
+}
+
+cover::sim::MavlinkRunOptions mavlink_options(const CommandLine& cli,
+                                              const cover::sim::Fleet& fleet,
+                                              const cover::sim::fc::SimFcParams& fc_params) {
+  cover::sim::MavlinkRunOptions m;
+  m.params = fc_params;
+  m.autopilot_ports = checked_ports(cli.fc_bind_port_base, cli.fc_peer_port_base, fleet.uav_count(),
+                                    "--fc-*-port-base");
+  m.ugv_imu = cli.ugv_imu == "mavlink";
+  m.ugv_imu_ports = checked_ports(cli.ugv_imu_bind_port_base, cli.ugv_imu_peer_port_base,
+                                  fleet.world(0).ugv_count(), "--ugv-imu-*-port-base");
+  const bool faults = !cli.fc_mode_switch.empty() || cli.fc_heartbeat_stop_s >= 0.0;
+  if (faults && !fleet.has_autopilots()) {
+    throw cover::config::ConfigError(
+        "--fc-mode-switch / --fc-heartbeat-stop need --fc px4 or --fc ardupilot");
+  }
+  if (!cli.fc_mode_switch.empty()) {
+    const auto colon = cli.fc_mode_switch.find(':');
+    std::optional<cover::sim::fc::FlightMode> mode;
+    double t_s = -1.0;
+    if (colon != std::string::npos) {
+      mode = cover::sim::fc::parse_mode_name(cli.fc_mode_switch.substr(colon + 1));
+      try {
+        t_s = std::stod(cli.fc_mode_switch.substr(0, colon));
+      } catch (const std::exception&) {
+        t_s = -1.0;
+      }
+    }
+    if (!mode || !(t_s >= 0.0)) {
+      throw cover::config::ConfigError(
+          "--fc-mode-switch: expected T_S:MODE with T_S >= 0 and MODE one of MANUAL, STABILIZE, "
+          "POSCTL, LOITER, OFFBOARD, GUIDED_NOGPS, LAND, AUTO.LAND (got '" +
+          cli.fc_mode_switch + "')");
+    }
+    m.mode_switch_time_s = t_s;
+    m.mode_switch_to = *mode;
+  }
+  m.heartbeat_stop_time_s = cli.fc_heartbeat_stop_s;
+  return m;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -139,6 +271,7 @@ int main(int argc, char** argv) {
                  "in that window of simulated time (realtime; in lockstep every tick of it waits "
                  "for the agents' input timeout)")
       ->expected(2);
+  add_mavlink_options(app, cli);
   cli.dds.add_to(app);
   CLI11_PARSE(app, argc, argv);
   cover::logging::init("sim");
@@ -148,12 +281,17 @@ int main(int argc, char** argv) {
     const auto params = cover::sim::SimProcessParams::load_file(cli.params_file);
     const auto mission = cover::mission::MissionParams::load_file(
         cover::config::default_config_dir() + "/mission.yaml");
-    cover::sim::Fleet fleet(scenario, params, mission);
+    cover::sim::FleetAutopilots autopilots;
+    autopilots.profile = cover::sim::fc::parse_profile(cli.fc);  // nullopt: direct
+    const bool mavlink = autopilots.profile || cli.ugv_imu == "mavlink";
+    if (mavlink) autopilots.params = cover::sim::fc::SimFcParams::load_file(cli.fc_params_file);
+    cover::sim::Fleet fleet(scenario, params, mission, autopilots);
     const cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-sim");
     cover::sim::SimRunOptions options;
     options.clock = cli.clock == "lockstep" ? cover::sim::SimClockMode::Lockstep
                                             : cover::sim::SimClockMode::Realtime;
     options.standing = cli.standing;
+    options.mavlink = mavlink_options(cli, fleet, autopilots.params);
     if (!cli.relative_gap.empty()) {
       if (!(cli.relative_gap[0] >= 0.0 && cli.relative_gap[1] > 0.0)) {
         throw cover::config::ConfigError("--relative-gap: START_S must be >= 0, DURATION_S > 0");
@@ -167,9 +305,12 @@ int main(int argc, char** argv) {
         segment_name, cover::sim::kWorldSegmentLayoutVersion);
     cover::dds::Participant participant(dds);
     cover::sim::SimNode node(participant, segment, fleet, options, params);
-    spdlog::info("{}: {} UAV(s), {} UGV(s), seed {}, clock {}, {} on domain {}, segment {}",
-                 scenario.name, fleet.uav_count(), scenario.world.ugvs.size(), scenario.world.seed,
-                 cli.clock, cover::dds::vendor_name(dds.vendor), dds.domain_id, segment_name);
+    spdlog::info(
+        "{}: {} UAV(s), {} UGV(s), seed {}, clock {}, flight controller {}, UGV IMU {}, {} on "
+        "domain {}, segment {}",
+        scenario.name, fleet.uav_count(), scenario.world.ugvs.size(), scenario.world.seed,
+        cli.clock, cli.fc, cli.ugv_imu, cover::dds::vendor_name(dds.vendor), dds.domain_id,
+        segment_name);
     switch (node.run()) {
       case cover::sim::SimExit::Finished:
         return finish(fleet, node, cli);

@@ -1,6 +1,6 @@
 #include "offboard_failsafe.hpp"
 
-#include <algorithm>
+#include "cover/sim/fc/levelled_flight.hpp"
 
 namespace cover::sim {
 
@@ -25,32 +25,12 @@ QuadrotorCommand OffboardFailsafe::plant_command(const QuadrotorCommand& agent_c
     case OffboardState::Offboard:
       return agent_command;
     case OffboardState::LossDescent:
-      return descent_command(world);
+      return fc::levelled_vertical_speed_command(world, -descent_rate_m_s_);
     case OffboardState::WaitingForAgent:
     case OffboardState::LossDisarmed:
       break;
   }
   return QuadrotorCommand{};
-}
-
-// Level the attitude (rates against the tilt) and track a constant sink rate with the
-// hover thrust the flight controller has learned.
-QuadrotorCommand OffboardFailsafe::descent_command(const World& world) const {
-  const QuadrotorState& uav = world.state().uav;
-  const Eigen::Quaterniond q = uav.attitude.eigen();
-  const Eigen::Vector3d up_in_body = q.inverse() * Eigen::Vector3d::UnitZ();
-  const double attitude_gain_1_s = 4.0;
-  const double sink_gain_1_s = 2.0;
-  QuadrotorCommand command;
-  // Body z toward world up: rotate about up_body x e_z.
-  const Eigen::Vector3d tilt_axis = Eigen::Vector3d::UnitZ().cross(up_in_body);
-  command.body_rate_rad_s = Vec3(attitude_gain_1_s * tilt_axis);
-  const double sink_error_m_s = -descent_rate_m_s_ - uav.velocity_m_s.z;
-  const double hover = world.hover_thrust_command_m_s2();
-  command.thrust_m_s2 =
-      std::clamp(hover * (1.0 + sink_gain_1_s * sink_error_m_s / world.params().gravity_m_s2),
-                 0.5 * hover, 1.5 * hover);
-  return command;
 }
 
 }  // namespace cover::sim

@@ -25,8 +25,6 @@ class OffboardFailsafe {
   bool changed() const { return changed_; }
 
  private:
-  QuadrotorCommand descent_command(const World& world) const;
-
   double timeout_s_;
   double descent_rate_m_s_;
   OffboardState state_ = OffboardState::WaitingForAgent;

@@ -39,8 +39,11 @@ SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>&
       relative_writers_[u].push_back(
           participant.make_writer(dds::topics::relative_state(uav, static_cast<std::uint32_t>(k))));
     }
-    command_readers_.push_back(participant.make_reader(
-        dds::topics::uav_command(uav), [this, u](const msg::UavCommand& c) { on_command(u, c); }));
+    if (!fleet.has_autopilots()) {
+      command_readers_.push_back(
+          participant.make_reader(dds::topics::uav_command(uav),
+                                  [this, u](const msg::UavCommand& c) { on_command(u, c); }));
+    }
     trace_readers_.push_back(
         participant.make_reader(dds::topics::uav_trace(uav), [this, u](const msg::ControlTrace& t) {
           {
@@ -57,6 +60,19 @@ SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>&
         mailboxes_[s.uav_id].task_message = s.message;
       });
   segment_.write(fleet_.shared(), 0);
+  if (options_.mavlink.ugv_imu) {
+    ugv_imu_links_ = std::make_unique<UgvImuLinks>(ugvs, options_.mavlink.ugv_imu_ports,
+                                                   options_.mavlink.params);
+    for (int k = 0; k < ugvs; ++k) {
+      spdlog::info("UGV {}'s IMU over MAVLink (a PX4 rover, system {}): {}", k,
+                   options_.mavlink.params.ugv_system_id_base + k, ugv_imu_links_->describe(k));
+    }
+  }
+  if (fleet.has_autopilots()) start_autopilot_links();
+}
+
+SimNode::~SimNode() {
+  if (autopilot_links_) autopilot_links_->stop();
 }
 
 void SimNode::on_command(int u, const msg::UavCommand& command) {
@@ -82,6 +98,7 @@ SimExit SimNode::run() {
   if (!wait_for_agents()) return SimExit::StartupTimeout;
   const auto start = std::chrono::steady_clock::now();
   const SimExit exit = options_.clock == SimClockMode::Lockstep ? run_lockstep() : run_realtime();
+  if (autopilot_links_) autopilot_links_->stop();
   wall_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (republished_ticks_ > 0) {
     spdlog::info("{} tick(s) published again before every agent answered", republished_ticks_);
@@ -96,8 +113,11 @@ bool SimNode::wait_for_agents() {
   const auto deadline =
       std::chrono::steady_clock::now() + clock::to_milliseconds(params_.startup_timeout_s);
   for (int u = 0; u < fleet_.uav_count(); ++u) {
-    while (command_readers_[u].matched_writers() == 0 || trace_readers_[u].matched_writers() == 0) {
+    // With autopilots the command goes to the bridge: only the trace comes here.
+    while ((!uses_autopilots() && command_readers_[u].matched_writers() == 0) ||
+           trace_readers_[u].matched_writers() == 0) {
       if (process::ShutdownSignal::requested()) return false;
+      send_keepalive_heartbeats();
       if (std::chrono::steady_clock::now() >= deadline) {
         spdlog::error("no UAV agent for UAV {} (cover-uav-agent --id {}) after {:.0f} s", u, u,
                       params_.startup_timeout_s);
@@ -143,10 +163,14 @@ void SimNode::publish_tick() {
     }
   }
   if (relative_stamp_ns >= 0) {
+    const std::int64_t now_ns = clock::monotonic_ns();
     std::lock_guard<std::mutex> lock(mutex_);
     published_[static_cast<std::size_t>(relative_stamp_ns / 1'000'000) % published_.size()] = {
-        relative_stamp_ns, clock::monotonic_ns()};
+        relative_stamp_ns, now_ns};
+    TickPublish& slot = tick_published_[fleet_.tick() % tick_published_.size()];
+    if (slot.tick != fleet_.tick()) slot = TickPublish{fleet_.tick(), now_ns, {}};
   }
+  publish_ugv_imu(t);
   segment_.write(fleet_.shared(), wire::to_stamp_ns(t));
   msg::SimClock tick;
   tick.stamp_ns = wire::to_stamp_ns(t);
@@ -160,12 +184,14 @@ void SimNode::publish_tick() {
   clock_writer_.write(tick);
 }
 
+bool SimNode::answered(const Mailbox& box, std::int64_t tick_ns) const {
+  const bool traced = box.trace && box.trace->stamp_ns == tick_ns;
+  if (uses_autopilots()) return traced && box.setpoint_ms == tick_ns / 1'000'000;
+  return box.command && box.command->stamp_ns == tick_ns && traced;
+}
+
 SimNode::TickWait SimNode::wait_for_commands(std::int64_t tick_ns) {
   std::unique_lock<std::mutex> lock(mutex_);
-  auto answered = [&](const Mailbox& box) {
-    return box.command && box.command->stamp_ns == tick_ns && box.trace &&
-           box.trace->stamp_ns == tick_ns;
-  };
   // The first tick is still start-up: an agent's reader may match the clock writer a
   // while after the writer matched it (discovery is not symmetric in time).
   const double timeout_s = fleet_.tick() == 0 ? params_.startup_timeout_s : params_.stall_timeout_s;
@@ -174,26 +200,53 @@ SimNode::TickWait SimNode::wait_for_commands(std::int64_t tick_ns) {
     // A tick (or its relative states) can be lost: to a reader that matched just after it
     // was written, or to best-effort delivery. Publish it again until answered; the
     // agents step each tick once.
-    while (!arrived_.wait_for(lock, kRepublishPeriod, [&] { return answered(mailboxes_[u]); }) &&
-           std::chrono::steady_clock::now() < deadline) {
+    while (!arrived_.wait_for(lock, kRepublishPeriod, [&] {
+      return answered(mailboxes_[u], tick_ns);
+    }) && std::chrono::steady_clock::now() < deadline) {
       if (process::ShutdownSignal::requested()) return TickWait::Interrupted;
       lock.unlock();
       publish_tick();
+      republish_mavlink();
       ++republished_ticks_;
       lock.lock();
     }
-    if (!answered(mailboxes_[u])) {
-      spdlog::error(
-          "lockstep stalled at t = {:.2f} s: no command from UAV {} (cover-uav-agent --id {}, "
-          "topic cover/uav/{}/cmd) for {:.1f} s",
-          wire::to_seconds(tick_ns), u, u, u, timeout_s);
+    if (!answered(mailboxes_[u], tick_ns)) {
+      log_stall(u, mailboxes_[u], tick_ns, timeout_s);
       return TickWait::Stalled;
     }
   }
   return TickWait::Answered;
 }
 
+void SimNode::log_stall(int u, const Mailbox& box, std::int64_t tick_ns, double timeout_s) const {
+  const double t_s = wire::to_seconds(tick_ns);
+  if (!uses_autopilots()) {
+    spdlog::error(
+        "lockstep stalled at t = {:.2f} s: no command from UAV {} (cover-uav-agent --id {}, "
+        "topic cover/uav/{}/cmd) for {:.1f} s",
+        t_s, u, u, u, timeout_s);
+    return;
+  }
+  if (!(box.trace && box.trace->stamp_ns == tick_ns)) {
+    spdlog::error(
+        "lockstep stalled at t = {:.2f} s: no trace from UAV {} (cover-uav-agent --id {}, "
+        "topic cover/uav/{}/trace) for {:.1f} s",
+        t_s, u, u, u, timeout_s);
+    return;
+  }
+  spdlog::error(
+      "lockstep stalled at t = {:.2f} s: UAV {}'s autopilot got no SET_ATTITUDE_TARGET with "
+      "time_boot_ms {} from its bridge (cover-fc-bridge --id {}) on {} for {:.1f} s (newest "
+      "taken: {}, {} in all)",
+      t_s, u, tick_ns / 1'000'000, u, autopilot_links_->describe(u), timeout_s, box.setpoint_ms,
+      box.setpoints);
+}
+
 void SimNode::apply_commands(bool lockstep) {
+  if (uses_autopilots()) {
+    apply_autopilots();
+    return;
+  }
   const std::int64_t now_ns = clock::monotonic_ns();
   for (int u = 0; u < fleet_.uav_count(); ++u) {
     mission::ControllerStatus status;
@@ -241,6 +294,7 @@ SimExit SimNode::run_lockstep() {
     }
     apply_commands(true);
     fleet_.advance();
+    if (uses_autopilots()) set_sim_time();
   }
   return SimExit::Finished;
 }
@@ -255,6 +309,7 @@ SimExit SimNode::run_realtime() {
     std::this_thread::sleep_until(next);  // the simulated world's pace, not a synchronisation
     apply_commands(false);
     fleet_.advance();
+    if (uses_autopilots()) set_sim_time();
   }
   return SimExit::Finished;
 }

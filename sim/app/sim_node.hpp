@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -9,14 +10,30 @@
 #include <string>
 #include <vector>
 
+#include "autopilot_links.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/shm/seqlock_writer.hpp"
 #include "fleet.hpp"
+#include "ugv_imu_links.hpp"
 
 namespace cover::sim {
 
 enum class SimClockMode { Lockstep, Realtime };
+
+// The MAVLink side of a run with simulated autopilots (cover-sim --fc px4|ardupilot) and
+// of the UGV IMUs served over MAVLink (--ugv-imu mavlink).
+struct MavlinkRunOptions {
+  MavlinkPorts autopilot_ports{14580, 14540};
+  // Faults injected into UAV 0's autopilot at a simulated time (< 0: none): the safety
+  // pilot's mode switch, and heartbeats that stop.
+  double mode_switch_time_s = -1.0;
+  fc::FlightMode mode_switch_to = fc::FlightMode::Position;
+  double heartbeat_stop_time_s = -1.0;
+  bool ugv_imu = false;
+  MavlinkPorts ugv_imu_ports{14680, 14640};
+  fc::SimFcParams params;  // the rover autopilots' ids and heartbeat rate
+};
 
 struct SimRunOptions {
   SimClockMode clock = SimClockMode::Lockstep;
@@ -27,24 +44,36 @@ struct SimRunOptions {
   // for any UAV from relative_gap_start_s for relative_gap_s of simulated time (< 0: none).
   double relative_gap_start_s = -1.0;
   double relative_gap_s = 0.0;
+  MavlinkRunOptions mavlink;
 };
 
 // Why a run ended.
 enum class SimExit { Finished, Interrupted, Stalled, StartupTimeout };
 
-// cover-sim's DDS and shared-memory side around the Fleet: publishes relative states
-// (as a motion-capture bridge would), the clock and the world segment; takes every UAV
-// agent's command and trace.
+// cover-sim's DDS, shared-memory and MAVLink side around the Fleet: publishes relative
+// states (as a motion-capture bridge would), the clock and the world segment; takes every
+// UAV agent's trace, and its command either from DDS (the direct path) or as the
+// SET_ATTITUDE_TARGET a flight-controller bridge sends the UAV's simulated autopilot.
 class SimNode {
  public:
   // `segment` is the world's shared memory; it outlives the node and the participant, so
   // that its removal (which ends the UGV agents' sources) is the simulator's last act.
+  // Throws std::runtime_error when a MAVLink port cannot be bound.
   SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>& segment, Fleet& fleet,
           SimRunOptions options, const SimProcessParams& params);
+  ~SimNode();
+  // Runs the world; the MAVLink links are stopped when it returns (the fleet's autopilots
+  // are then the caller's to read).
   SimExit run();
 
-  // Sensor-to-command latency samples (realtime), ms.
+  // Realtime sensor-to-command latency samples, ms. Direct path: from writing a tick's
+  // relative states to taking the agent's command (cover/uav/<u>/cmd) that names them.
+  // With autopilots: from writing tick k's relative states to the simulator's reader
+  // thread taking off the socket the first SET_ATTITUDE_TARGET whose time_boot_ms lies in
+  // tick k's control period (the whole path agent -> DDS -> bridge -> MAVLink).
   const std::vector<double>& latency_ms() const { return latency_ms_; }
+  // What UAV `uav`'s link saw (autopilots only, after run()).
+  const AutopilotLinks* autopilot_links() const { return autopilot_links_.get(); }
   double wall_time_s() const { return wall_time_s_; }
   // The last task status message per UAV (the stage machine's one-line status).
   std::string task_message(int uav) const;
@@ -55,6 +84,16 @@ class SimNode {
     std::optional<msg::ControlTrace> trace;
     std::int64_t command_received_ns = -1;  // monotonic
     std::string task_message;
+    // Autopilots: the newest time_boot_ms of a setpoint the autopilot took, and how many.
+    std::int64_t setpoint_ms = -1;
+    std::uint64_t setpoints = 0;
+    std::size_t events_logged = 0;
+  };
+  // When a tick's relative states were written (realtime latency with autopilots).
+  struct TickPublish {
+    std::uint64_t tick = UINT64_MAX;
+    std::int64_t published_ns = 0;
+    std::array<bool, kMaxUavs> answered{};
   };
 
   bool wait_for_agents();
@@ -67,6 +106,20 @@ class SimNode {
   TickWait wait_for_commands(std::int64_t tick_ns);
   void apply_commands(bool lockstep);
   void on_command(int uav, const msg::UavCommand& command);
+  bool answered(const Mailbox& box, std::int64_t tick_ns) const;
+  void log_stall(int uav, const Mailbox& box, std::int64_t tick_ns, double timeout_s) const;
+  // Autopilots (sim_node_autopilot.cpp); the mutex held where named _locked.
+  bool uses_autopilots() const { return fleet_.has_autopilots(); }
+  void start_autopilot_links();
+  void set_sim_time();
+  void on_autopilot_frame(int uav, const mavlink::Frame& frame);
+  void note_setpoint_locked(int uav, std::uint32_t time_boot_ms, std::int64_t received_ns);
+  void apply_autopilots();
+  void inject_autopilot_faults_locked(double t_s);
+  void log_autopilot_events_locked(int uav);
+  void send_keepalive_heartbeats();
+  void republish_mavlink();
+  void publish_ugv_imu(double t_s);
 
   Fleet& fleet_;
   SimRunOptions options_;
@@ -85,9 +138,19 @@ class SimNode {
   std::uint64_t republished_ticks_ = 0;
   bool in_relative_gap_ = false;
 
+  // Autopilots: the simulated time the reader threads stamp frames with (under mutex_).
+  double sim_time_s_ = 0.0;
+  std::array<TickPublish, 256> tick_published_{};
+  std::vector<std::chrono::steady_clock::time_point> keepalive_sent_;
+  bool mode_switch_done_ = false;
+  bool heartbeat_stop_done_ = false;
+  std::unique_ptr<UgvImuLinks> ugv_imu_links_;
+
   std::vector<dds::Reader<msg::UavCommand>> command_readers_;
   std::vector<dds::Reader<msg::ControlTrace>> trace_readers_;
   dds::Reader<msg::TaskStatus> task_status_reader_;
+  // Last: its reader threads call into the members above.
+  std::unique_ptr<AutopilotLinks> autopilot_links_;
 };
 
 }  // namespace cover::sim

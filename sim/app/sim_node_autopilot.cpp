@@ -1,0 +1,140 @@
+// SimNode's MAVLink side: the simulated autopilots' links (frames in on reader threads,
+// ACKs and streams out), lockstep over MAVLink, the injected autopilot faults, and the
+// UGV IMUs served as rover autopilots.
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "cover/clock/clock.hpp"
+#include "cover/wire/control.hpp"
+#include "sim_node.hpp"
+
+namespace cover::sim {
+
+namespace {
+constexpr std::chrono::seconds kKeepalivePeriod{1};
+}  // namespace
+
+void SimNode::start_autopilot_links() {
+  keepalive_sent_.assign(static_cast<std::size_t>(fleet_.uav_count()),
+                         std::chrono::steady_clock::time_point{});
+  auto links = std::make_unique<AutopilotLinks>(
+      fleet_.uav_count(), options_.mavlink.autopilot_ports,
+      [this](int u, const mavlink::Frame& frame) { on_autopilot_frame(u, frame); });
+  std::lock_guard<std::mutex> lock(mutex_);
+  autopilot_links_ = std::move(links);
+  for (int u = 0; u < fleet_.uav_count(); ++u) {
+    const fc::SimulatedAutopilot& autopilot = fleet_.autopilot(u);
+    spdlog::info("UAV {}: simulated {} autopilot, MAVLink system {}, {}, {} and disarmed", u,
+                 fc::to_string(autopilot.profile()), autopilot.system_id(),
+                 autopilot_links_->describe(u), autopilot.mode_name());
+  }
+}
+
+void SimNode::set_sim_time() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  sim_time_s_ = fleet_.time_s();
+}
+
+void SimNode::on_autopilot_frame(int u, const mavlink::Frame& frame) {
+  const std::int64_t received_ns = clock::monotonic_ns();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!autopilot_links_) return;  // a frame before the node finished starting
+    const fc::FrameResponse response = fleet_.autopilot(u).on_frame(frame, sim_time_s_);
+    autopilot_links_->send(u, response.frames);
+    if (response.setpoint_accepted) {
+      note_setpoint_locked(u, response.setpoint_time_boot_ms, received_ns);
+    }
+    log_autopilot_events_locked(u);
+  }
+  arrived_.notify_all();
+}
+
+// Lockstep: the tick a setpoint answers. Realtime: the latency of the first setpoint of each
+// tick (time_boot_ms is the agent's command stamp: the tick's time plus the agent's
+// extrapolation, within the tick's control period).
+void SimNode::note_setpoint_locked(int u, std::uint32_t time_boot_ms, std::int64_t received_ns) {
+  Mailbox& box = mailboxes_[u];
+  if (box.setpoints++ == 0) {
+    spdlog::info("UAV {}: first setpoint from the bridge (SET_ATTITUDE_TARGET, time_boot_ms {})", u,
+                 time_boot_ms);
+  }
+  box.setpoint_ms = std::max<std::int64_t>(box.setpoint_ms, time_boot_ms);
+  if (options_.clock != SimClockMode::Realtime) return;
+  const auto tick = static_cast<std::uint64_t>(
+      std::floor(time_boot_ms * params_.control_rate_hz / 1000.0 + 1e-6));
+  TickPublish& slot = tick_published_[tick % tick_published_.size()];
+  if (slot.tick != tick || slot.answered[static_cast<std::size_t>(u)]) return;
+  slot.answered[static_cast<std::size_t>(u)] = true;
+  latency_ms_.push_back(static_cast<double>(received_ns - slot.published_ns) * 1e-6);
+}
+
+void SimNode::apply_autopilots() {
+  for (int u = 0; u < fleet_.uav_count(); ++u) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    mission::ControllerStatus status;
+    if (mailboxes_[u].trace) status = wire::from_msg(*mailboxes_[u].trace);
+    if (u == 0) inject_autopilot_faults_locked(fleet_.time_s());
+    autopilot_links_->send(u, fleet_.apply_autopilot(u, status));
+    log_autopilot_events_locked(u);
+  }
+}
+
+void SimNode::inject_autopilot_faults_locked(double t_s) {
+  const MavlinkRunOptions& m = options_.mavlink;
+  fc::SimulatedAutopilot& autopilot = fleet_.autopilot(0);
+  if (!mode_switch_done_ && m.mode_switch_time_s >= 0.0 && t_s + 1e-9 >= m.mode_switch_time_s) {
+    mode_switch_done_ = true;
+    spdlog::warn(
+        "injected fault: the safety pilot switches UAV 0's autopilot to {} at t = {:.2f} s",
+        fc::mode_name(autopilot.profile(), m.mode_switch_to), t_s);
+    autopilot.inject_mode_switch(m.mode_switch_to);
+  }
+  if (!heartbeat_stop_done_ && m.heartbeat_stop_time_s >= 0.0 &&
+      t_s + 1e-9 >= m.heartbeat_stop_time_s) {
+    heartbeat_stop_done_ = true;
+    spdlog::warn("injected fault: UAV 0's autopilot stops its heartbeats at t = {:.2f} s", t_s);
+    autopilot.stop_heartbeats();
+  }
+}
+
+void SimNode::log_autopilot_events_locked(int u) {
+  const auto& events = fleet_.autopilot(u).events();
+  Mailbox& box = mailboxes_[u];
+  for (; box.events_logged < events.size(); ++box.events_logged) {
+    const fc::AutopilotEvent& e = events[box.events_logged];
+    const bool bad =
+        e.kind == fc::AutopilotEvent::Kind::Failsafe || e.kind == fc::AutopilotEvent::Kind::Refusal;
+    spdlog::log(bad ? spdlog::level::warn : spdlog::level::info,
+                "UAV {} autopilot: {} at t = {:.2f} s", u, e.text, e.time_s);
+  }
+}
+
+// While simulated time stands still (waiting for the agents, or a lockstep tick not yet
+// answered), a real autopilot would still send its heartbeat: a bridge that waits for one
+// before it streams setpoints would otherwise never start.
+void SimNode::send_keepalive_heartbeats() {
+  if (!uses_autopilots()) return;
+  const auto now = std::chrono::steady_clock::now();
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (int u = 0; u < fleet_.uav_count(); ++u) {
+    auto& sent = keepalive_sent_[static_cast<std::size_t>(u)];
+    if (now - sent < kKeepalivePeriod) continue;
+    sent = now;
+    if (const auto heartbeat = fleet_.autopilot(u).heartbeat_frame()) {
+      autopilot_links_->send(u, *heartbeat);
+    }
+  }
+}
+
+void SimNode::republish_mavlink() {
+  send_keepalive_heartbeats();
+  if (ugv_imu_links_) ugv_imu_links_->send_again();
+}
+
+void SimNode::publish_ugv_imu(double t_s) {
+  if (ugv_imu_links_) ugv_imu_links_->send_new_samples(fleet_.shared(), t_s);
+}
+
+}  // namespace cover::sim

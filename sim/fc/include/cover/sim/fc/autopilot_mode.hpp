@@ -1,0 +1,36 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace cover::sim::fc {
+
+// Which autopilot the simulator imitates: its HEARTBEAT, custom modes, ACK results and
+// failsafe follow that one's rules (../shared/notes/mavlink.md).
+enum class AutopilotProfile { Px4, ArduPilot };
+const char* to_string(AutopilotProfile profile);  // "px4", "ardupilot"
+std::optional<AutopilotProfile> parse_profile(const std::string& text);
+
+// The flight modes the simulated autopilot has, by what they do:
+//  Manual   PX4 MANUAL / ArduPilot STABILIZE: the start mode (sticks centred: levelled,
+//           height held, as Position: the simulator has no sticks);
+//  Position PX4 POSCTL / ArduPilot LOITER: the safety pilot's switch, levelled, height held;
+//  Offboard PX4 OFFBOARD / ArduPilot GUIDED_NOGPS: the companion's body-rate setpoints;
+//  Land     PX4 AUTO.LAND / ArduPilot LAND: levelled descent, disarms on touchdown.
+enum class FlightMode { Manual, Position, Offboard, Land };
+
+// The autopilot's own name of the mode ("OFFBOARD", "GUIDED_NOGPS", ...).
+const char* mode_name(AutopilotProfile profile, FlightMode mode);
+// HEARTBEAT.custom_mode: PX4 main mode in bits 16-23 and sub mode in 24-31; ArduPilot the
+// mode number.
+std::uint32_t custom_mode(AutopilotProfile profile, FlightMode mode);
+// The mode a DO_SET_MODE asks for (param1 custom-mode flag, param2 main mode / mode
+// number, param3 PX4 sub mode); nullopt for a mode the simulator does not have.
+std::optional<FlightMode> requested_mode(AutopilotProfile profile, float param1, float param2,
+                                         float param3);
+// A mode named as either autopilot names it (case-insensitive): MANUAL, STABILIZE, POSCTL,
+// LOITER, OFFBOARD, GUIDED_NOGPS, LAND, AUTO.LAND. For fault injection flags.
+std::optional<FlightMode> parse_mode_name(const std::string& text);
+
+}  // namespace cover::sim::fc
