@@ -291,6 +291,16 @@ TEST(Bridge, NaNAndRepeatedCommandsCountAsMissing) {
   EXPECT_FALSE(rig.noticed("not flyable"));
 }
 
+TEST(Bridge, ARepeatOfACommandNotSentYetGoesOnceTheAutopilotIsKnown) {
+  Rig rig;
+  rig.t += kStep_s;
+  const AgentCommand c = rig.command();
+  EXPECT_TRUE(rig.bridge.on_agent_command(c, rig.t).empty());  // no autopilot yet
+  rig.heartbeat();
+  EXPECT_EQ(decoded<mav::SetAttitudeTarget>(rig.bridge.on_agent_command(c, rig.t)).size(), 1U);
+  EXPECT_TRUE(rig.bridge.on_agent_command(c, rig.t).empty());  // sent: now a repeat
+}
+
 TEST(Bridge, NeverArmsWithoutAnOperatorOrAutoArm) {
   Rig rig;  // auto_arm false
   rig.run(1.0);

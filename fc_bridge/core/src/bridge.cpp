@@ -244,7 +244,9 @@ bool Bridge::fresh(const AgentCommand& command, double now_s) {
   if (!is_flyable(command)) {
     why = "not flyable (NaN or out of range)";
   } else if (last_stamp_ns_ >= 0 && command.stamp_ns == last_stamp_ns_ &&
-             command.seq == last_seq_) {
+             command.seq == last_seq_ && last_sent_) {
+    // A repeat of a command not sent yet (no autopilot heard then) goes: a lockstep agent
+    // answers a tick published again with the same command, and the simulator waits for it.
     why = "a repeat of the previous one (same stamp and seq)";
   } else if (last_stamp_ns_ >= 0 && command.stamp_ns < last_stamp_ns_ &&
              last_stamp_ns_ - command.stamp_ns < kTimeBaseJump_ns) {
@@ -269,7 +271,8 @@ bool Bridge::fresh(const AgentCommand& command, double now_s) {
 }
 
 void Bridge::send_setpoint(const AgentCommand& command, double now_s) {
-  if (!session_.known()) return;  // no autopilot to target yet
+  last_sent_ = session_.known();
+  if (!last_sent_) return;  // no autopilot to target yet
   const mav::SetAttitudeTarget target =
       mapper_.map(command, estimator_.estimate(), session_.system_id(), session_.component_id());
   last_thrust_ = target.thrust;

@@ -146,6 +146,7 @@ class Bridge {
   // The agent's stream.
   std::int64_t last_stamp_ns_ = -1;
   std::uint32_t last_seq_ = 0;
+  bool last_sent_ = false;  // the last fresh command went out as a setpoint
   bool rejecting_ = false;  // a run of unusable commands is logged once, at its start
   bool last_release_ = false;
   double last_thrust_ = 0.0;  // normalised, as last sent
