@@ -62,9 +62,8 @@ std::uint8_t SimulatedAutopilot::set_mode_command(const mavlink::CommandLong& co
   }
   if (*mode == FlightMode::Offboard && mode_ != FlightMode::Offboard &&
       !stream_established(now_s)) {
-    return refused(profile_ == AutopilotProfile::Px4
-                       ? "Offboard: no setpoint stream"
-                       : "Mode change to GUIDED_NOGPS failed: no setpoint stream",
+    return refused(profile_ == AutopilotProfile::Px4 ? "Offboard: no setpoint stream"
+                                                     : "GUIDED_NOGPS refused: no setpoint stream",
                    now_s);
   }
   set_mode(*mode, now_s, "commanded");

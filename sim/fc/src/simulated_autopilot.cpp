@@ -122,9 +122,9 @@ bool SimulatedAutopilot::setpoint_usable(const mavlink::Frame& frame,
       typemask::kIgnoreBodyRollRate | typemask::kIgnoreBodyPitchRate | typemask::kIgnoreBodyYawRate;
   if ((setpoint.type_mask & typemask::kIgnoreAttitude) == 0 ||
       (setpoint.type_mask & (typemask::kIgnoreThrust | rates_ignored)) != 0) {
-    warn_limited("Setpoint type_mask " + std::to_string(setpoint.type_mask) +
-                     " ignored: only body rates + thrust (128)",
-                 now_s);
+    warn_limited(
+        "Setpoint type_mask " + std::to_string(setpoint.type_mask) + " ignored: rates+thrust only",
+        now_s);
     return false;
   }
   if (!finite(setpoint)) {
