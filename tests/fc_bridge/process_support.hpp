@@ -1,0 +1,95 @@
+#pragma once
+
+#include <chrono>
+#include <cstdlib>
+#include <functional>
+#include <string>
+#include <thread>
+
+#include "cover/clock/clock.hpp"
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/process/child_process.hpp"
+#include "cover/test/scratch_dir.hpp"
+
+// What the bridge's process tests share: deadlines scaled by COVER_TEST_TIME_SCALE, the
+// bridge started on a domain, and an agent's command stream published over DDS.
+namespace cover::fc_bridge::test {
+
+inline int time_scale() {
+  const char* scale = std::getenv("COVER_TEST_TIME_SCALE");
+  const int value = scale != nullptr ? std::atoi(scale) : 1;
+  return value > 0 ? value : 1;
+}
+
+inline std::chrono::milliseconds scaled(std::chrono::milliseconds timeout) {
+  return timeout * time_scale();
+}
+
+// Polls `condition` every 5 ms until it holds or the (scaled) deadline passes.
+inline bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + scaled(timeout);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (condition()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return condition();
+}
+
+inline dds::ParticipantOptions on_domain(int domain) {
+  dds::ParticipantOptions options;
+  options.vendor = dds::Vendor::Cyclone;
+  options.domain_id = domain;
+  options.participant_name = "fc-bridge-test";
+  return options;
+}
+
+// cover-fc-bridge for UAV 0 on `domain`, its log in the test's scratch folder.
+inline process::ChildProcess start_bridge(int domain, const std::vector<std::string>& args) {
+  std::vector<std::string> argv{COVER_FC_BRIDGE,       "--id", "0", "--dds", "cyclone", "--domain",
+                                std::to_string(domain)};
+  argv.insert(argv.end(), args.begin(), args.end());
+  process::SpawnOptions options;
+  options.log_file = cover::test::scratch_path("fc_bridge.log");
+  options.null_stdin = true;
+  options.close_other_fds = true;  // a pty master of the test held by the bridge: no hang-up
+  return process::ChildProcess(argv, options);
+}
+
+// The UAV agent's side: UavCommand samples on cover/uav/0/cmd at 100 Hz from a thread,
+// stamped with the host's clock (the bridge runs --clock system), FLU rates (0.1, 0.2, 0.3)
+// rad/s and 9.81 m/s^2: a hover.
+class AgentStream {
+ public:
+  explicit AgentStream(dds::Participant& participant)
+      : writer_(participant.make_writer(dds::topics::uav_command(0))), thread_([this] { run(); }) {}
+  ~AgentStream() {
+    stop_ = true;
+    thread_.join();
+  }
+  std::uint32_t sent() const { return seq_; }
+
+ private:
+  void run() {
+    while (!stop_) {
+      msg::UavCommand c;
+      c.uav_id = 0;
+      c.stamp_ns = clock::system_ns();
+      c.seq = ++seq_;
+      c.thrust_m_s2 = 9.81;
+      c.body_rates_rad_s.x = 0.1;
+      c.body_rates_rad_s.y = 0.2;
+      c.body_rates_rad_s.z = 0.3;
+      c.armed = true;
+      c.measurement_stamp_ns = c.stamp_ns;
+      writer_.write(c);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));  // the agent's 100 Hz
+    }
+  }
+  dds::Writer<msg::UavCommand> writer_;
+  std::atomic<bool> stop_{false};
+  std::atomic<std::uint32_t> seq_{0};
+  std::thread thread_;
+};
+
+}  // namespace cover::fc_bridge::test
