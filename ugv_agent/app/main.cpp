@@ -14,6 +14,7 @@
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/logging/log.hpp"
+#include "cover/mavlink/connection_url.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/shm/segment_name.hpp"
 #include "cover/sim/world_state.hpp"
@@ -37,9 +38,9 @@ void add_options(CLI::App& app, CommandLine& cli) {
       ->required()
       ->check(CLI::Range(0, cover::sim::kMaxUgvs - 1));
   app.add_option("--source", cli.source.kind,
-                 "Where the raw IMU comes from: sim (the simulator's shared memory) or csv "
-                 "(replay --csv FILE)")
-      ->check(CLI::IsMember({"sim", "csv"}))
+                 "Where the raw IMU comes from: sim (the simulator's shared memory), csv "
+                 "(replay --csv FILE) or mavlink (the UGV's autopilot at --url)")
+      ->check(CLI::IsMember({"sim", "csv", "mavlink"}))
       ->capture_default_str();
   app.add_option("--run-id", cli.source.run_id,
                  "sim: the simulator run to attach to; with the DDS domain it names the "
@@ -50,6 +51,14 @@ void add_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--replay-rate", cli.source.replay_rate,
                  "csv: replay X times faster than real time")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--url", cli.source.mavlink_url,
+                 "mavlink: the autopilot's link, udpin://IP:PORT (listen), udpout://HOST:PORT or "
+                 "serial:///dev/ttyX:BAUD; reads HIGHRES_IMU (SCALED_IMU when that is all)");
+  app.add_option("--mavlink-stamp", cli.source.mavlink_stamp,
+                 "mavlink: stamp samples with the autopilot's time (the simulator: simulated "
+                 "time) or their receive time on this host's system clock (the field)")
+      ->check(CLI::IsMember({"autopilot", "receive"}))
       ->capture_default_str();
   app.add_option("--config", cli.config_path, "Agent parameters (section ugv_agent)")
       ->capture_default_str();
@@ -63,6 +72,12 @@ void check_combination(const CommandLine& cli) {
   }
   if (cli.source.kind != "csv" && !cli.source.csv_path.empty()) {
     throw CLI::ValidationError("--csv is only for --source csv");
+  }
+  if (cli.source.kind == "mavlink" && cli.source.mavlink_url.empty()) {
+    throw CLI::ValidationError("--source mavlink needs --url URL (e.g. udpin://0.0.0.0:14640)");
+  }
+  if (cli.source.kind != "mavlink" && !cli.source.mavlink_url.empty()) {
+    throw CLI::ValidationError("--url is only for --source mavlink");
   }
 }
 
@@ -87,6 +102,9 @@ int run(const CommandLine& cli) {
     source_options.dds_domain = dds_options.domain_id;
     if (source_options.kind == "sim") {
       cover::shm::segment_name(source_options.dds_domain, source_options.run_id);  // checks
+    }
+    if (source_options.kind == "mavlink") {
+      cover::mavlink::ConnectionUrl::parse(source_options.mavlink_url);  // checks
     }
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
@@ -127,8 +145,8 @@ int main(int argc, char** argv) {
       "(config section ugv_agent.imu_filter) and publishes every accepted sample on "
       "cover/ugv/<k>/imu, plus a heartbeat on cover/ugv/<k>/status.\n"
       "Exit codes: 0 stopped (SIGINT/SIGTERM) or replay finished, 2 usage or configuration "
-      "error, 3 the IMU source failed (no segment within segment_wait_s, malformed CSV, "
-      "simulator gone)."};
+      "error (a malformed --url too), 3 the IMU source failed (no segment within "
+      "segment_wait_s, malformed CSV, simulator gone, MAVLink port taken)."};
   CommandLine cli;
   add_options(app, cli);
   try {
