@@ -282,9 +282,9 @@ TEST(Bridge, NaNAndRepeatedCommandsCountAsMissing) {
   bad.stamp_ns += 20'000'000;
   bad.pitch_rate_rad_s = std::nan("");
   EXPECT_TRUE(rig.bridge.on_agent_command(bad, rig.t + 0.02).empty());
-  AgentCommand older = rig.command();
+  AgentCommand older = rig.command();  // the realtime clock stepping back: still fresh
   older.stamp_ns -= 5'000'000;
-  EXPECT_TRUE(rig.bridge.on_agent_command(older, rig.t + 0.03).empty());
+  EXPECT_EQ(rig.bridge.on_agent_command(older, rig.t + 0.03).size(), 1U);
   rig.collect_notices();
   EXPECT_TRUE(rig.noticed("a repeat of the previous one"));
   // Only the first bad one of a run is logged; the NaN came in the same run.

@@ -18,9 +18,6 @@ constexpr std::uint8_t kProvisionalSystemId = 1;
 constexpr double kCompanionHeartbeatPeriod_s = 1.0;
 constexpr double kSequencerRetry_s = 1.0;
 constexpr double kMilliGToMS2 = 9.80665e-3;  // SCALED_IMU's accelerations are in mG
-// A command older than the last one by more than this is a new time base (the simulator
-// started again), not a late sample.
-constexpr std::int64_t kTimeBaseJump_ns = 1'000'000'000;
 
 HoverThrustEstimatorParams estimator_params(const FcBridgeParams& p) {
   HoverThrustEstimatorParams e;
@@ -224,7 +221,7 @@ const std::vector<mavlink::EncodedFrame>& Bridge::on_agent_command(const AgentCo
                                                                    double now_s) {
   out_.clear();
   const double now = advance(now_s);
-  if (!fresh(command, now)) return out_;
+  if (!fresh(command)) return out_;
   supervisor_.on_command(command.handover, now);
   if (command.release_payload && !last_release_) {
     CommandSpec gripper;
@@ -239,24 +236,23 @@ const std::vector<mavlink::EncodedFrame>& Bridge::on_agent_command(const AgentCo
   return out_;
 }
 
-bool Bridge::fresh(const AgentCommand& command, double now_s) {
+bool Bridge::fresh(const AgentCommand& command) {
+  // Only a verbatim repeat is stale (a tool republishing one sample). An older stamp is
+  // not: in realtime the agent's clock is the simulator's extrapolated, which steps back a
+  // little when a late tick arrives, and a restarted agent counts its seq from 1 again.
   const char* why = nullptr;
   if (!is_flyable(command)) {
     why = "not flyable (NaN or out of range)";
-  } else if (last_stamp_ns_ >= 0 && command.stamp_ns == last_stamp_ns_ &&
-             command.seq == last_seq_ && last_sent_) {
+  } else if (has_last_ && command.stamp_ns == last_stamp_ns_ && command.seq == last_seq_ &&
+             last_sent_) {
     // A repeat of a command not sent yet (no autopilot heard then) goes: a lockstep agent
     // answers a tick published again with the same command, and the simulator waits for it.
     why = "a repeat of the previous one (same stamp and seq)";
-  } else if (last_stamp_ns_ >= 0 && command.stamp_ns < last_stamp_ns_ &&
-             last_stamp_ns_ - command.stamp_ns < kTimeBaseJump_ns) {
-    why = "older than the previous one";
   }
   if (why != nullptr) {
     if (!rejecting_) {
       note(Notice::Level::Warning, "UAV agent command seq " + std::to_string(command.seq) +
-                                       " ignored: " + why +
-                                       "; such commands count as missing (logged once a run)");
+                                       " ignored: " + why + "; such commands count as missing");
       rejecting_ = true;
     }
     return false;
@@ -265,6 +261,7 @@ bool Bridge::fresh(const AgentCommand& command, double now_s) {
     note(Notice::Level::Info, "UAV agent commands usable again");
     rejecting_ = false;
   }
+  has_last_ = true;
   last_stamp_ns_ = command.stamp_ns;
   last_seq_ = command.seq;
   return true;

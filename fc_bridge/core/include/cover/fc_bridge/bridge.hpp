@@ -80,7 +80,7 @@ class Bridge {
 
   // The latency path: the SET_ATTITUDE_TARGET to write at once (and a land or gripper
   // command when the command asks for one). Nothing for a command that is not flyable
-  // (NaN, absurd) or stale (a repeat, older than the last): it counts as missing.
+  // (NaN, absurd) or stale (a verbatim repeat of the last): it counts as missing.
   // Allocates nothing in the steady state.
   const std::vector<mavlink::EncodedFrame>& on_agent_command(const AgentCommand& command,
                                                              double now_s);
@@ -107,7 +107,7 @@ class Bridge {
 
   double advance(double now_s);  // time never goes back inside the bridge
   AutopilotView view(double now_s) const;
-  bool fresh(const AgentCommand& command, double now_s);
+  bool fresh(const AgentCommand& command);
   void note(Notice::Level level, std::string text);
   void note_session_changes(double now_s);
   void on_imu(const mavlink::Frame& frame, double now_s);
@@ -144,10 +144,11 @@ class Bridge {
   std::vector<OperatorReply> replies_;
 
   // The agent's stream.
-  std::int64_t last_stamp_ns_ = -1;
+  bool has_last_ = false;
+  std::int64_t last_stamp_ns_ = 0;
   std::uint32_t last_seq_ = 0;
   bool last_sent_ = false;  // the last fresh command went out as a setpoint
-  bool rejecting_ = false;  // a run of unusable commands is logged once, at its start
+  bool rejecting_ = false;  // a run of unusable commands is logged once, at its start and end
   bool last_release_ = false;
   double last_thrust_ = 0.0;  // normalised, as last sent
   bool highres_imu_seen_ = false;

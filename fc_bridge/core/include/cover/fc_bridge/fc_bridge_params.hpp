@@ -11,7 +11,7 @@ namespace cover::fc_bridge {
 // documents each one.
 struct FcBridgeParams {
   // Normalised collective thrust (0..1) that hovers the vehicle, the estimator's start.
-  // 9.81 / 20: the simulated quadrotor, whose full throttle gives 20 m/s^2.
+  // 9.81 / 20: the simulated quadrotor's nominal hover (full throttle gives 20 m/s^2).
   double hover_thrust = 0.4905;
   double hover_thrust_min = 0.15;  // the estimate stays within [min, max]
   double hover_thrust_max = 0.85;
