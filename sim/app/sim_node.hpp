@@ -69,8 +69,9 @@ class SimNode {
   // Realtime sensor-to-command latency samples, ms. Direct path: from writing a tick's
   // relative states to taking the agent's command (cover/uav/<u>/cmd) that names them.
   // With autopilots: from writing tick k's relative states to the simulator's reader
-  // thread taking off the socket the first SET_ATTITUDE_TARGET whose time_boot_ms lies in
-  // tick k's control period (the whole path agent -> DDS -> bridge -> MAVLink).
+  // thread taking off the socket the first SET_ATTITUDE_TARGET whose time_boot_ms is
+  // nearest tick k's time (the whole path agent -> DDS -> bridge -> MAVLink), while the
+  // agent's task runs.
   const std::vector<double>& latency_ms() const { return latency_ms_; }
   // What UAV `uav`'s link saw (autopilots only, after run()).
   const AutopilotLinks* autopilot_links() const { return autopilot_links_.get(); }

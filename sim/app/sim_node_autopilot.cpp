@@ -52,8 +52,12 @@ void SimNode::on_autopilot_frame(int u, const mavlink::Frame& frame) {
 }
 
 // Lockstep: the tick a setpoint answers. Realtime: the latency of the first setpoint of each
-// tick (time_boot_ms is the agent's command stamp: the tick's time plus the agent's
-// extrapolation, within the tick's control period).
+// tick, the tick being time_boot_ms rounded to the nearest control period (time_boot_ms is
+// the agent's command stamp: its clock, the simulator's time extrapolated from the last
+// tick it heard, read when the tick's relative state woke it: within a fraction of a
+// period of the tick's time, either side). Counted while the agent's last trace says its
+// task runs: only then does it step on each relative state, as the direct path's measure
+// (commands that name a relative state) counts.
 void SimNode::note_setpoint_locked(int u, std::uint32_t time_boot_ms, std::int64_t received_ns) {
   Mailbox& box = mailboxes_[u];
   if (box.setpoints++ == 0) {
@@ -61,9 +65,10 @@ void SimNode::note_setpoint_locked(int u, std::uint32_t time_boot_ms, std::int64
                  time_boot_ms);
   }
   box.setpoint_ms = std::max<std::int64_t>(box.setpoint_ms, time_boot_ms);
-  if (options_.clock != SimClockMode::Realtime) return;
-  const auto tick = static_cast<std::uint64_t>(
-      std::floor(time_boot_ms * params_.control_rate_hz / 1000.0 + 1e-6));
+  const bool running = box.trace && box.trace->task_state == msg::TaskState::TASK_RUNNING;
+  if (options_.clock != SimClockMode::Realtime || !running) return;
+  const auto tick =
+      static_cast<std::uint64_t>(std::llround(time_boot_ms * params_.control_rate_hz / 1000.0));
   TickPublish& slot = tick_published_[tick % tick_published_.size()];
   if (slot.tick != tick || slot.answered[static_cast<std::size_t>(u)]) return;
   slot.answered[static_cast<std::size_t>(u)] = true;

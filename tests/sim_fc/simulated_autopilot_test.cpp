@@ -319,10 +319,18 @@ TEST(SimulatedAutopilot, SetpointsOnlyForThisSystemFromTheCompanionWithRatesAndT
   const auto ok = bench.send(bench.setpoint(0.5F));
   EXPECT_TRUE(ok.setpoint_accepted);
   EXPECT_EQ(ok.setpoint_time_boot_ms, 0u);
+  mav::Encoder echo(AutopilotBench::kSystem, 1);  // its own frames coming back
+  EXPECT_FALSE(bench.send(bench.setpoint(0.9F), &echo).setpoint_accepted);
   mav::Encoder intruder(200, 191);
   EXPECT_FALSE(bench.send(bench.setpoint(0.9F), &intruder).setpoint_accepted);
   EXPECT_EQ(bench.autopilot().setpoints_accepted(), 1u);
   EXPECT_EQ(bench.autopilot().setpoints_ignored(), 5u);
+}
+
+TEST(SimulatedAutopilot, TakesSetpointsFromACompanionOnItsOwnSystem) {
+  AutopilotBench bench(AutopilotProfile::Px4);
+  mav::Encoder onboard(AutopilotBench::kSystem, mav::mav_comp::kOnboardComputer);
+  EXPECT_TRUE(bench.send(bench.setpoint(0.5F), &onboard).setpoint_accepted);
 }
 
 TEST(SimulatedAutopilot, AnswersTimesyncAndReleasesThePayloadOnTheGripperCommand) {

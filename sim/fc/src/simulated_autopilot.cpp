@@ -65,7 +65,10 @@ SimulatedAutopilot::SimulatedAutopilot(AutopilotProfile profile, std::uint8_t sy
 FrameResponse SimulatedAutopilot::on_frame(const mavlink::Frame& frame, double now_s) {
   last_now_s_ = now_s;
   FrameResponse response;
-  if (frame.system_id == system_id()) return response;  // our own frames, echoed
+  // Our own frames, echoed. A companion is often another component of our system (191).
+  if (frame.system_id == system_id() && frame.component_id == encoder_.component_id()) {
+    return response;
+  }
   if (const auto setpoint = mavlink::decode<mavlink::SetAttitudeTarget>(frame)) {
     handle_setpoint(frame, *setpoint, now_s, response);
   } else if (const auto command = mavlink::decode<mavlink::CommandLong>(frame)) {
