@@ -95,7 +95,10 @@ void SimNode::on_command(int u, const msg::UavCommand& command) {
 }
 
 SimExit SimNode::run() {
-  if (!wait_for_agents()) return SimExit::StartupTimeout;
+  if (!wait_for_agents()) {
+    // Stopped while waiting is a stop (a standing world's normal end), not a failed start.
+    return process::ShutdownSignal::requested() ? SimExit::Interrupted : SimExit::StartupTimeout;
+  }
   const auto start = std::chrono::steady_clock::now();
   const SimExit exit = options_.clock == SimClockMode::Lockstep ? run_lockstep() : run_realtime();
   if (autopilot_links_) autopilot_links_->stop();
