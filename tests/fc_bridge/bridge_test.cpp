@@ -209,6 +209,32 @@ TEST(Bridge, HeartbeatLossAfterItsTimeoutEvenWhileOtherFramesArrive) {
   EXPECT_TRUE(rig.bridge.state(rig.t).link_ok);
 }
 
+// Only the downlink may be gone: the bridge asks for the land mode blind (the agent has
+// failed its task, nobody else would end the flight), again while nothing answers.
+TEST(Bridge, HeartbeatLostWhileCoverFliesRequestsLandBlind) {
+  Rig rig;
+  rig.run(1.0);
+  rig.flying();
+  rig.run(0.5);
+  ASSERT_TRUE(rig.sent_commands(mav::mav_cmd::kNavLand).empty());
+  rig.heartbeats = false;
+  rig.obey = false;
+  rig.run(3.0);
+  EXPECT_FALSE(rig.bridge.state(rig.t).link_ok);
+  EXPECT_GE(rig.sent_commands(mav::mav_cmd::kNavLand).size(), 2u);
+  EXPECT_NE(rig.bridge.state(rig.t).failsafe.find("link lost"), std::string::npos);
+}
+
+// On the ground, disarmed, a lost link asks for nothing.
+TEST(Bridge, HeartbeatLostOnTheGroundRequestsNothing) {
+  Rig rig;
+  rig.run(1.0);
+  rig.heartbeats = false;
+  rig.run(3.0);
+  EXPECT_FALSE(rig.bridge.state(rig.t).link_ok);
+  EXPECT_TRUE(rig.sent_commands(mav::mav_cmd::kNavLand).empty());
+}
+
 TEST(Bridge, AgentSilentForTheTimeoutLandsWithinOneTick) {
   Rig rig;
   rig.run(1.0);

@@ -23,6 +23,13 @@ SafetySupervisor::Decision SafetySupervisor::check(const AutopilotView& autopilo
     decision.reached = true;
     return decision;
   }
+  if (autopilot.link_ok) {
+    cover_flew_ = autopilot.cover_flying();
+  } else if (!latched_ && cover_flew_) {
+    trigger("autopilot link lost (no HEARTBEAT) while COVER flew the UAV: land requested blind",
+            now_s);
+    decision.triggered = true;
+  }
   if (!latched_ && autopilot.cover_flying()) {
     if (handover_) {
       trigger("the UAV agent handed over (no relative state to land on)", now_s);
@@ -38,8 +45,8 @@ SafetySupervisor::Decision SafetySupervisor::check(const AutopilotView& autopilo
       decision.triggered = true;
     }
   }
-  // The link must be up to be heard; the request goes out again when it comes back.
-  if (latched_ && autopilot.link_ok && !awaiting_answer_ && now_s >= next_request_s_) {
+  // Sent with the link down too: a lost downlink may leave the uplink working.
+  if (latched_ && !awaiting_answer_ && now_s >= next_request_s_) {
     decision.request_land = true;
     awaiting_answer_ = true;
   }
@@ -55,7 +62,7 @@ void SafetySupervisor::on_land_result(CommandOutcome outcome, double now_s) {
     case CommandOutcome::Refused:
       next_request_s_ = now_s + retry_after_refusal_s_;
       break;
-    case CommandOutcome::NoAnswer:
+    case CommandOutcome::NoAnswer:  // its own resends spaced it: 4 frames a second at most
       next_request_s_ = now_s;
       break;
   }

@@ -11,7 +11,9 @@ namespace cover::fc_bridge {
 // OFFBOARD / GUIDED_NOGPS), no fresh agent command for `cmd_timeout_s`, or a command with
 // `handover`, and the autopilot is sent to its own land mode at once, faster than PX4's
 // own offboard loss (1 s); it is asked again until its HEARTBEAT shows the land mode (or
-// it disarms), with the reason kept for cover/uav/U/fc.
+// it disarms), with the reason kept for cover/uav/U/fc. An autopilot whose HEARTBEAT
+// stops while COVER flies it is asked to land too, blind: only its downlink may be gone,
+// and the UAV agent has failed its task (nobody would end the flight otherwise).
 class SafetySupervisor {
  public:
   // `land_confirm_s`: after an accepted land request, how long the HEARTBEAT gets to show
@@ -43,6 +45,7 @@ class SafetySupervisor {
   double retry_after_refusal_s_;
   double last_command_s_ = -1.0;
   bool handover_ = false;
+  bool cover_flew_ = false;  // COVER flew the UAV when the link was last up
   bool latched_ = false;
   bool awaiting_answer_ = false;
   double next_request_s_ = 0.0;
