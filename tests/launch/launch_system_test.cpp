@@ -1,0 +1,180 @@
+// config/launch/system.yaml as an operator runs it: the simulator's standing world, two UGV
+// agents, a UAV agent and the task manager, as real processes on a DDS domain of their own.
+// A hang-up of the launcher stops nothing; a UGV agent killed mid-flight is respawned while
+// the others keep their pids, and the UAV agent decides the task, not a teardown.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cover/dds/domain_claim.hpp"
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/test/process_alive.hpp"
+#include "launch_test_support.hpp"
+
+namespace {
+
+using namespace cover::launch::testing;
+using cover::test::process_alive;
+using namespace std::chrono_literals;
+
+const std::vector<std::string> kProcesses{"sim", "ugv0", "ugv1", "uav0", "task_manager"};
+
+class SystemLaunch : public LaunchProcess {
+ protected:
+  // system.yaml on `domain`, its task database in the scratch folder.
+  void start_system(int domain, const std::string& clock = "lockstep") {
+    claim_.emplace(cover::dds::DomainClaim::claim(domain, std::chrono::minutes(10)));
+    launcher_ = start({std::string(COVER_SOURCE_DIR) + "/config/launch/system.yaml", "--run-dir",
+                       run_dir_.string(), "--domain", std::to_string(domain), "--clock", clock,
+                       "--var", "db=" + (dir_ / "tasks.db").string(), "--json"},
+                      /*own_group=*/true);
+    ASSERT_TRUE(fleet_heard()) << launch_log();
+    for (const auto& name : kProcesses) {
+      const auto pids = started_pids(launch_log(), name);
+      ASSERT_EQ(pids.size(), 1u) << name << "\n" << launch_log();
+      pids_.push_back(pids.front());
+    }
+  }
+
+  // Every agent heard on the domain, as the task manager must hear them.
+  bool fleet_heard() {
+    cover::dds::ParticipantOptions options;
+    options.vendor = cover::dds::Vendor::Cyclone;
+    options.domain_id = claim_->domain();
+    cover::dds::Participant probe(options);
+    auto uav = probe.make_reader(cover::dds::topics::uav_status(0));
+    auto ugv0 = probe.make_reader(cover::dds::topics::ugv_imu(0));
+    auto ugv1 = probe.make_reader(cover::dds::topics::ugv_imu(1));
+    return uav.wait_for_sample(scaled(60s)) && ugv0.wait_for_sample(scaled(30s)) &&
+           ugv1.wait_for_sample(scaled(30s));
+  }
+
+  // `cover ARGS --json` on the system's domain: exit code and its last JSON line.
+  std::pair<int, nlohmann::json> cover(std::vector<std::string> args) {
+    args.insert(args.begin(), COVER_CLI);
+    args.insert(args.end(), {"--json", "--timeout", "20", "--dds", "cyclone"});
+    cover::process::SpawnOptions options;
+    // The domain by environment: the task commands share one set of DDS flags, and today
+    // only the last subcommand's --domain is read.
+    options.extra_env = {"COVER_DDS_DOMAIN=" + std::to_string(claim_->domain())};
+    options.capture_stdout = true;
+    options.log_file = (dir_ / "cover.stderr").string();
+    cover::process::ChildProcess cli(args, options);
+    std::string last;
+    while (const auto line = cli.read_line(scaled(180s))) {
+      if (!line->empty()) last = *line;
+    }
+    const int code = cli.wait(scaled(30s)).value_or(-1);
+    return {code, nlohmann::json::parse(last, nullptr, false)};
+  }
+
+  static std::string state_of(const nlohmann::json& reply) {
+    if (reply.is_object() && reply.contains("tasks") && !reply["tasks"].empty()) {
+      return reply["tasks"][0]["state"];
+    }
+    return reply.is_object() && reply.contains("state") ? reply["state"] : "";
+  }
+
+  std::string hop_task(const std::string& id) const {
+    const std::string path = (dir_ / (id + ".yaml")).string();
+    std::ofstream(path) << "task_id: " << id << "\nuav_id: 0\nprocesses:\n"
+                        << "  - {from_ugv: 0, to_ugv: 1, initial_point_m: [0, 0, 1.0], "
+                           "transition_point_m: [0, 0, 1.0], final_point_m: [0, 0, 0.05], "
+                           "final_action: land, vmax_m_s: 1.5}\n";
+    return path;
+  }
+
+  // SIGINT to the launcher: every process stops in order, nothing of the run is left.
+  void stop_and_check() {
+    kill(launcher_->pid(), SIGINT);
+    const auto result = finish(*launcher_, 60000ms);
+    EXPECT_EQ(result.exit_code, 130) << result.err;
+    const auto report = nlohmann::json::parse(result.out, nullptr, false);
+    ASSERT_TRUE(report.is_object()) << result.out;
+    EXPECT_EQ(report.at("leftover_segments"), nlohmann::json::array())
+        << "a process left its segment: the launcher removed it";
+    for (const auto& process : report.at("processes")) {
+      EXPECT_EQ(process.at("stopped_by"), "SIGINT") << process.dump();
+    }
+    expect_all_gone(report);
+    const std::string run_id = report.at("run_id");
+    for (const auto& entry : fs::directory_iterator("/dev/shm")) {
+      EXPECT_EQ(entry.path().filename().string().find(run_id), std::string::npos) << entry.path();
+    }
+  }
+
+  std::optional<cover::dds::DomainClaim> claim_;
+  std::unique_ptr<cover::process::ChildProcess> launcher_;
+  std::vector<int> pids_;  // in kProcesses' order
+};
+
+TEST_F(SystemLaunch, SighupToAStandingLaunchStopsNoProcess) {
+  start_system(215);
+  kill(launcher_->pid(), SIGHUP);
+  // One at a time: a second SIGHUP sent while the first is pending is merged with it.
+  ASSERT_TRUE(eventually([&] { return contains(launch_log(), "SIGHUP received (1)"); }))
+      << launch_log();
+  killpg(launcher_->pid(), SIGHUP);  // what a shell sends its jobs when it is hung up
+  ASSERT_TRUE(eventually([&] { return contains(launch_log(), "SIGHUP received (2)"); }))
+      << launch_log();
+  // Still serving after the hang-up: the fleet is heard and the task manager answers.
+  EXPECT_TRUE(fleet_heard());
+  const auto [listed, list] = cover({"list"});
+  EXPECT_EQ(listed, 0) << list.dump();
+  EXPECT_TRUE(process_alive(launcher_->pid()));
+  for (std::size_t i = 0; i < kProcesses.size(); ++i) {
+    EXPECT_TRUE(process_alive(pids_[i])) << kProcesses[i];
+    EXPECT_EQ(started_pids(launch_log(), kProcesses[i]).size(), 1u) << kProcesses[i];
+  }
+  stop_and_check();
+}
+
+// Realtime, so that the kill lands mid-flight: the UAV flies on UGV 0's last IMU sample
+// while the agent is down (respawn_delay_s 1.0 s), then the ladder decides.
+TEST_F(SystemLaunch, AUgvAgentKilledMidFlightIsRespawnedWhileTheOthersGoOn) {
+  start_system(214, "realtime");
+  cover::dds::ParticipantOptions options;
+  options.vendor = cover::dds::Vendor::Cyclone;
+  options.domain_id = claim_->domain();
+  cover::dds::Participant probe(options);
+  auto status = probe.make_reader(cover::dds::topics::uav_status(0));
+  const auto [submitted, reply] = cover({"submit", hop_task("through-a-kill")});
+  ASSERT_EQ(submitted, 0) << reply.dump();
+  ASSERT_TRUE(eventually(
+      [&] {
+        const auto latest = status.latest();
+        return latest && latest->sample.task_id == "through-a-kill" &&
+               latest->sample.task_state == cover::msg::TaskState::TASK_RUNNING;
+      },
+      60000ms))
+      << "the task never ran";
+  const int ugv0 = pids_[1];
+  kill(ugv0, SIGKILL);
+  ASSERT_TRUE(eventually([&] { return started_pids(launch_log(), "ugv0").size() == 2; }, 30000ms))
+      << launch_log();
+  EXPECT_TRUE(contains(launch_log(), "ugv0 (pid " + std::to_string(ugv0) +
+                                         ") died: killed by signal 9 (Killed); respawning"))
+      << launch_log();
+  // The UAV agent decides the task: resumed or failed with its cause, never torn down.
+  const auto [watched, last] = cover({"watch", "through-a-kill"});
+  const std::string end = state_of(last);
+  EXPECT_TRUE(end == "MANAGED_SUCCEEDED" || end == "MANAGED_FAILED") << last.dump();
+  EXPECT_FALSE(last.value("reason", "").empty()) << last.dump();
+  // The others were never restarted: same pids, alive.
+  for (std::size_t i = 0; i < kProcesses.size(); ++i) {
+    if (kProcesses[i] == "ugv0") continue;
+    EXPECT_EQ(started_pids(launch_log(), kProcesses[i]), std::vector<int>{pids_[i]})
+        << kProcesses[i];
+    EXPECT_TRUE(process_alive(pids_[i])) << kProcesses[i];
+  }
+  EXPECT_TRUE(fleet_heard()) << "the respawned UGV agent publishes again";
+  stop_and_check();
+}
+
+}  // namespace
