@@ -15,8 +15,18 @@ void BridgeClock::wait(std::chrono::milliseconds timeout) {
   }
   auto tick = clock_.next_tick(timeout);
   while (tick) {
-    if (tick->tick.stamp_ns > tick_ns_.load()) tick_ns_.store(tick->tick.stamp_ns);
+    advance_to(tick->tick.stamp_ns);
     tick = clock_.next_tick(std::chrono::milliseconds(0));
+  }
+}
+
+void BridgeClock::observe_command_stamp(std::int64_t stamp_ns) {
+  if (mode_ == sim_clock::ClockMode::Lockstep) advance_to(stamp_ns);
+}
+
+void BridgeClock::advance_to(std::int64_t stamp_ns) {
+  std::int64_t seen = tick_ns_.load();
+  while (stamp_ns > seen && !tick_ns_.compare_exchange_weak(seen, stamp_ns)) {
   }
 }
 

@@ -24,8 +24,16 @@ class BridgeClock {
   void wait(std::chrono::milliseconds timeout);
   // nullopt before the simulator's first tick (lockstep, realtime). Thread-safe.
   std::optional<double> now_s() const;
+  // Lockstep: the agent answers only ticks the simulator has published, so a command's
+  // stamp is a tick too, perhaps one this bridge's tick reader has not delivered yet. Time
+  // taken from ticks alone would then lag the commands: a housekeeping thread starved for a
+  // few wall-clock milliseconds saw 12 ticks at once, called the agent 120 ms silent and
+  // landed a healthy flight. No-op on the other clocks.
+  void observe_command_stamp(std::int64_t stamp_ns);
 
  private:
+  void advance_to(std::int64_t stamp_ns);  // never backwards; from any thread
+
   sim_clock::ClockMode mode_;
   sim_clock::AgentClock clock_;
   std::atomic<std::int64_t> tick_ns_{-1};

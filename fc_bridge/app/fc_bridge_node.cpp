@@ -56,6 +56,7 @@ void FcBridgeNode::run() {
 // --- the three inputs ------------------------------------------------------------------
 
 void FcBridgeNode::on_command(const msg::UavCommand& command) {
+  clock_.observe_command_stamp(command.stamp_ns);
   const auto now = clock_.now_s();
   if (!now) return;  // no simulator time yet
   const AgentCommand c = from_msg(command);
