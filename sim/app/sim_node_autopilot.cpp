@@ -118,14 +118,16 @@ void SimNode::log_autopilot_events_locked(int u) {
 
 // While simulated time stands still (waiting for the agents, or a lockstep tick not yet
 // answered), a real autopilot would still send its heartbeat: a bridge that waits for one
-// before it streams setpoints would otherwise never start.
+// before it streams setpoints would otherwise never start. Only until its bridge streams:
+// then the stepped heartbeats carry on, on simulated time, and a heartbeat that came at a
+// wall-clock moment would make a lockstep run depend on the machine's timing.
 void SimNode::send_keepalive_heartbeats() {
   if (!uses_autopilots()) return;
   const auto now = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lock(mutex_);
   for (int u = 0; u < fleet_.uav_count(); ++u) {
     auto& sent = keepalive_sent_[static_cast<std::size_t>(u)];
-    if (now - sent < kKeepalivePeriod) continue;
+    if (mailboxes_[u].setpoints > 0 || now - sent < kKeepalivePeriod) continue;
     sent = now;
     if (const auto heartbeat = fleet_.autopilot(u).heartbeat_frame()) {
       autopilot_links_->send(u, *heartbeat);
