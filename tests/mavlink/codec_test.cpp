@@ -377,6 +377,24 @@ TEST(MavlinkSigning, UnsignedFramesAreRefusedWhenSigningIsRequired) {
   EXPECT_EQ(parse(stream, options).frames.size(), 3U);
 }
 
+// A companion that learns its autopilot's system id re-addresses its encoder: its
+// sequence runs on, so a receiver counting per sender sees no loss.
+TEST(MavlinkSequence, ASenderReaddressedKeepsItsSequence) {
+  Encoder encoder(1, 191);
+  const ExtendedSysState state = std::get<ExtendedSysState>(sample_messages());
+  Bytes stream;
+  for (int i = 0; i < 3; ++i) append(stream, encode(encoder, state));
+  encoder.set_sender(1, 191);
+  for (int i = 0; i < 3; ++i) append(stream, encode(encoder, state));
+  encoder.set_sender(7, 191);
+  append(stream, encode(encoder, state));
+  const Parsed p = parse(stream);
+  ASSERT_EQ(p.frames.size(), 7U);
+  EXPECT_EQ(p.stats.sequence_gaps, 0U);
+  EXPECT_EQ(p.frames[6].system_id, 7);
+  EXPECT_EQ(p.frames[6].seq, 6);
+}
+
 TEST(MavlinkSequence, GapsAreCountedPerSender) {
   Encoder a(1, 1);
   Encoder b(2, 1);

@@ -142,8 +142,7 @@ void Bridge::learn_identity() {
   const std::uint8_t system_id = config_.params.system_id != 0
                                      ? static_cast<std::uint8_t>(config_.params.system_id)
                                      : session_.system_id();
-  encoder_ = mavlink::Encoder(system_id, static_cast<std::uint8_t>(config_.params.component_id),
-                              config_.signing_key);
+  encoder_.set_sender(system_id, static_cast<std::uint8_t>(config_.params.component_id));
   note(Notice::Level::Info, "autopilot found: system " + std::to_string(session_.system_id()) +
                                 " component " + std::to_string(session_.component_id()) + ", " +
                                 autopilot_name(session_.reported_autopilot()) +

@@ -25,8 +25,15 @@ class Encoder {
   }
 
   // A frame of any id from a full (untrimmed) payload.
-  EncodedFrame frame(std::uint32_t message_id, std::uint8_t crc_extra,
-                     const std::uint8_t* payload, std::size_t payload_length);
+  EncodedFrame frame(std::uint32_t message_id, std::uint8_t crc_extra, const std::uint8_t* payload,
+                     std::size_t payload_length);
+  // Speaks as another sender from the next frame on, its sequence number running on: a
+  // companion that learns its autopilot's system id must not look like 255 lost frames to a
+  // receiver counting gaps per sender.
+  void set_sender(std::uint8_t system_id, std::uint8_t component_id) {
+    system_id_ = system_id;
+    component_id_ = component_id;
+  }
   std::uint8_t system_id() const { return system_id_; }
   std::uint8_t component_id() const { return component_id_; }
 
