@@ -2,6 +2,7 @@
 
 #include "cover/mission/task.hpp"
 #include "cover/wire/enums.hpp"
+#include "cover/wire/fc_state.hpp"
 
 namespace cover::task_manager {
 namespace {
@@ -74,6 +75,21 @@ std::optional<wire::Rejection> FleetIntake::on_task_status(const msg::TaskStatus
       message_order_.pop_front();
     }
   }
+  return std::nullopt;
+}
+
+std::optional<wire::Rejection> FleetIntake::on_fc_state(const msg::FcState& state, int topic_id,
+                                                        double now_s) {
+  if (topic_id < 0 || topic_id >= max_uavs_ ||
+      state.uav_id != static_cast<std::uint32_t>(topic_id)) {
+    return counted(wire::Rejection::UnknownId);
+  }
+  AutopilotReport& report = view_.autopilots[topic_id];
+  report.heard_s = now_s;
+  // The reason ends up in the store and the logs: cut like an agent's message (mode_name
+  // comes from the autopilot, through a bridge).
+  const std::string why = wire::fc_not_ready_reason(state).value_or("");
+  report.not_ready = why.substr(0, std::min(why.size(), kMaxMessageLength));
   return std::nullopt;
 }
 

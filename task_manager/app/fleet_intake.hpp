@@ -13,7 +13,8 @@
 namespace cover::task_manager {
 
 // What the manager takes from the fleet's samples, checked first (wire/intake.hpp): a
-// heartbeat or IMU sample naming another vehicle than the topic it came on, an IMU sample
+// heartbeat, autopilot state or IMU sample naming another vehicle than the topic it came
+// on, an IMU sample
 // that is not finite or beyond full scale, a task status naming an unknown UAV or an id no
 // task can have, is dropped and counted (the reason is returned, for the log). Otherwise a
 // foreign or broken writer could make a down UGV look up, or grow the manager's memory
@@ -33,6 +34,9 @@ class FleetIntake {
                                                double now_s);
   std::optional<wire::Rejection> on_task_status(const msg::TaskStatus& status);
   std::optional<wire::Rejection> on_ugv_imu(const msg::UgvImu& imu, int topic_id, double now_s);
+  // A flight-controller bridge's report of UAV `topic_id`'s autopilot: from then on that
+  // UAV is flown through a bridge, and dispatched to only while its autopilot is ready.
+  std::optional<wire::Rejection> on_fc_state(const msg::FcState& state, int topic_id, double now_s);
 
   const LiveView& view() const { return view_; }
   const wire::RejectionCounts& rejections() const { return rejections_; }

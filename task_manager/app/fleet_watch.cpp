@@ -18,6 +18,15 @@ FleetWatch::FleetWatch(dds::Participant& participant, int max_uavs, int max_ugvs
           log_if(intake_.on_uav_status(s, u, now), name);
         }));
   }
+  for (int u = 0; u < max_uavs; ++u) {
+    const auto topic = dds::topics::fc_state(static_cast<std::uint32_t>(u));
+    fc_readers_.push_back(
+        participant.make_reader(topic, [this, u, name = topic.name()](const msg::FcState& s) {
+          const double now = clock::system_s();
+          std::lock_guard<std::mutex> lock(mutex_);
+          log_if(intake_.on_fc_state(s, u, now), name);
+        }));
+  }
   for (int k = 0; k < max_ugvs; ++k) {
     const auto topic = dds::topics::ugv_imu(static_cast<std::uint32_t>(k));
     ugv_readers_.push_back(

@@ -12,7 +12,8 @@
 namespace cover::task_manager {
 
 // What the manager hears of the fleet: each UAV agent's heartbeat (cover/uav/<u>/status)
-// and task status (cover/task/status), each UGV's IMU (cover/ugv/<k>/imu), stamped with
+// and task status (cover/task/status), each UGV's IMU (cover/ugv/<k>/imu), each UAV's
+// autopilot where a flight-controller bridge reports it (cover/uav/<u>/fc), stamped with
 // the host's wall clock when they arrive, through FleetIntake's checks (refused samples
 // are counted and logged, at most once per reason per log period). Thread-safe: receive
 // threads write, the manager thread takes a LiveView.
@@ -32,6 +33,7 @@ class FleetWatch {
   wire::RejectionCounts logged_;  // only its log clocks are used
   std::vector<dds::Reader<msg::UavStatus>> uav_readers_;
   std::vector<dds::Reader<msg::UgvImu>> ugv_readers_;
+  std::vector<dds::Reader<msg::FcState>> fc_readers_;
   dds::Reader<msg::TaskStatus> task_reader_;
 };
 

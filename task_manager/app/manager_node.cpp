@@ -2,7 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 #include "cover/clock/clock.hpp"
 #include "cover/process/shutdown_signal.hpp"
@@ -15,6 +17,13 @@ namespace {
 
 // Far more than the requests in flight from every station within a resend period.
 constexpr std::size_t kRememberedReplies = 1024;
+
+// "1.0 s", "8.3 s".
+std::string seconds_text(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f s", seconds);
+  return text;
+}
 
 msg::ManagerReply reply_to(const msg::ManagerRequest& request, bool ok, std::string message) {
   msg::ManagerReply reply;
@@ -61,14 +70,13 @@ int ManagerNode::run() {
     }
     const double now = clock::system_s();
     // In submission order: a submission waits while any before it does.
-    while (!held_.empty() && !must_wait(held_.front(), now)) {
-      handle(held_.front(), now);
+    while (!held_.empty() && !why_wait(held_.front().request, now)) {
+      handle(held_.front().request, now);
       held_.pop_front();
     }
     for (const msg::ManagerRequest& request : batch) {
-      if (request.kind == msg::ManagerRequestKind::MANAGER_SUBMIT &&
-          (!held_.empty() || must_wait(request, now))) {
-        held_.push_back(request);
+      if (request.kind == msg::ManagerRequestKind::MANAGER_SUBMIT) {
+        take_submission(request, now);
       } else {
         handle(request, now);
       }
@@ -79,20 +87,76 @@ int ManagerNode::run() {
   return 0;
 }
 
-bool ManagerNode::must_wait(const msg::ManagerRequest& request, double now_s) const {
+std::optional<ManagerNode::Wait> ManagerNode::why_wait(const msg::ManagerRequest& request,
+                                                       double now_s) const {
   const double listened_s = now_s - listening_since_s_;
-  if (listened_s < listen_first_s_) return true;
+  if (listened_s < listen_first_s_) {
+    return Wait{"the fleet",
+                "waiting: the task manager has just started and listens to the fleet for " +
+                    seconds_text(listen_first_s_) + " before it judges a task"};
+  }
   const TaskLimits& limits = dispatcher_.limits();
-  if (listened_s >= limits.restart_grace_s) return false;
+  if (listened_s >= limits.restart_grace_s) return std::nullopt;
   try {
     const mission::Task task = wire::from_msg(request.task);
     // A submission refused or rejected for its own faults is answered at once.
-    if (why_not_recordable(task, request.submitter, request.request_id)) return false;
-    if (why_not_sound(task, limits)) return false;
-    return names_unheard(task, fleet_.view(), options_.max_uavs, options_.max_ugvs);
+    if (why_not_recordable(task, request.submitter, request.request_id)) return std::nullopt;
+    if (why_not_sound(task, limits)) return std::nullopt;
+    const auto unheard = first_unheard(task, fleet_.view(), options_.max_uavs, options_.max_ugvs);
+    if (!unheard) return std::nullopt;
+    return Wait{*unheard, "waiting for " + *unheard + " (not heard yet; decided within " +
+                              seconds_text(limits.restart_grace_s - listened_s) + ")"};
   } catch (const std::exception&) {
-    return false;  // handle() reports it
+    return std::nullopt;  // handle() reports it
   }
+}
+
+std::size_t ManagerNode::held_position(const std::string& request_id) const {
+  const auto held = std::find_if(held_.begin(), held_.end(),
+                                 [&](const Held& h) { return h.request.request_id == request_id; });
+  return static_cast<std::size_t>(held - held_.begin());
+}
+
+void ManagerNode::take_submission(const msg::ManagerRequest& request, double now_s) {
+  if (answered_.count(request.request_id) > 0) {
+    handle(request, now_s);  // a repeat of a decided one: its first answer again
+    return;
+  }
+  const std::size_t position = held_position(request.request_id);
+  auto why = why_wait(request, now_s);
+  if (!why && position > 0 && !held_.empty()) {
+    // In submission order: behind the first held one, which says what it waits for.
+    const std::size_t ahead = std::min(position, held_.size());
+    why = Wait{"earlier submissions",
+               "waiting behind " + std::to_string(ahead) + " earlier submission(s)"};
+  }
+  if (position < held_.size()) {
+    // The station re-sends until decided: the same interim answer again, unless what the
+    // submission waits for changed (the fleet heard, now UGV 7), so that it can tell news
+    // from a repeat. First in line and no longer waiting: decided on the loop's next pass.
+    Held& held = held_[position];
+    if (why && why->what != held.why.what) {
+      spdlog::info("submission {} from {} held: {}", request.request_id, request.submitter,
+                   why->message);
+      held.why = *why;
+    }
+    answer_interim(request, held.why.message);
+    return;
+  }
+  if (!why) {
+    handle(request, now_s);
+    return;
+  }
+  spdlog::info("submission {} from {} held: {}", request.request_id, request.submitter,
+               why->message);
+  held_.push_back({request, *why});
+  answer_interim(request, why->message);
+}
+
+void ManagerNode::answer_interim(const msg::ManagerRequest& request, const std::string& why) {
+  msg::ManagerReply reply = reply_to(request, true, why);
+  reply.interim = true;
+  reply_writer_.write(reply);
 }
 
 void ManagerNode::handle(const msg::ManagerRequest& request, double now_s) {
@@ -199,6 +263,9 @@ void ManagerNode::step(double now_s) {
 }
 
 void ManagerNode::send(const Actions& actions, double now_s) {
+  for (const Waiting& w : actions.waiting) {
+    spdlog::info("task '{}' stays queued: {}", w.task_id, w.reason);
+  }
   for (const Dispatch& d : actions.dispatch) {
     spdlog::info("task '{}' sent to UAV {}", d.record.task_id, d.uav_id);
     dispatch_writer_.write(wire::to_msg(d.record.task, now_s));

@@ -4,6 +4,7 @@
 #include <deque>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "cover/dds/participant.hpp"
@@ -32,10 +33,23 @@ class ManagerNode {
 
  private:
   void on_request(const msg::ManagerRequest& request);
-  // Whether a submission must wait before it is judged: until the manager has listened for
-  // one heartbeat timeout, then, up to restart_grace_s after its start, while the task
-  // names a vehicle it listens to and has not heard yet (discovery can take seconds).
-  bool must_wait(const msg::ManagerRequest& request, double now_s) const;
+  // What a held submission waits for: `what` ("the fleet", "UGV 7") and the interim
+  // answer's words.
+  struct Wait {
+    std::string what;
+    std::string message;
+  };
+  // Why a submission must wait before it is judged: until the manager has listened for one
+  // heartbeat timeout, then, up to restart_grace_s after its start, while the task names a
+  // vehicle it listens to and has not heard yet (discovery can take seconds). nullopt:
+  // judge it now.
+  std::optional<Wait> why_wait(const msg::ManagerRequest& request, double now_s) const;
+  // A submission: held with an interim answer while it must wait, else handled.
+  void take_submission(const msg::ManagerRequest& request, double now_s);
+  // Its index in held_, or held_.size() when it is not held.
+  std::size_t held_position(const std::string& request_id) const;
+  // The interim answer (ManagerReply.interim) to a held submission: what it waits for.
+  void answer_interim(const msg::ManagerRequest& request, const std::string& why);
   void handle(const msg::ManagerRequest& request, double now_s);
   msg::ManagerReply submit(const msg::ManagerRequest& request, double now_s);
   msg::ManagerReply abort(const msg::ManagerRequest& request, double now_s);
@@ -57,10 +71,15 @@ class ManagerNode {
   // a repeat gets the first answer instead of being carried out again.
   std::map<std::string, msg::ManagerReply> answered_;
   // Submissions are judged against the live fleet, which a manager that has just started
-  // has not heard yet: they wait (must_wait) in held_.
+  // has not heard yet: they wait (why_wait) in held_, in submission order, each answered
+  // at once with an interim reply and again when its station re-sends it.
   double listening_since_s_ = 0.0;
   double listen_first_s_ = 0.0;
-  std::deque<msg::ManagerRequest> held_;
+  struct Held {
+    msg::ManagerRequest request;
+    Wait why;  // its interim answer, given again to each repeat
+  };
+  std::deque<Held> held_;
   std::deque<std::string> answered_order_;
   dds::Reader<msg::ManagerRequest> request_reader_;  // last: its callback uses the above
 };

@@ -88,6 +88,65 @@ TEST_F(DispatcherTest, FullLifecycleFromTheAgentsReports) {
   EXPECT_EQ(history[3].time_s, 20.0);
 }
 
+// Where a flight-controller bridge reports the UAV's autopilot, a task is dispatched only
+// while the autopilot flies COVER's setpoints; until then it stays queued, saying why.
+TEST_F(DispatcherTest, WithABridgeATaskWaitsForTheAutopilotSayingWhy) {
+  hear(0, 10.0);
+  live_.autopilots[0] = {10.0, "autopilot disarmed"};
+  submit("t1", 0, 10.0);
+  Actions actions = step(10.0);
+  EXPECT_TRUE(actions.dispatch.empty());
+  EXPECT_EQ(state("t1"), TaskState::Queued);
+  EXPECT_EQ(reason("t1"), "waiting for UAV 0: autopilot disarmed");
+  ASSERT_EQ(actions.waiting.size(), 1u);
+  EXPECT_EQ(actions.waiting[0].task_id, "t1");
+  EXPECT_EQ(actions.waiting[0].reason, "waiting for UAV 0: autopilot disarmed");
+
+  hear_again(0, 10.1);
+  live_.autopilots[0].heard_s = 10.1;
+  actions = step(10.1);
+  EXPECT_TRUE(actions.dispatch.empty());
+  EXPECT_TRUE(actions.waiting.empty()) << "the same reason is not recorded again";
+
+  live_.autopilots[0].not_ready = "autopilot not in its offboard mode (mode POSCTL)";
+  EXPECT_EQ(step(10.1).waiting.size(), 1u);
+  EXPECT_EQ(reason("t1"), "waiting for UAV 0: autopilot not in its offboard mode (mode POSCTL)");
+
+  // A bridge gone silent: its autopilot's state is unknown, nothing is dispatched.
+  hear_again(0, 12.0);
+  step(12.0);
+  EXPECT_EQ(state("t1"), TaskState::Queued);
+  EXPECT_EQ(reason("t1"), "waiting for UAV 0: its flight-controller bridge not heard for 1.9 s");
+
+  // Armed, OFFBOARD, link up: dispatched at once.
+  hear_again(0, 12.1);
+  live_.autopilots[0] = {12.1, ""};
+  actions = step(12.1);
+  ASSERT_EQ(actions.dispatch.size(), 1u);
+  EXPECT_EQ(state("t1"), TaskState::Dispatched);
+  EXPECT_EQ(reason("t1"), "sent to UAV 0");
+  const auto history = store_->history("t1");
+  ASSERT_EQ(history.size(), 5u);  // submitted, three reasons to wait, dispatched
+  EXPECT_EQ(history[1].reason, "waiting for UAV 0: autopilot disarmed");
+  EXPECT_EQ(history[4].to, TaskState::Dispatched);
+}
+
+// The simulator's direct path has no bridge: nothing waits for an autopilot, and a bridge
+// on one UAV holds back only that UAV's queue.
+TEST_F(DispatcherTest, WithoutABridgeNothingWaitsForAnAutopilot) {
+  hear(0, 10.0);
+  hear(1, 10.0);
+  live_.autopilots[1] = {10.0, "flight-controller link lost (no autopilot HEARTBEAT)"};
+  submit("direct", 0, 10.0);
+  submit("bridged", 1, 10.0);
+  const Actions actions = step(10.0);
+  ASSERT_EQ(actions.dispatch.size(), 1u);
+  EXPECT_EQ(actions.dispatch[0].record.task_id, "direct");
+  EXPECT_EQ(state("bridged"), TaskState::Queued);
+  EXPECT_EQ(reason("bridged"),
+            "waiting for UAV 1: flight-controller link lost (no autopilot HEARTBEAT)");
+}
+
 TEST_F(DispatcherTest, UnflyableTaskIsRejectedAndARepeatReturnsTheStoredRecord) {
   const auto rejected = submit("t1", 0, 10.0);  // UAV 0 never heard
   EXPECT_TRUE(rejected.created);

@@ -149,6 +149,18 @@ TEST(TaskManagerFlyability, UnheardVehiclesAreOnlyThoseThatCouldStillBeHeard) {
   EXPECT_FALSE(names_unheard(far, fleet_up(), 4, 8));
 }
 
+TEST(TaskManagerFlyability, TheFirstUnheardVehicleIsNamedAsAPersonWould) {
+  const mission::Task task = three_processes();  // UAV 1, UGVs 0, 1, 2
+  LiveView live = fleet_up();
+  EXPECT_EQ(first_unheard(task, live, 4, 8), std::nullopt);
+  live.ugv_imu_heard_s.erase(2);
+  EXPECT_EQ(first_unheard(task, live, 4, 8), std::optional<std::string>("UGV 2"));
+  live.agents.erase(1);
+  EXPECT_EQ(first_unheard(task, live, 4, 8), std::optional<std::string>("UAV 1"))
+      << "the UAV first";
+  EXPECT_EQ(first_unheard(task, live, 1, 8), std::optional<std::string>("UGV 2"));
+}
+
 TEST(TaskManagerLimits, ShippedFileHoldsTheDefaultsAndBadKeysAreNamed) {
   const TaskLimits shipped =
       TaskLimits::load_file(config::default_config_dir() + "/task_manager.yaml");

@@ -174,6 +174,27 @@ TEST_F(TaskStoreTest, FinalStatesAndNoOpsRefuseChangesAndWriteNothing) {
   EXPECT_FALSE(store.find("d").has_value());
 }
 
+TEST_F(TaskStoreTest, SetReasonKeepsTheStateAndRecordsEachChangeOnce) {
+  TaskStore store(path());
+  store.submit(make_task("q"), "s", "r", TaskState::Queued, "queued for UAV 0", 1.0);
+  EXPECT_TRUE(store.set_reason("q", "waiting for UAV 0: autopilot disarmed", 2.0));
+  EXPECT_FALSE(store.set_reason("q", "waiting for UAV 0: autopilot disarmed", 3.0))
+      << "the same reason again writes nothing";
+  const auto record = store.find("q");
+  EXPECT_EQ(record->state, TaskState::Queued);
+  EXPECT_EQ(record->reason, "waiting for UAV 0: autopilot disarmed");
+  EXPECT_EQ(record->updated_s, 2.0);
+  const auto history = store.history("q");
+  ASSERT_EQ(history.size(), 2u);
+  EXPECT_EQ(history[1].from, TaskState::Queued);
+  EXPECT_EQ(history[1].to, TaskState::Queued);
+  EXPECT_EQ(history[1].reason, "waiting for UAV 0: autopilot disarmed");
+  ASSERT_TRUE(store.set_state("q", TaskState::Aborted, "operator", 4.0));
+  EXPECT_FALSE(store.set_reason("q", "late", 5.0)) << "a final task keeps its reason";
+  EXPECT_EQ(store.find("q")->reason, "operator");
+  EXPECT_THROW(store.set_reason("nobody", "x", 1.0), StoreError);
+}
+
 TEST_F(TaskStoreTest, RejectedSubmissionIsRecordedWithItsReason) {
   TaskStore store(path());
   const auto r = store.submit(make_task("bad"), "s", "r", TaskState::Rejected, "UGV 3 is down", 5);

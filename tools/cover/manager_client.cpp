@@ -12,11 +12,20 @@
 namespace cover::cli {
 namespace {
 constexpr std::chrono::milliseconds kResendPeriod{300};
+// Once the manager holds the request: re-sent only so that a manager restarted meanwhile
+// gets it again (a repeat is answered, never carried out twice).
+constexpr std::chrono::milliseconds kHeldResendPeriod{1000};
+
+std::string seconds_text(std::chrono::milliseconds duration) {
+  return std::to_string(std::chrono::duration<double>(duration).count()).substr(0, 4);
+}
 }  // namespace
 
-ManagerClient::ManagerClient(dds::Participant& participant, std::chrono::milliseconds timeout)
+ManagerClient::ManagerClient(dds::Participant& participant, std::chrono::milliseconds timeout,
+                             std::chrono::milliseconds decision_timeout)
     : participant_(participant),
       timeout_(timeout),
+      decision_timeout_(decision_timeout),
       writer_(participant.make_writer(dds::topics::manager_request())),
       reader_(participant.make_reader(dds::topics::manager_reply(),
                                       [this](const msg::ManagerReply& r) { on_reply(r); })) {}
@@ -25,7 +34,11 @@ void ManagerClient::on_reply(const msg::ManagerReply& reply) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (reply.request_id != awaited_id_) return;  // another station's
-    reply_ = reply;
+    if (!reply.interim) {
+      reply_ = reply;
+    } else if (!reply_) {
+      interim_ = reply;
+    }
   }
   arrived_.notify_all();
 }
@@ -43,16 +56,21 @@ std::string ManagerClient::next_request_id() {
          std::to_string(++counter_);
 }
 
-msg::ManagerReply ManagerClient::call(msg::ManagerRequest request) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout_;
-  const double timeout_s = std::chrono::duration<double>(timeout_).count();
+bool ManagerClient::wait_for_answer(std::unique_lock<std::mutex>& lock,
+                                    std::chrono::steady_clock::time_point until) {
+  return arrived_.wait_until(lock, until,
+                             [this] { return reply_.has_value() || interim_.has_value(); });
+}
+
+msg::ManagerReply ManagerClient::call(msg::ManagerRequest request,
+                                      const InterimHandler& on_interim) {
+  using Clock = std::chrono::steady_clock;
+  auto deadline = Clock::now() + timeout_;
   auto left = [&] {
-    return std::chrono::duration_cast<std::chrono::milliseconds>(deadline -
-                                                                 std::chrono::steady_clock::now());
+    return std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
   };
   if (!writer_.wait_for_readers(1, timeout_) || !reader_.wait_for_writers(1, left())) {
-    throw ManagerUnreachable("no task manager reachable within " +
-                             std::to_string(timeout_s).substr(0, 4) +
+    throw ManagerUnreachable("no task manager reachable within " + seconds_text(timeout_) +
                              " s (is cover-task-manager running on this DDS domain?)");
   }
   request.request_id = next_request_id();
@@ -62,20 +80,42 @@ msg::ManagerReply ManagerClient::call(msg::ManagerRequest request) {
     std::lock_guard<std::mutex> lock(mutex_);
     awaited_id_ = request.request_id;
     reply_.reset();
+    interim_.reset();
   }
   // Sent again until answered: a manager whose reader matched this writer a moment after
   // the writer matched it misses the first copy (volatile). The manager answers a repeated
   // request id with its first reply, so a request is carried out once.
+  bool held = false;
+  std::string held_for;  // the last interim message reported
   std::unique_lock<std::mutex> lock(mutex_);
-  while (std::chrono::steady_clock::now() < deadline) {
+  auto next_send = Clock::now();
+  while (Clock::now() < deadline) {
+    if (Clock::now() >= next_send) {
+      lock.unlock();
+      writer_.write(request);
+      lock.lock();
+      next_send = Clock::now() + (held ? kHeldResendPeriod : kResendPeriod);
+    }
+    if (!wait_for_answer(lock, std::min(deadline, next_send))) continue;
+    if (reply_) return *reply_;
+    const msg::ManagerReply interim = *interim_;
+    interim_.reset();
+    if (!held) deadline = std::max(deadline, Clock::now() + decision_timeout_);
+    const bool news = !held || interim.message != held_for;
+    held = true;
+    held_for = interim.message;
+    if (!news || !on_interim) continue;
     lock.unlock();
-    writer_.write(request);
+    on_interim(interim);
     lock.lock();
-    const auto next = std::min(deadline, std::chrono::steady_clock::now() + kResendPeriod);
-    if (arrived_.wait_until(lock, next, [this] { return reply_.has_value(); })) return *reply_;
   }
-  throw ManagerUnreachable("the task manager did not answer within " +
-                           std::to_string(timeout_s).substr(0, 4) + " s");
+  if (held) {
+    throw ManagerUnreachable("the task manager held the request (" + held_for +
+                             ") and did not decide it within " + seconds_text(decision_timeout_) +
+                             " s");
+  }
+  throw ManagerUnreachable("the task manager did not answer within " + seconds_text(timeout_) +
+                           " s");
 }
 
 }  // namespace cover::cli

@@ -142,7 +142,15 @@ int submit(const dds::ParticipantOptions& dds, const TaskCommandOptions& options
     msg::ManagerRequest r;
     r.kind = msg::ManagerRequestKind::MANAGER_SUBMIT;
     r.task = wire::to_msg(task, 0.0);
-    const msg::ManagerReply reply = client.call(r);
+    // "waiting for UGV 7 (not heard yet ...)" at once, then the decision.
+    const auto interim = [&](const msg::ManagerReply& held) {
+      if (options.json) {
+        std::cout << dds::to_json(held).dump() << std::endl;
+      } else {
+        std::cout << held.message << std::endl;
+      }
+    };
+    const msg::ManagerReply reply = client.call(r, interim);
     const int code = print_reply(reply, options);
     if (code != kTaskOk || !request.wait) return code;
     return follow(client, task.task_id, options);
@@ -153,7 +161,14 @@ int list_tasks(const dds::ParticipantOptions& dds, const TaskCommandOptions& opt
   return with_client(dds, options, [&](ManagerClient& client) {
     msg::ManagerRequest r = query_of("");
     r.include_final = all;
-    return print_reply(client.call(r), options);
+    const msg::ManagerReply reply = client.call(r);
+    if (reply.ok && reply.tasks.empty() && !options.json) {
+      std::cout << (all ? "no task (none was ever submitted to this task manager)"
+                        : "no task queued or in flight (--all also lists the ended ones)")
+                << std::endl;
+      return kTaskOk;
+    }
+    return print_reply(reply, options);
   });
 }
 

@@ -23,8 +23,12 @@ struct SubmitRequest {
   int uav = -1;       // >= 0: fly it on this UAV instead of the file's uav_id
   bool wait = false;  // and follow it to the end (exit code by its result)
 };
+// `cover submit`: a submission the manager must hold (a vehicle it has not heard yet) is
+// answered at once with what it waits for, printed as it comes ("waiting for UGV 7 (not
+// heard yet ...)"); the decision follows, within the client's decision timeout (60 s).
 int submit(const dds::ParticipantOptions& dds, const TaskCommandOptions& options,
            const SubmitRequest& request);
+// `cover list`: one line per task; a line saying there is none when there is none.
 int list_tasks(const dds::ParticipantOptions& dds, const TaskCommandOptions& options, bool all);
 int task_status(const dds::ParticipantOptions& dds, const TaskCommandOptions& options,
                 const std::string& task_id);

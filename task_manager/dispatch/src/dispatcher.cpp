@@ -55,6 +55,7 @@ Dispatcher::AbortResult Dispatcher::abort(const std::string& task_id, const std:
     return {false, "task '" + task_id + "' is already " + to_string(record->state), std::nullopt};
   }
   if (record->state == TaskState::Queued) {
+    waiting_noted_.erase(task_id);
     store_.set_state(task_id, TaskState::Aborted, reason, now_s);
     return {true, "task '" + task_id + "' aborted before it was dispatched", std::nullopt};
   }
@@ -203,6 +204,28 @@ void Dispatcher::note_failsafe(const TaskRecord& record, const AgentReport& repo
   seen->second = report.failsafe;
 }
 
+std::optional<std::string> Dispatcher::autopilot_not_ready(const LiveView& live, int uav_id,
+                                                           double now_s) const {
+  const auto autopilot = live.autopilots.find(uav_id);
+  if (autopilot == live.autopilots.end()) return std::nullopt;  // no bridge: direct path
+  const double silence_s = now_s - autopilot->second.heard_s;
+  if (silence_s > limits_.heartbeat_timeout_s) {
+    // A bridge that stopped reporting is not taken for gone: its autopilot's state is unknown.
+    return "its flight-controller bridge not heard for " + seconds(silence_s);
+  }
+  if (autopilot->second.not_ready.empty()) return std::nullopt;
+  return autopilot->second.not_ready;
+}
+
+void Dispatcher::note_waiting(const TaskRecord& next, const std::string& reason, double now_s,
+                              Actions& actions) {
+  std::string& noted = waiting_noted_[next.task_id];
+  if (noted == reason) return;
+  noted = reason;
+  store_.set_reason(next.task_id, reason, now_s);
+  actions.waiting.push_back({next.task_id, reason});
+}
+
 bool Dispatcher::agent_up(const LiveView& live, int uav_id, double now_s) const {
   const auto agent = live.agents.find(uav_id);
   return agent != live.agents.end() && now_s - agent->second.heard_s <= limits_.heartbeat_timeout_s;
@@ -228,6 +251,11 @@ void Dispatcher::dispatch_idle_uavs(const LiveView& live, double now_s, Actions&
     if (!agent_idle(report.task_state)) continue;
     auto next = store_.next_queued(uav_id);
     if (!next) continue;
+    if (const auto why = autopilot_not_ready(live, uav_id, now_s)) {
+      note_waiting(*next, "waiting for " + uav_name(uav_id) + ": " + *why, now_s, actions);
+      continue;
+    }
+    waiting_noted_.erase(next->task_id);
     const std::string reason = "sent to " + uav_name(uav_id);
     if (!store_.set_state(next->task_id, TaskState::Dispatched, reason, now_s)) continue;
     next->state = TaskState::Dispatched;

@@ -155,14 +155,19 @@ std::optional<std::string> why_not_flyable(const mission::Task& task, const Live
 }
 
 bool names_unheard(const mission::Task& task, const LiveView& live, int max_uavs, int max_ugvs) {
+  return first_unheard(task, live, max_uavs, max_ugvs).has_value();
+}
+
+std::optional<std::string> first_unheard(const mission::Task& task, const LiveView& live,
+                                         int max_uavs, int max_ugvs) {
   const auto unheard = [](int id, int max_id, const auto& heard) {
     return id >= 0 && id < max_id && heard.find(id) == heard.end();
   };
-  if (unheard(task.uav_id, max_uavs, live.agents)) return true;
+  if (unheard(task.uav_id, max_uavs, live.agents)) return "UAV " + std::to_string(task.uav_id);
   for (const int k : ugvs_of(task)) {
-    if (unheard(k, max_ugvs, live.ugv_imu_heard_s)) return true;
+    if (unheard(k, max_ugvs, live.ugv_imu_heard_s)) return "UGV " + std::to_string(k);
   }
-  return false;
+  return std::nullopt;
 }
 
 }  // namespace cover::task_manager

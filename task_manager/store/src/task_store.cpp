@@ -191,6 +191,21 @@ bool TaskStore::note(const std::string& task_id, const std::string& reason, doub
   return true;
 }
 
+bool TaskStore::set_reason(const std::string& task_id, const std::string& reason, double now_s) {
+  sqlite::Transaction transaction(db_);
+  sqlite::Statement query(db_, "SELECT state, reason FROM tasks WHERE task_id = ?");
+  if (!query.bind(1, task_id).step()) {
+    throw StoreError(path_ + ": no task '" + task_id + "'");
+  }
+  const TaskState state = state_from_text(query.text(0));
+  if (is_final(state) || query.text(1) == reason) return false;
+  sqlite::Statement update(db_, "UPDATE tasks SET updated_s = ?, reason = ? WHERE task_id = ?");
+  update.bind(1, now_s).bind(2, reason).bind(3, task_id).run();
+  append_history(db_, task_id, state, state, now_s, reason);
+  transaction.commit();
+  return true;
+}
+
 std::optional<TaskRecord> TaskStore::find(const std::string& task_id) const {
   sqlite::Statement query(db_, (std::string(kRecordColumns) + "WHERE task_id = ?").c_str());
   if (!query.bind(1, task_id).step()) return std::nullopt;

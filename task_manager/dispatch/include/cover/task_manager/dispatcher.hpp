@@ -21,9 +21,14 @@ struct AbortOnUav {  // send this abort (cover/task/abort)
   std::string task_id;
   std::string reason;
 };
+struct Waiting {  // a queued task whose reason for waiting changed (recorded; log it)
+  std::string task_id;
+  std::string reason;
+};
 struct Actions {
   std::vector<Dispatch> dispatch;
   std::vector<AbortOnUav> abort;
+  std::vector<Waiting> waiting;
 };
 
 // The manager's logic over the store: one queue per UAV, served in submission order, each
@@ -55,7 +60,11 @@ class Dispatcher {
 
   // Called periodically and on every new report: advances every Dispatched/Running task from
   // its agent's report, then dispatches the next Queued task to every UAV that has none in
-  // flight and whose agent is up and idle. Returns what to send.
+  // flight and whose agent is up and idle. Where a flight-controller bridge runs for the UAV
+  // (its autopilot is in the live view), only while the autopilot is ready (armed, in its
+  // offboard mode, link up, the bridge heard within heartbeat_timeout_s); until then the
+  // task stays queued and its reason says what it waits for ("waiting for UAV 0: autopilot
+  // disarmed"). Returns what to send.
   Actions step(const LiveView& live, double now_s);
 
  private:
@@ -67,6 +76,11 @@ class Dispatcher {
   bool agent_up(const LiveView& live, int uav_id, double now_s) const;
   double silence_s(const LiveView& live, int uav_id, double now_s) const;
   void dispatch_idle_uavs(const LiveView& live, double now_s, Actions& actions);
+  // Why the UAV's autopilot cannot fly a task now; nullopt when it can or has no bridge.
+  std::optional<std::string> autopilot_not_ready(const LiveView& live, int uav_id,
+                                                 double now_s) const;
+  void note_waiting(const TaskRecord& next, const std::string& reason, double now_s,
+                    Actions& actions);
   void resend_untaken_dispatches(const LiveView& live, double now_s, Actions& actions);
 
   static constexpr double kResendPeriod_s = 1.0;
@@ -84,6 +98,9 @@ class Dispatcher {
   // The failsafe each task in flight was last seen in (memory only): every change after
   // the first report is a history row.
   std::map<std::string, std::string> failsafe_seen_;
+  // The reason each waiting queued task was last given (memory only): the store is written
+  // when it changes, not on every step.
+  std::map<std::string, std::string> waiting_noted_;
 };
 
 }  // namespace cover::task_manager

@@ -36,5 +36,8 @@ std::optional<std::string> why_not_sound(const mission::Task& task, const TaskLi
 // manager that has just started waits for such a vehicle before judging the task, since
 // discovering a participant can take seconds; an id it does not listen to never comes up.
 bool names_unheard(const mission::Task& task, const LiveView& live, int max_uavs, int max_ugvs);
+// The first such vehicle, as a person names it ("UAV 0", "UGV 7"); nullopt when none.
+std::optional<std::string> first_unheard(const mission::Task& task, const LiveView& live,
+                                         int max_uavs, int max_ugvs);
 
 }  // namespace cover::task_manager

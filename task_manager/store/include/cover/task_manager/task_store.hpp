@@ -57,6 +57,11 @@ class TaskStore {
   // failsafe entry or exit). Returns false, and writes nothing, when the task is final.
   // Throws StoreError for an unknown id.
   bool note(const std::string& task_id, const std::string& reason, double now_s);
+  // Makes `reason` the task's current reason (and updated_s `now_s`), keeping its state, and
+  // appends it as a history row, in one transaction: what a queued task waits for. Returns
+  // false, and writes nothing, when the task is final or `reason` is already its reason.
+  // Throws StoreError for an unknown id.
+  bool set_reason(const std::string& task_id, const std::string& reason, double now_s);
 
   std::optional<TaskRecord> find(const std::string& task_id) const;
   std::vector<TaskRecord> list(bool include_final) const;                            // queue order
