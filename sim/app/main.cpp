@@ -157,7 +157,8 @@ void add_mavlink_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--fc", cli.fc,
                  "the UAVs' flight controller: direct (the agent's cover/uav/<u>/cmd flies the "
                  "plant), px4 or ardupilot (a simulated autopilot per UAV speaking MAVLink over "
-                 "UDP; a cover-fc-bridge turns the agent's commands into its setpoints)")
+                 "UDP; a cover-fc-bridge turns the agent's commands into its setpoints; in lockstep a tick "
+                 "waits for the SET_ATTITUDE_TARGET whose time_boot_ms is its time)")
       ->check(CLI::IsMember({"direct", "px4", "ardupilot"}))
       ->capture_default_str();
   app.add_option("--fc-params", cli.fc_params_file, "simulated autopilots' settings")
@@ -247,7 +248,9 @@ cover::sim::MavlinkRunOptions mavlink_options(const CommandLine& cli,
 
 int main(int argc, char** argv) {
   cover::process::ShutdownSignal::install();
-  CLI::App app{"cover-sim: the simulated world of a scenario, shared over DDS and shared memory"};
+  CLI::App app{
+      "cover-sim: the simulated world of a scenario, shared over DDS and shared memory; with "
+      "--fc px4|ardupilot each UAV has a simulated autopilot speaking MAVLink over UDP"};
   app.footer(kExitCodes);
   CommandLine cli;
   app.add_option("--scenario", cli.scenario, "name in config/scenarios/ or a YAML path")
