@@ -11,7 +11,8 @@ namespace cover::bench {
 // One row of `cover-bench faults` (and `wifi`): one run with one injected fault.
 struct FaultRow {
   std::string fault;  // uav_agent_kill | ugv_agent_kill | relative_state_gap | mocap_dropout |
-                      // imu_fault | sim_kill | wifi_loss
+                      // imu_fault | sim_kill | wifi_loss | bridge_kill | fc_heartbeat_loss |
+                      // agent_kill_with_bridge
   std::string mix;    // the DDS vendors: fastdds | cyclone | mixed
   std::uint64_t seed = 0;
   double fault_time_s = NAN;         // simulated time the fault was injected at

@@ -53,9 +53,22 @@ using Clock = std::chrono::steady_clock;
 
 // The faults injected into one run each; wifi_loss runs the whole flight over
 // scripts/wifi-sim's lossy network instead (wifi_runs.hpp).
-const std::vector<std::string> kFaults = {"uav_agent_kill", "ugv_agent_kill", "relative_state_gap",
-                                          "mocap_dropout",  "imu_fault",      "sim_kill",
-                                          "wifi_loss"};
+// The last three fly through cover-fc-bridge and the simulator's PX4 autopilot over
+// MAVLink (docs/flight-controller.md).
+const std::vector<std::string> kFaults = {"uav_agent_kill",     "ugv_agent_kill",
+                                          "relative_state_gap", "mocap_dropout",
+                                          "imu_fault",          "sim_kill",
+                                          "wifi_loss",          "bridge_kill",
+                                          "fc_heartbeat_loss",  "agent_kill_with_bridge"};
+bool through_bridge(const std::string& fault) {
+  return fault == "bridge_kill" || fault == "fc_heartbeat_loss" ||
+         fault == "agent_kill_with_bridge";
+}
+// The bridge's and the autopilot's UDP ports of a run on `domain` (PX4 SITL's 14540 / 14580
+// moved per domain, so that runs and a developer's own launch never share one).
+int bridge_port(int domain) {
+  return 25000 + 2 * domain;
+}
 constexpr const char* kWifiFault = "wifi_loss";
 // --mix alternate: seed s flies the (s - 1) % 3-th vendor mix, so every fault meets each
 // mix at no extra cost.
@@ -227,6 +240,14 @@ class FaultRun {
       sim.insert(sim.end(), {"--relative-gap", std::to_string(row_.fault_time_s),
                              std::to_string(kGapDuration_s)});
     }
+    const std::string fc_port = std::to_string(bridge_port(domain));
+    if (through_bridge(fault)) {
+      sim.insert(sim.end(), {"--fc", "px4", "--fc-peer-port-base", fc_port, "--fc-bind-port-base",
+                             std::to_string(bridge_port(domain) + 1)});
+    }
+    if (fault == "fc_heartbeat_loss") {
+      sim.insert(sim.end(), {"--fc-heartbeat-stop", std::to_string(row_.fault_time_s)});
+    }
     sim_ = spawn(sim, v.sim, "sim");
     for (int k = 0; k < 2; ++k) {
       ugvs_.push_back(spawn(
@@ -235,14 +256,27 @@ class FaultRun {
     }
     world_.emplace(cover::shm::SeqlockReader<SharedWorld>::open(
         cover::shm::segment_name(domain, run_id_), cover::sim::kWorldSegmentLayoutVersion, 30s));
-    uav_ = spawn(
-        {(kBinDir / "cover-uav-agent").string(), "--id", "0", "--clock", "realtime", "--ugv-count",
-         "2", "--task", cover::config::default_config_dir() + "/tasks/scenario2.yaml"},
-        v.uav, "uav");
+    std::vector<std::string> uav{(kBinDir / "cover-uav-agent").string(),
+                                 "--id",
+                                 "0",
+                                 "--clock",
+                                 "realtime",
+                                 "--ugv-count",
+                                 "2",
+                                 "--task",
+                                 cover::config::default_config_dir() + "/tasks/scenario2.yaml"};
+    if (through_bridge(fault)) {
+      uav.push_back("--fc-bridge");
+      bridge_ =
+          spawn({(kBinDir / "cover-fc-bridge").string(), "--id", "0", "--autopilot", "px4", "--url",
+                 "udpin://127.0.0.1:" + fc_port, "--clock", "realtime", "--auto-arm"},
+                v.uav, "bridge");
+    }
+    uav_ = spawn(uav, v.uav, "uav");
   }
   ~FaultRun() {
     world_.reset();
-    for (auto* child : {uav_.get(), ugvs_[0].get(), ugvs_[1].get(), sim_.get()}) {
+    for (auto* child : {uav_.get(), bridge_.get(), ugvs_[0].get(), ugvs_[1].get(), sim_.get()}) {
       if (child) child->terminate(10s, SIGINT);
     }
   }
@@ -287,9 +321,14 @@ class FaultRun {
   void inject() {
     const int reference = probe_.reference_ugv();
     const double world_at_fault_s = last_->time_s;
-    if (fault_ == "uav_agent_kill") {
-      kill(uav_->pid(), SIGKILL);
-      uav_->wait(5s);
+    if (fault_ == "uav_agent_kill" || fault_ == "agent_kill_with_bridge" ||
+        fault_ == "bridge_kill") {
+      // The flight controller takes over: the simulated one's offboard loss, or the
+      // autopilot's land mode (requested by the bridge, or PX4's own offboard loss when the
+      // bridge is the one killed).
+      ChildProcess& victim = fault_ == "bridge_kill" ? *bridge_ : *uav_;
+      kill(victim.pid(), SIGKILL);
+      victim.wait(5s);
       double loss_s = NAN;
       if (watch(
               [&](const SharedWorld& w) {
@@ -299,6 +338,14 @@ class FaultRun {
               5s)) {
         row_.time_to_failsafe_ms = (loss_s - world_at_fault_s) * 1e3;
       }
+    } else if (fault_ == "fc_heartbeat_loss") {
+      // The bridge declares the link lost after heartbeat_timeout_s (1.5 s of heartbeats
+      // missing, the last up to 1 s before the fault); the agent's task fails at once.
+      watch([&](const SharedWorld& w) { return w.time_s >= row_.fault_time_s + 3.0; }, 10s);
+      row_.time_to_failsafe_ms =
+          (probe_.first({FailsafeState::FAILSAFE_AUTOPILOT_CONTROL}, row_.fault_time_s) -
+           row_.fault_time_s) *
+          1e3;
     } else if (fault_ == "ugv_agent_kill") {
       kill(ugvs_[reference]->pid(), SIGKILL);
       ugvs_[reference]->wait(5s);
@@ -331,7 +378,9 @@ class FaultRun {
       finish_without_world();
       return;
     }
-    const bool agent_gone = fault_ == "uav_agent_kill";
+    // Nobody will end the task: the agent is gone, or it failed the task (its autopilot
+    // link lost, its bridge gone) and the autopilot lands on its own.
+    const bool agent_gone = fault_ == "uav_agent_kill" || through_bridge(fault_);
     // Until the run is over (the simulator exits when the task has ended), or the UAV rests
     // disarmed when nobody will end the task.
     watch(
@@ -394,6 +443,7 @@ class FaultRun {
   std::unique_ptr<ChildProcess> sim_;
   std::vector<std::unique_ptr<ChildProcess>> ugvs_;
   std::unique_ptr<ChildProcess> uav_;
+  std::unique_ptr<ChildProcess> bridge_;  // the flight-controller faults only
   std::optional<cover::shm::SeqlockReader<SharedWorld>> world_;
   std::unique_ptr<SharedWorld> last_ = std::make_unique<SharedWorld>();
   std::optional<int> sim_exit_;
@@ -427,7 +477,8 @@ void print_table(const std::vector<FaultRow>& rows) {
                 median_of(ttf), max_of(ttf), max_of(td), done, landed, crashed, max_of(err));
   }
   std::printf(
-      "ttf: input lost -> failsafe entered (the flight controller's for uav_agent_kill); "
+      "ttf: input lost -> failsafe entered (the flight controller's land / offboard loss for the "
+      "kills, the agent's autopilot-control for fc_heartbeat_loss); "
       "td: touchdown vertical speed\n");
 }
 

@@ -1,9 +1,15 @@
-// cover-bench mavlink: the MAVLink codec's cost per frame, encode and decode (stream parse,
-// checksum, signature check when signed, message unpack), for the setpoint the bridge
-// sends (SET_ATTITUDE_TARGET, 51-byte payload) and the IMU stream it reads (HIGHRES_IMU),
-// unsigned and signed. Issue 22's target: a 51-byte frame decodes in <= 0.3 us (median).
+// cover-bench fc: the flight-controller path.
+//  codec:   the MAVLink codec's cost per frame, encode and decode (stream parse, checksum,
+//           signature check when signed, message unpack), for the setpoint the bridge sends
+//           (SET_ATTITUDE_TARGET, 51-byte payload) and the IMU stream it reads (HIGHRES_IMU),
+//           unsigned and signed. Target: a 51-byte frame decodes in <= 0.3 us (median).
+//  latency: realtime Scenario 2 through cover-fc-bridge and the simulator's PX4 / ArduPilot:
+//           a relative state's publication by the simulator -> the SET_ATTITUDE_TARGET
+//           computed from it arriving at the simulated autopilot (one loopback UDP hop after
+//           it left the bridge), as cover-sim measures it. Target: p50 <= 1 ms, p99 <= 2 ms.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
@@ -18,6 +24,7 @@
 #include "cover/mavlink/encoder.hpp"
 #include "cover/mavlink/messages.hpp"
 #include "cover/mavlink/parser.hpp"
+#include "launch_run.hpp"
 
 namespace {
 
@@ -26,6 +33,8 @@ using cover::bench::percentile;
 using Clock = std::chrono::steady_clock;
 
 constexpr double kDecodeTargetNs = 300.0;
+constexpr double kLatencyP50TargetMs = 1.0;
+constexpr double kLatencyP99TargetMs = 2.0;
 
 mav::SigningKey bench_key() {
   mav::SigningKey key;
@@ -153,20 +162,62 @@ nlohmann::json to_json(const Row& r) {
           {"parser_errors", r.parser_errors}};
 }
 
+double number(const nlohmann::json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
+}
+
+// One realtime Scenario 2 through the bridge and `autopilot`; its UDP ports moved per domain.
+nlohmann::json latency_run(const std::string& autopilot, int domain) {
+  const int base = 26000 + 8 * domain;
+  std::vector<std::string> flags = {"--clock", "realtime"};
+  const char* names[] = {"fc_port", "autopilot_port", "ugv0_imu_port", "ugv1_imu_port",
+                         "ugv_autopilot_port"};
+  for (int i = 0; i < 5; ++i) {
+    flags.insert(flags.end(), {"--var", std::string(names[i]) + "=" + std::to_string(base + i)});
+  }
+  const nlohmann::json r = cover::bench::run_launch("scenario2_" + autopilot, flags, domain, "fc");
+  const nlohmann::json latency =
+      r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();
+  return {{"autopilot", autopilot},
+          {"success", r.is_object() && r.value("success", false)},
+          {"landing_error_m", number(r, "landing_error_m")},
+          {"p50_ms", number(latency, "p50")},
+          {"p99_ms", number(latency, "p99")},
+          {"samples", latency.is_object() ? latency.value("samples", 0) : 0}};
+}
+
 int run(const std::vector<std::string>& args) {
   CLI::App app{
-      "MAVLink codec: encode and decode time per frame (median, p99) for SET_ATTITUDE_TARGET "
-      "and HIGHRES_IMU, unsigned and signed. Each sample is the mean over --batch frames (one "
-      "frame is too short for the clock); decode is the stream parser (checksum, signature "
-      "check when signed) plus the message's unpack. Target: decode of the 51-byte setpoint "
-      "<= 0.3 us median."};
+      "The flight-controller path. Codec: encode and decode time per frame (median, p99) for "
+      "SET_ATTITUDE_TARGET and HIGHRES_IMU, unsigned and signed; each sample is the mean over "
+      "--batch frames (one frame is too short for the clock); decode is the stream parser "
+      "(checksum, signature check when signed) plus the message's unpack; target: the 51-byte "
+      "setpoint decodes in <= 0.3 us median. Latency: realtime Scenario 2 through "
+      "cover-fc-bridge and the simulator's autopilot, relative state published -> "
+      "SET_ATTITUDE_TARGET received (p50 <= 1 ms, p99 <= 2 ms)."};
   bool json = false;
   int samples = 5000;
   int batch = 64;
+  int runs = 4;
+  int domain = 170;
   app.add_flag("--json", json, "print JSON");
-  app.add_option("--samples", samples, "timed samples per measurement")->check(CLI::PositiveNumber);
-  app.add_option("--batch", batch, "frames per sample")->check(CLI::PositiveNumber);
+  app.add_option("--samples", samples, "codec: timed samples per measurement")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--batch", batch, "codec: frames per sample")->check(CLI::PositiveNumber);
+  app.add_option("--runs", runs,
+                 "latency: realtime Scenario 2 runs, PX4 and ArduPilot in turn (0: codec only)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--domain", domain, "latency: first DDS domain (one per run)")
+      ->check(CLI::Range(0, 200))
+      ->capture_default_str();
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
+
+  nlohmann::json latency = nlohmann::json::array();
+  for (int i = 0; i < runs; ++i) {
+    latency.push_back(latency_run(i % 2 == 0 ? "px4" : "ardupilot", domain + i));
+    if (!json) std::fprintf(stderr, "fc latency run %d of %d done\n", i + 1, runs);
+  }
 
   std::vector<Row> rows;
   for (bool is_signed : {false, true}) {
@@ -184,6 +235,8 @@ int run(const std::vector<std::string>& args) {
     for (const Row& r : rows) out["rows"].push_back(to_json(r));
     out["decode_target_ns"] = kDecodeTargetNs;
     out["decode_target_met"] = target_met;
+    out["latency"] = latency;
+    out["latency_target_ms"] = {{"p50", kLatencyP50TargetMs}, {"p99", kLatencyP99TargetMs}};
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("MAVLink codec, ns per frame (%d samples of %d frames)\n", samples, batch);
@@ -197,6 +250,21 @@ int run(const std::vector<std::string>& args) {
     }
     std::printf("  decode of the 51-byte setpoint: %.1f ns median, target <= %.0f ns: %s\n",
                 setpoint_decode_ns, kDecodeTargetNs, target_met ? "met" : "NOT met");
+    if (!latency.empty()) {
+      std::printf(
+          "relative state published -> SET_ATTITUDE_TARGET at the autopilot, realtime Scenario 2 "
+          "(target p50 <= %.0f ms, p99 <= %.0f ms)\n",
+          kLatencyP50TargetMs, kLatencyP99TargetMs);
+    }
+    for (const auto& l : latency) {
+      std::printf("  %-10s p50 %.3f ms  p99 %.3f ms  (%d samples), landing %.3f m%s\n",
+                  l["autopilot"].get<std::string>().c_str(), number(l, "p50_ms"),
+                  number(l, "p99_ms"), l["samples"].get<int>(), number(l, "landing_error_m"),
+                  l["success"].get<bool>() ? "" : "  MISSION FAILED");
+    }
+  }
+  for (const auto& l : latency) {
+    if (!l["success"].get<bool>()) return 1;
   }
   for (const Row& r : rows) {
     if (r.parser_errors != 0 || r.decoded == 0) {
@@ -208,6 +276,9 @@ int run(const std::vector<std::string>& args) {
 }
 
 const cover::bench::Registrar registrar{
-    "mavlink", "MAVLink codec: encode / decode ns per frame, unsigned and signed", &run};
+    "fc",
+    "flight-controller path: MAVLink codec ns per frame, relative state -> setpoint latency "
+    "through the bridge",
+    &run};
 
 }  // namespace
