@@ -12,8 +12,8 @@ DdsCliOptions::DdsCliOptions() : config_path(config::default_config_dir() + "/dd
 
 void DdsCliOptions::add_to(CLI::App& app) {
   app.add_option("--dds", vendor, "DDS vendor: fastdds | cyclone (default: config, $COVER_DDS)");
-  domain_flag_ = app.add_option("--domain", domain_id,
-                                "DDS domain id 0..232 (default: config, $COVER_DDS_DOMAIN)");
+  domain_flags_.push_back(app.add_option(
+      "--domain", domain_id, "DDS domain id 0..232 (default: config, $COVER_DDS_DOMAIN)"));
   app.add_option("--dds-config", config_path, "DDS settings file")->capture_default_str();
   app.add_option("--dds-profile", profile,
                  "Network profile of the DDS settings file, e.g. wifi (default: "
@@ -30,7 +30,9 @@ ParticipantOptions DdsCliOptions::resolve(const std::string& participant_name) c
   ParticipantOptions options = apply_environment(ParticipantOptions::load_file(
       config_path, profile.empty() ? profile_from_environment("") : profile));
   if (!vendor.empty()) options.vendor = parse_vendor(vendor);
-  if (domain_flag_ && domain_flag_->count() > 0) options.domain_id = domain_id;
+  for (const CLI::Option* flag : domain_flags_) {
+    if (flag->count() > 0) options.domain_id = domain_id;
+  }
   if (!security_directory.empty()) {
     options.security.enabled = true;
     options.security.directory = security_directory;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "cover/dds/participant_options.hpp"
 
@@ -33,7 +34,9 @@ struct DdsCliOptions {
   ParticipantOptions resolve(const std::string& participant_name) const;
 
  private:
-  CLI::Option* domain_flag_ = nullptr;
+  // One per command line it was added to (the `cover` task commands share one set of
+  // options): a --domain given to any of them counts.
+  std::vector<CLI::Option*> domain_flags_;
 };
 
 }  // namespace cover::dds
