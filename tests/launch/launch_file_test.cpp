@@ -1,5 +1,6 @@
 // Launch-file parsing and validation: every error names what is wrong.
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <string>
 
@@ -286,6 +287,42 @@ TEST(LaunchFile, ShippedExampleLoads) {
   EXPECT_TRUE(file.processes[0].ends_run);
   EXPECT_EQ(file.processes[1].dds, "cyclone");
   EXPECT_FALSE(file.processes[1].respawn.enabled);  // the keys are shown with their defaults
+}
+
+}  // namespace
+}  // namespace cover::launch
+
+namespace cover::launch {
+namespace {
+
+// Every shipped launch file loads; the field template is a field launch whose bridge
+// outlives its siblings, never auto-arms and talks to a serial autopilot; the simulated
+// flight-controller launches auto-arm (simulation only) and gate the agent on the bridge.
+TEST(LaunchFile, ShippedFlightControllerLaunchesLoad) {
+  const std::string dir = std::string(COVER_SOURCE_DIR) + "/config/launch/";
+  const LaunchFile field = LaunchFile::load_file(dir + "field_px4.yaml");
+  EXPECT_EQ(field.kind, LaunchKind::Field);
+  for (const auto& process : field.processes) {
+    EXPECT_TRUE(process.respawn.enabled) << process.name;
+    for (const auto& arg : process.args) EXPECT_NE(arg, "--auto-arm") << process.name;
+    if (process.executable == "cover-fc-bridge") EXPECT_TRUE(process.keep_running);
+  }
+  EXPECT_NE(field.variables.at("autopilot_url").find("serial://"), std::string::npos);
+  for (const char* name : {"scenario2_px4.yaml", "scenario2_ardupilot.yaml"}) {
+    const LaunchFile simulated = LaunchFile::load_file(dir + name);
+    EXPECT_EQ(simulated.kind, LaunchKind::Mission) << name;
+    bool bridge_auto_arms = false;
+    bool agent_gated = false;
+    for (const auto& process : simulated.processes) {
+      const auto has = [&](const char* arg) {
+        return std::find(process.args.begin(), process.args.end(), arg) != process.args.end();
+      };
+      if (process.executable == "cover-fc-bridge") bridge_auto_arms = has("--auto-arm");
+      if (process.executable == "cover-uav-agent") agent_gated = has("--fc-bridge");
+    }
+    EXPECT_TRUE(bridge_auto_arms) << name;
+    EXPECT_TRUE(agent_gated) << name;
+  }
 }
 
 }  // namespace
