@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -80,6 +82,13 @@ class MavlinkClient {
     const auto frame = encoder_.encode(message);
     ASSERT_TRUE(link_->write(frame.bytes.data(), frame.size)) << link_->last_error();
   }
+  // Reads what is there: a socket left unread overflows and drops what comes next.
+  void drain() {
+    std::array<std::uint8_t, 2048> buffer{};
+    while (const std::size_t n = link_->read(buffer.data(), buffer.size(), 0ms)) {
+      parser_.feed(buffer.data(), n, [](const mav::Frame&) {});
+    }
+  }
   std::uint8_t last_system() const { return last_system_; }
   const mav::ParserStats& stats() const { return parser_.stats(); }
 
@@ -146,6 +155,118 @@ TEST(SimFcProcess, ArduPilotHeartbeatsAndRefusesGuidedNoGpsWithoutASetpointStrea
                                      mav::mav_result::kFailed});
 }
 
+// The UAV side of a lockstep run, played by the test: it answers each tick with a trace on
+// DDS (as the UAV agent) and a SET_ATTITUDE_TARGET on MAVLink (as the bridge).
+class LockstepCompanion {
+ public:
+  LockstepCompanion(int domain, std::uint16_t listen_port)
+      : participant_(options(domain)), client_(listen_port) {
+    clock_ = participant_.make_reader(cover::dds::topics::sim_clock(),
+                                      [this](const cover::msg::SimClock& tick) {
+                                        std::lock_guard<std::mutex> lock(mutex_);
+                                        ticks_.push_back(tick.stamp_ns);
+                                      });
+    trace_ = participant_.make_writer(cover::dds::topics::uav_trace(0));
+  }
+
+  // The next tick the simulator published (a new one or the last one again).
+  std::optional<std::int64_t> next_tick(std::chrono::milliseconds timeout) {
+    std::optional<std::int64_t> tick;
+    wait_until(
+        [&] {
+          std::lock_guard<std::mutex> lock(mutex_);
+          if (ticks_.empty()) return false;
+          tick = ticks_.front();
+          ticks_.erase(ticks_.begin());
+          return true;
+        },
+        timeout);
+    return tick;
+  }
+
+  // Answers tick `stamp_ns`: the trace, then a setpoint named `time_boot_ms`.
+  void answer(std::int64_t stamp_ns, std::uint32_t time_boot_ms, float thrust) {
+    cover::msg::ControlTrace trace;
+    trace.uav_id = 0;
+    trace.stamp_ns = stamp_ns;
+    trace_.write(trace);
+    mav::SetAttitudeTarget setpoint;
+    setpoint.time_boot_ms = time_boot_ms;
+    setpoint.thrust = thrust;
+    setpoint.target_system = 1;
+    setpoint.target_component = 1;
+    setpoint.type_mask = mav::attitude_target_typemask::kIgnoreAttitude;
+    client_.send(setpoint);
+  }
+
+  MavlinkClient& mavlink() { return client_; }
+
+ private:
+  static cover::dds::ParticipantOptions options(int domain) {
+    cover::dds::ParticipantOptions o;
+    o.vendor = cover::dds::Vendor::FastDds;
+    o.domain_id = domain;
+    return o;
+  }
+  cover::dds::Participant participant_;
+  MavlinkClient client_;
+  std::mutex mutex_;
+  std::vector<std::int64_t> ticks_;
+  cover::dds::Reader<cover::msg::SimClock> clock_;
+  cover::dds::Writer<cover::msg::ControlTrace> trace_;
+};
+
+TEST(SimFcProcess, LockstepTickWaitsForTheSetpointNamingIt) {
+  auto domain = cover::dds::DomainClaim::claim_any(230, 232);
+  const std::uint16_t bind_base = free_port_base(1);
+  const std::uint16_t peer_base = free_port_base(1);
+  LockstepCompanion companion(domain.domain(), peer_base);
+  ChildProcess sim({bin("cover-sim"), "--fc", "px4", "--clock", "lockstep", "--standing",
+                    "--run-id", run_id("lockstep"), "--fc-bind-port-base",
+                    std::to_string(bind_base), "--fc-peer-port-base", std::to_string(peer_base)},
+                   on_domain(domain.domain(), "sim.log"));
+  ASSERT_TRUE(companion.mavlink().wait_for<mav::Heartbeat>(scaled(20s)));
+
+  // 150 ticks answered, each by the setpoint naming it: the simulator steps one at a time.
+  std::int64_t expected_ns = 0;
+  int answered = 0;
+  while (answered < 150) {
+    const auto tick = companion.next_tick(scaled(20s));
+    ASSERT_TRUE(tick) << "no tick after " << answered;
+    if (*tick < expected_ns) continue;  // a tick published again before our answer arrived
+    ASSERT_EQ(*tick, expected_ns);
+    companion.answer(*tick, static_cast<std::uint32_t>(*tick / 1'000'000), 0.0F);
+    companion.mavlink().drain();
+    expected_ns += 10'000'000;
+    ++answered;
+  }
+  // A setpoint naming another time does not answer the tick: it is published again.
+  const auto tick = companion.next_tick(scaled(5s));
+  ASSERT_EQ(tick, std::optional<std::int64_t>(expected_ns));
+  companion.answer(*tick, static_cast<std::uint32_t>(*tick / 1'000'000) - 10, 0.0F);
+  const auto again = companion.next_tick(scaled(5s));
+  EXPECT_EQ(again, tick);
+  companion.answer(*tick, static_cast<std::uint32_t>(*tick / 1'000'000), 0.0F);
+  std::optional<std::int64_t> next;
+  do {
+    next = companion.next_tick(scaled(5s));
+  } while (next && *next == *tick);
+  EXPECT_EQ(next, std::optional<std::int64_t>(*tick + 10'000'000));
+
+  // 1.5 s of simulated time at 100 Hz is a setpoint stream: OFFBOARD is granted.
+  mav::CommandLong offboard;
+  offboard.command = mav::mav_cmd::kDoSetMode;
+  offboard.param[0] = 1.0F;
+  offboard.param[1] = mav::px4_mode::kMainOffboard;
+  offboard.target_system = 1;
+  offboard.target_component = 1;
+  companion.mavlink().send(offboard);
+  const auto ack = companion.mavlink().wait_for<mav::CommandAck>(scaled(5s));
+  ASSERT_TRUE(ack);
+  EXPECT_EQ(ack->result, mav::mav_result::kAccepted);
+  EXPECT_EQ(sim.terminate(scaled(10s), SIGINT), 0);
+}
+
 // cover/ugv/<k>/imu and /status as a test participant sees them.
 class UgvObserver {
  public:
@@ -205,9 +326,17 @@ TEST(SimFcProcess, UgvAgentReadsTheImuTheSimulatorServesOverMavlink) {
   ASSERT_TRUE(wait_until([&] { return observer.samples().size() >= 400; }, scaled(20s)));
   const auto samples = observer.samples();
   std::int64_t previous_ns = -1;
+  int distinct = 0;
+  int five_ms_apart = 0;
   for (const auto& m : samples) {
-    EXPECT_GT(m.stamp_ns, previous_ns);  // simulated time, increasing
+    // The agent repeats its last sample (same seq and stamp) when its device is silent for
+    // 20 ms, as a loaded machine's realtime simulator can be.
+    if (m.stamp_ns == previous_ns) continue;
+    EXPECT_GT(m.stamp_ns, previous_ns);    // simulated time, increasing
+    EXPECT_EQ(m.stamp_ns % 5'000'000, 0);  // 200 Hz of simulated time, to the nanosecond
+    if (m.stamp_ns - previous_ns == 5'000'000) ++five_ms_apart;
     previous_ns = m.stamp_ns;
+    ++distinct;
     // A planar UGV: gravity up in FLU, a few m/s^2 at most in the plane, yaw rate only.
     EXPECT_NEAR(m.specific_force_m_s2.z, 9.81, 0.5);
     EXPECT_LT(std::hypot(m.specific_force_m_s2.x, m.specific_force_m_s2.y), 3.0);
@@ -215,10 +344,8 @@ TEST(SimFcProcess, UgvAgentReadsTheImuTheSimulatorServesOverMavlink) {
     EXPECT_LT(std::abs(m.angular_velocity_rad_s.y), 0.1);
     EXPECT_LT(std::abs(m.angular_velocity_rad_s.z), 2.0);
   }
-  // 200 Hz of simulated time: ~5 ms between samples (the filter drops none).
-  const double span_s =
-      static_cast<double>(samples.back().stamp_ns - samples.front().stamp_ns) * 1e-9;
-  EXPECT_NEAR(span_s / static_cast<double>(samples.size() - 1), 0.005, 0.0005);
+  // Best-effort DDS may lose a sample to the test's reader; nearly all follow each other.
+  EXPECT_GT(five_ms_apart, distinct * 9 / 10);
   ASSERT_TRUE(wait_until(
       [&] {
         const auto status = observer.status();
