@@ -154,11 +154,12 @@ int finish(cover::sim::Fleet& fleet, const cover::sim::SimNode& node, const Comm
 }
 
 void add_mavlink_options(CLI::App& app, CommandLine& cli) {
-  app.add_option("--fc", cli.fc,
-                 "the UAVs' flight controller: direct (the agent's cover/uav/<u>/cmd flies the "
-                 "plant), px4 or ardupilot (a simulated autopilot per UAV speaking MAVLink over "
-                 "UDP; a cover-fc-bridge turns the agent's commands into its setpoints; in lockstep a tick "
-                 "waits for the SET_ATTITUDE_TARGET whose time_boot_ms is its time)")
+  app.add_option(
+         "--fc", cli.fc,
+         "the UAVs' flight controller: direct (the agent's cover/uav/<u>/cmd flies the "
+         "plant), px4 or ardupilot (a simulated autopilot per UAV speaking MAVLink over "
+         "UDP; a cover-fc-bridge turns the agent's commands into its setpoints; in lockstep a tick "
+         "waits for the SET_ATTITUDE_TARGET whose time_boot_ms is its time)")
       ->check(CLI::IsMember({"direct", "px4", "ardupilot"}))
       ->capture_default_str();
   app.add_option("--fc-params", cli.fc_params_file, "simulated autopilots' settings")

@@ -88,6 +88,7 @@ class SimNode {
     // Autopilots: the newest time_boot_ms of a setpoint the autopilot took, and how many.
     std::int64_t setpoint_ms = -1;
     std::uint64_t setpoints = 0;
+    std::int64_t setpoint_received_ns = 0;  // monotonic, of the newest
     std::size_t events_logged = 0;
   };
   // When a tick's relative states were written (realtime latency with autopilots).

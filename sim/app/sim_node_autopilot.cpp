@@ -65,6 +65,7 @@ void SimNode::note_setpoint_locked(int u, std::uint32_t time_boot_ms, std::int64
                  time_boot_ms);
   }
   box.setpoint_ms = std::max<std::int64_t>(box.setpoint_ms, time_boot_ms);
+  box.setpoint_received_ns = received_ns;
   const bool running = box.trace && box.trace->task_state == msg::TaskState::TASK_RUNNING;
   if (options_.clock != SimClockMode::Realtime || !running) return;
   const auto tick =
@@ -118,16 +119,20 @@ void SimNode::log_autopilot_events_locked(int u) {
 
 // While simulated time stands still (waiting for the agents, or a lockstep tick not yet
 // answered), a real autopilot would still send its heartbeat: a bridge that waits for one
-// before it streams setpoints would otherwise never start. Only until its bridge streams:
-// then the stepped heartbeats carry on, on simulated time, and a heartbeat that came at a
-// wall-clock moment would make a lockstep run depend on the machine's timing.
+// before it streams setpoints (at start, or restarted) would otherwise never start. Only
+// while its bridge is silent: in a lockstep run that streams, heartbeats come on simulated
+// time alone, and one sent at a wall-clock moment would make the run depend on the
+// machine's timing.
 void SimNode::send_keepalive_heartbeats() {
   if (!uses_autopilots()) return;
   const auto now = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lock(mutex_);
   for (int u = 0; u < fleet_.uav_count(); ++u) {
     auto& sent = keepalive_sent_[static_cast<std::size_t>(u)];
-    if (mailboxes_[u].setpoints > 0 || now - sent < kKeepalivePeriod) continue;
+    const auto since_setpoint_ns = clock::monotonic_ns() - mailboxes_[u].setpoint_received_ns;
+    const bool streaming = mailboxes_[u].setpoints > 0 &&
+                           std::chrono::nanoseconds(since_setpoint_ns) < kKeepalivePeriod;
+    if (streaming || now - sent < kKeepalivePeriod) continue;
     sent = now;
     if (const auto heartbeat = fleet_.autopilot(u).heartbeat_frame()) {
       autopilot_links_->send(u, *heartbeat);
