@@ -36,7 +36,7 @@ void SimulatedAutopilot::handle_command(const mavlink::Frame& frame,
       set_mode(FlightMode::Land, now_s, "commanded");
       outcome = result::kAccepted;
       break;
-    case kDoGripper:
+    case mavlink::mav_cmd::kDoGripper:  // param2 0 release, 1 grab
       outcome = gripper_command(command, now_s);
       break;
     default:
