@@ -94,6 +94,8 @@ TEST(TopicCatalog, EveryAccessorBindsItsRowAndEveryRowHasOne) {
   expect_catalogued(topics::fc_state(3), "cover/uav/3/fc", patterns);
   expect_catalogued(topics::fc_request(), "cover/fc/request", patterns);
   expect_catalogued(topics::fc_reply(), "cover/fc/reply", patterns);
+  expect_catalogued(topics::time_request(), "cover/time/request", patterns);
+  expect_catalogued(topics::time_reply(), "cover/time/reply", patterns);
   std::set<std::string> catalogued;
   for (const auto& entry : dds::topic_catalog()) catalogued.insert(entry.pattern);
   EXPECT_EQ(patterns, catalogued) << "a catalogue row without an accessor (or a test)";

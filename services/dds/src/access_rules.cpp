@@ -19,7 +19,7 @@ struct Grant {
 constexpr bool kOwn = true;
 
 struct Grants {
-  static constexpr std::size_t kMax = 5;
+  static constexpr std::size_t kMax = 8;
   std::array<Grant, kMax> items{};
   std::size_t size = 0;
   constexpr Grants(std::initializer_list<Grant> list) {
@@ -59,6 +59,14 @@ inline constexpr std::tuple kAccess{
     // Operators only: nothing but a ground station may arm, switch or land an autopilot.
     AccessRule<msg::FcRequest>{{kStation}, {{Role::FcBridge}}},
     AccessRule<msg::FcReply>{{{Role::FcBridge}}, {kStation}},
+    // Clock offsets (docs/time.md): whoever takes another host's samples asks; whoever
+    // stamps samples another host takes answers.
+    AccessRule<msg::TimeSyncRequest>{
+        {{Role::UavAgent}, {Role::UgvAgent}, {Role::TaskManager}},
+        {{Role::Sim}, {Role::UgvAgent}, {Role::UavAgent}, {Role::FcBridge}, kStation}},
+    AccessRule<msg::TimeSyncReply>{
+        {{Role::Sim}, {Role::UgvAgent}, {Role::UavAgent}, {Role::FcBridge}},
+        {{Role::UavAgent}, {Role::UgvAgent}, {Role::TaskManager}, kStation}},
 };
 
 struct RoleName {

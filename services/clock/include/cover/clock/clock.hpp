@@ -11,7 +11,16 @@ namespace cover::clock {
 std::int64_t monotonic_ns();
 
 // Nanoseconds since the Unix epoch (CLOCK_REALTIME): the stamp written on every sample.
+// Plus the test-only offset below, when one is set.
 std::int64_t system_ns();
+
+// TEST ONLY: the environment variable COVER_TEST_CLOCK_OFFSET_MS (milliseconds, may be
+// negative or fractional), read once at the first system_ns(), shifts this process's
+// system clock, so that tests can play a host whose clock is off (docs/time.md). Logged
+// as a warning when set; never set it on a vehicle.
+inline constexpr const char* kTestClockOffsetEnv = "COVER_TEST_CLOCK_OFFSET_MS";
+// The offset system_ns() adds, ns (0 unless the test setting is given).
+std::int64_t test_clock_offset_ns();
 
 // Every conversion between the two goes through these, so that a time made from whole
 // nanoseconds (the simulator's) survives s -> ns -> s bit for bit: a lockstep run across

@@ -69,6 +69,14 @@ inline constexpr std::tuple kCatalog{
     TopicDescriptor<msg::FcReply>{"cover/fc/reply", &request_qos, "on demand",
                                   "fc_bridge -> ground station",
                                   "the autopilot's answer to one request, by request id"},
+    TopicDescriptor<msg::TimeSyncRequest>{
+        "cover/time/request", &request_qos, "1 Hz per asker",
+        "uav_agent, ugv_agent, task_manager -> sim, agents, fc_bridge",
+        "clock request (t1) of the four-timestamp offset exchange (docs/time.md)"},
+    TopicDescriptor<msg::TimeSyncReply>{
+        "cover/time/reply", &request_qos, "on request",
+        "sim, agents, fc_bridge -> uav_agent, ugv_agent, task_manager",
+        "a peer's receive (t2) and send (t3) times for one clock request"},
 };
 
 // The row of message type T, bound to `ids`; does not compile when T has no row or the
@@ -125,6 +133,12 @@ inline Topic<msg::FcRequest> fc_request() {
 }
 inline Topic<msg::FcReply> fc_reply() {
   return bind<msg::FcReply>();
+}
+inline Topic<msg::TimeSyncRequest> time_request() {
+  return bind<msg::TimeSyncRequest>();
+}
+inline Topic<msg::TimeSyncReply> time_reply() {
+  return bind<msg::TimeSyncReply>();
 }
 
 }  // namespace topics

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/time_sync/peer_offsets.hpp"
+#include "cover/time_sync/time_sync_params.hpp"
+
+namespace cover::time_sync {
+
+struct MonitorOptions {
+  std::string process;  // this process's name: it asks as "host/process"
+  // The peers whose samples it takes, by process name ("cover-sim", "cover-ugv-agent-*");
+  // replies from any other are ignored. Empty: every peer.
+  std::vector<std::string> peers;
+  TimeSyncParams params;
+};
+
+// Estimates this host's clock offset to each peer it takes samples from: a request on
+// cover/time/request every request_period_s (a burst at start and when a peer appears or
+// restarts), each reply turned into an OffsetSample, each peer's samples through NTP's
+// clock filter. Logs each peer's first estimate, every crossing of max_offset_ms and a
+// summary once a minute. Its own thread sends; the replies arrive on DDS's.
+class OffsetMonitor {
+ public:
+  OffsetMonitor(dds::Participant& participant, MonitorOptions options);
+  ~OffsetMonitor();
+  OffsetMonitor(const OffsetMonitor&) = delete;
+  OffsetMonitor& operator=(const OffsetMonitor&) = delete;
+
+  const std::string& name() const { return name_; }
+  double max_offset_ms() const { return options_.params.max_offset_ms; }
+  std::vector<PeerOffset> offsets() const;
+  std::optional<PeerOffset> largest() const;
+  // Why a task must not start: the largest offset when it exceeds max_offset_ms.
+  std::optional<std::string> limit_reason() const;
+  std::uint64_t refused_replies() const;  // not matching a request of ours
+
+ private:
+  void run();
+  void send_request();
+  void on_reply(const msg::TimeSyncReply& reply);
+  void log_changes(std::int64_t now_ns);  // run()'s thread only
+
+  MonitorOptions options_;
+  std::string name_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  int burst_left_ = 0;
+  std::uint64_t next_request_id_ = 1;
+  std::deque<std::pair<std::uint64_t, std::int64_t>> outstanding_;  // request id, t1
+  PeerOffsets peers_;
+  std::uint64_t refused_ = 0;
+  std::map<std::string, bool> logged_over_;  // peer -> beyond the limit when last logged
+  std::int64_t next_summary_ns_ = 0;
+  dds::Writer<msg::TimeSyncRequest> writer_;
+  dds::Reader<msg::TimeSyncReply> reader_;  // after the members its callback uses
+  std::thread thread_;                      // last: runs on everything above
+};
+
+}  // namespace cover::time_sync

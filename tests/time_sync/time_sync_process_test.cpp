@@ -1,0 +1,166 @@
+// The clock exchange between two real processes on loopback: this test's OffsetMonitor
+// and a time_sync_peer child answering with its (possibly shifted) clock.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cover/dds/domain_claim.hpp"
+#include "cover/dds/participant.hpp"
+#include "cover/process/child_process.hpp"
+#include "cover/time_sync/offset_monitor.hpp"
+
+namespace cover::time_sync {
+namespace {
+
+using namespace std::chrono_literals;
+
+double time_scale() {
+  const char* text = std::getenv("COVER_TEST_TIME_SCALE");
+  const double scale = text ? std::atof(text) : 1.0;
+  return scale > 0.0 ? scale : 1.0;
+}
+std::chrono::milliseconds scaled(std::chrono::milliseconds t) {
+  return std::chrono::milliseconds(
+      static_cast<long>(static_cast<double>(t.count()) * time_scale()));
+}
+
+// Domains 140..148 are this work's; the monitor and its peers share one.
+struct Fixture {
+  dds::DomainClaim claim = dds::DomainClaim::claim_any(140, 148);
+  dds::ParticipantOptions options(dds::Vendor vendor) const {
+    dds::ParticipantOptions o;
+    o.vendor = vendor;
+    o.domain_id = claim.domain();
+    return o;
+  }
+  std::unique_ptr<process::ChildProcess> peer(const std::string& vendor, const std::string& name,
+                                              const std::string& offset_ms = "") const {
+    process::SpawnOptions spawn;
+    spawn.capture_stdout = true;
+    if (!offset_ms.empty()) spawn.extra_env.push_back("COVER_TEST_CLOCK_OFFSET_MS=" + offset_ms);
+    auto child = std::make_unique<process::ChildProcess>(
+        std::vector<std::string>{COVER_TIME_SYNC_PEER, vendor, std::to_string(claim.domain()),
+                                 name},
+        spawn);
+    // Its log lines come first on stdout (spdlog's default sink).
+    const auto give_up = std::chrono::steady_clock::now() + scaled(10s);
+    std::optional<std::string> line;
+    while (std::chrono::steady_clock::now() < give_up && line != "ready") {
+      line = child->read_line(scaled(10s));
+      if (!line) break;
+    }
+    EXPECT_EQ(line.value_or("<nothing>"), "ready");
+    return child;
+  }
+};
+
+MonitorOptions fast_monitor(std::vector<std::string> peers) {
+  MonitorOptions m;
+  m.process = "time-sync-test";
+  m.peers = std::move(peers);
+  m.params.burst_count = 16;
+  m.params.burst_period_s = 0.05;
+  m.params.request_period_s = 0.2;
+  return m;
+}
+
+// Waits until the monitor holds a full window of `peer`'s samples (the estimate is then
+// the best of several exchanges); its estimate.
+std::optional<PeerOffset> settled(const OffsetMonitor& monitor, const std::string& process,
+                                  std::chrono::milliseconds timeout) {
+  const auto give_up = std::chrono::steady_clock::now() + scaled(timeout);
+  const auto started = std::chrono::steady_clock::now();
+  std::optional<PeerOffset> found;
+  while (std::chrono::steady_clock::now() < give_up) {
+    for (const PeerOffset& p : monitor.offsets()) {
+      if (p.peer.size() >= process.size() &&
+          p.peer.compare(p.peer.size() - process.size(), process.size(), process) == 0) {
+        found = p;
+      }
+    }
+    // 16 burst exchanges take 0.8 s: by 1.5 s the window is the burst's best 8.
+    if (found && std::chrono::steady_clock::now() - started > 1500ms) return found;
+    std::this_thread::sleep_for(20ms);
+  }
+  return found;
+}
+
+bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
+  const auto give_up = std::chrono::steady_clock::now() + timeout;
+  while (!condition()) {
+    if (std::chrono::steady_clock::now() >= give_up) return condition();
+    std::this_thread::sleep_for(10ms);
+  }
+  return true;
+}
+
+void report(const char* what, const PeerOffset& p) {
+  std::printf("[ measured ] %s: offset %+.3f ms, delay %.3f ms, uncertainty %.3f ms\n", what,
+              ns_to_ms(p.estimate.offset_ns), ns_to_ms(p.estimate.delay_ns),
+              ns_to_ms(p.estimate.uncertainty_ns));
+}
+
+class BetweenVendors : public ::testing::TestWithParam<std::pair<dds::Vendor, std::string>> {};
+
+TEST_P(BetweenVendors, SameHostClocksAgreeWithinAMillisecond) {
+  Fixture f;
+  dds::Participant participant(f.options(GetParam().first));
+  OffsetMonitor monitor(participant, fast_monitor({"cover-ugv-agent-*"}));
+  auto child = f.peer(GetParam().second, "cover-ugv-agent-3");
+  const auto p = settled(monitor, "/cover-ugv-agent-3", 20s);
+  ASSERT_TRUE(p) << "no answer from the peer";
+  report("same host", *p);
+  EXPECT_LE(std::abs(ns_to_ms(p->estimate.offset_ns)), 1.0);
+  EXPECT_LE(ns_to_ms(p->estimate.uncertainty_ns), 1.0);
+  EXPECT_FALSE(monitor.limit_reason());
+  EXPECT_EQ(monitor.refused_replies(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    TimeSync, BetweenVendors,
+    ::testing::Values(std::make_pair(dds::Vendor::FastDds, std::string("fastdds")),
+                      std::make_pair(dds::Vendor::Cyclone, std::string("cyclone")),
+                      std::make_pair(dds::Vendor::FastDds, std::string("cyclone"))));
+
+TEST(TimeSyncProcess, InjectedOffsetIsMeasuredNamedAndGoneAfterARestart) {
+  Fixture f;
+  dds::Participant participant(f.options(dds::Vendor::FastDds));
+  OffsetMonitor monitor(participant, fast_monitor({"cover-sim", "cover-ugv-agent-*"}));
+  auto good = f.peer("fastdds", "cover-sim");
+  auto shifted = f.peer("fastdds", "cover-ugv-agent-1", "50");
+  auto other = f.peer("fastdds", "cover-uav-agent-4", "-300");  // not a peer of ours
+  auto p = settled(monitor, "/cover-ugv-agent-1", 20s);
+  ASSERT_TRUE(p);
+  report("peer shifted +50 ms", *p);
+  EXPECT_NEAR(ns_to_ms(p->estimate.offset_ns), 50.0, 1.0);
+  const auto worst = monitor.largest();
+  ASSERT_TRUE(worst);
+  EXPECT_EQ(worst->peer, p->peer);
+  const std::string reason = monitor.limit_reason().value_or("");
+  EXPECT_NE(reason.find("clock offset from " + monitor.name() + " to " + p->peer + " is 5"),
+            std::string::npos)
+      << reason;
+  EXPECT_NE(reason.find("(its clock ahead; limit 20 ms)"), std::string::npos) << reason;
+  for (const PeerOffset& o : monitor.offsets()) {
+    EXPECT_EQ(o.peer.find("cover-uav-agent-4"), std::string::npos) << "not a peer: " << o.peer;
+  }
+
+  // The same process restarted without the offset: a new session, a new filter.
+  EXPECT_EQ(shifted->terminate(), 0);
+  shifted = f.peer("fastdds", "cover-ugv-agent-1");
+  ASSERT_TRUE(wait_until([&] { return !monitor.limit_reason(); }, scaled(10s)));
+  p = settled(monitor, "/cover-ugv-agent-1", 20s);
+  ASSERT_TRUE(p);
+  report("after the restart", *p);
+  EXPECT_LE(std::abs(ns_to_ms(p->estimate.offset_ns)), 1.0);
+}
+
+}  // namespace
+}  // namespace cover::time_sync
