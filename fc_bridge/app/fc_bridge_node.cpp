@@ -12,6 +12,9 @@ namespace cover::fc_bridge {
 namespace {
 constexpr std::chrono::milliseconds kHousekeepingPeriod{20};  // 50 Hz
 constexpr std::size_t kRecentRequests = 64;
+// Lockstep: the agent's commands drive the bridge's tick; after this much simulated time
+// without one, the housekeeping thread ticks instead (the supervisor's cmd timeout).
+constexpr double kLockstepSilentTicks_s = 0.02;
 double monotonic_s() {
   return clock::ns_to_s(clock::monotonic_ns());
 }
@@ -59,10 +62,15 @@ void FcBridgeNode::on_command(const msg::UavCommand& command) {
   clock_.observe_command_stamp(command.stamp_ns);
   const auto now = clock_.now_s();
   if (!now) return;  // no simulator time yet
+  last_command_tick_s_ = *now;
   const AgentCommand c = from_msg(command);
   Events events;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    // Lockstep: the tick's own decisions (mode and arm requests, retries, the land
+    // supervisor) go out just before its setpoint, from this thread, so the simulated
+    // autopilot meets them at the same tick in every run.
+    if (lockstep()) write_locked(bridge_.tick(*now));
     write_locked(bridge_.on_agent_command(c, *now));
     take_events_locked(events);
   }
@@ -107,7 +115,10 @@ void FcBridgeNode::housekeeping(double now_s) {
   FcStatus status;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    write_locked(bridge_.tick(now_s));
+    // Lockstep: ticked on each command (on_command) while the agent answers; here only when
+    // it has fallen silent (the supervisor must still see that), never racing a setpoint.
+    const bool agent_silent = now_s - last_command_tick_s_ > kLockstepSilentTicks_s;
+    if (!lockstep() || agent_silent) write_locked(bridge_.tick(now_s));
     status = bridge_.state(now_s);
     take_events_locked(events);
   }

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <atomic>
+
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -58,6 +60,7 @@ class FcBridgeNode {
   void on_request(const msg::FcRequest& request);
   void on_frame(const mavlink::Frame& frame, const mavlink::ParserStats& stats);
   void housekeeping(double now_s);
+  bool lockstep() const { return options_.clock == sim_clock::ClockMode::Lockstep; }
   void write_locked(const std::vector<mavlink::EncodedFrame>& frames);
   void take_events_locked(Events& events);
   void report(Events& events);
@@ -71,6 +74,7 @@ class FcBridgeNode {
   std::mutex mutex_;  // the Bridge and the link's write side
   Bridge bridge_;
   std::uint64_t write_failures_ = 0;
+  std::atomic<double> last_command_tick_s_{-1.0};  // bridge time of the last agent command
   dds::Writer<msg::FcState> state_writer_;
   dds::Writer<msg::FcReply> reply_writer_;
   std::optional<msg::FcState> last_state_;
