@@ -8,6 +8,7 @@
 #include "cover/logging/log.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "fc_commands.hpp"
+#include "record_commands.hpp"
 #include "security_commands.hpp"
 #include "task_commands.hpp"
 #include "topic_commands.hpp"
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
   abort->add_option("--reason", abort_reason, "recorded with the abort");
   add_task_flags(abort);
   cover::cli::FcCommands fc_commands(app);
+  cover::cli::RecordCommands record_commands(app);
   // DDS-Security fleet directories (docs/security.md).
   auto* security = app.add_subcommand("security", "Make and check DDS-Security fleet directories");
   security->require_subcommand(1);
@@ -136,6 +138,7 @@ int main(int argc, char** argv) {
                                                        : TopicsFormat::Table);
     }
     if (fc_commands.chosen()) return fc_commands.run();
+    if (record_commands.chosen()) return record_commands.run();
     if (*security_init) return cover::cli::security_init(init_request);
     if (*security_check) {
       return cover::cli::security_check(check_directory, check_json, check_warning_days);

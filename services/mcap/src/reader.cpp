@@ -74,6 +74,7 @@ bool Reader::scan(const MessageCallback& on_message) {
     report(0, "not an MCAP file: it does not start with the magic \\x89MCAP0\\r\\n");
     return false;
   }
+  magic_seen_ = true;
   std::uint64_t offset = sizeof(kMagic);
   Bytes content;
   while (!stopped_) {

@@ -59,6 +59,8 @@ class Reader {
   const std::vector<ChunkInfo>& chunks() const { return chunks_; }
   // Messages delivered per channel.
   const std::map<std::uint16_t, std::uint64_t>& message_counts() const { return counts_; }
+  // The file opened and begins with MCAP's magic (scan() ran).
+  bool is_mcap() const { return magic_seen_; }
   bool finished() const { return footer_seen_; }  // Footer and closing magic present
   bool has_summary_statistics() const { return statistics_seen_; }
   const Statistics& summary_statistics() const { return statistics_; }
@@ -85,6 +87,7 @@ class Reader {
   std::map<std::uint16_t, std::uint64_t> counts_;
   Statistics statistics_;
   bool statistics_seen_ = false;
+  bool magic_seen_ = false;
   bool footer_seen_ = false;
   bool stopped_ = false;
   std::vector<ReadIssue> issues_;

@@ -1,0 +1,57 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cover/dds/participant.hpp"
+#include "cover/mcap/reader.hpp"
+
+namespace cover::cli {
+
+struct PlayOptions {
+  std::string path;
+  double rate = 1.0;                     // 2: twice as fast
+  std::vector<std::string> topic_globs;  // empty: every recorded topic
+  double start_s = 0.0;                  // skip the recording's first S seconds
+  double delay_s = 0.5;  // between making the writers and the first sample: discovery
+};
+
+struct PlayStats {
+  std::uint64_t published = 0;
+  std::uint64_t undecodable = 0;            // payloads that are not their type's CDR
+  std::vector<std::string> skipped_topics;  // not catalogued, or another type than recorded
+  std::vector<mcap::ReadIssue> issues;      // damaged or cut file: what was readable played
+  bool is_mcap = false;
+  bool stopped = false;  // stop_requested() said so before the end
+};
+
+// Publishes a recording's samples again, each on its topic with its recorded type, at the
+// pace of their log times (scaled by `rate`): the CDR decoded by the vendor's type support
+// (CdrCodec) and written by an ordinary typed writer, so receivers cannot tell a replay
+// from the live system except by the stamps, which are the recorded ones.
+class Player {
+ public:
+  Player(dds::Participant& participant, PlayOptions options);
+  ~Player();
+  Player(const Player&) = delete;
+  Player& operator=(const Player&) = delete;
+
+  // Plays to the end of the file, or until stop_requested() (checked at least every 50 ms).
+  PlayStats run(const std::function<bool()>& stop_requested);
+
+  class Publisher;
+
+ private:
+  bool prepare(PlayStats& stats);
+
+  dds::Participant& participant_;
+  PlayOptions options_;
+  std::map<std::string, std::unique_ptr<Publisher>> publishers_;  // by topic
+  std::uint64_t first_log_ns_ = 0;
+};
+
+}  // namespace cover::cli

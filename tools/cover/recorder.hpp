@@ -1,0 +1,97 @@
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "cover/dds/participant.hpp"
+#include "cover/mcap/writer.hpp"
+#include "fleet_topics.hpp"
+
+namespace cover::cli {
+
+struct RecorderOptions {
+  std::string path;                      // the MCAP file (created or truncated)
+  std::vector<std::string> topic_globs;  // empty: every catalogued topic of the fleet
+  FleetSize fleet;
+  mcap::WriterOptions writer;
+  // Received samples not yet written, in bytes: beyond it new samples are dropped
+  // (counted) rather than the recorder's memory growing without bound.
+  std::size_t max_pending_bytes = 64 * 1024 * 1024;
+};
+
+struct RecorderStats {
+  std::uint64_t received = 0;
+  std::uint64_t written = 0;
+  std::uint64_t dropped = 0;        // queue full or not serializable
+  std::uint64_t bytes_written = 0;  // the file's size so far
+  std::uint64_t topics_heard = 0;   // channels in the file
+  std::uint64_t topics_subscribed = 0;
+};
+
+// Records DDS samples into an MCAP file: one reader per concrete catalogued topic (those
+// the globs select), each sample serialized to the CDR that crossed the wire (CdrCodec)
+// on the vendor's receive thread and queued; pump() (one thread) writes the queue: a
+// channel (encoding cdr) and its type's schema (omgidl, the type's IDL text) on a topic's
+// first sample, log time = receive time (system clock), publish time = the sample's
+// stamp_ns. Never throws after construction.
+class Recorder {
+ public:
+  // Throws std::runtime_error when the file cannot be created, dds::DdsError when a
+  // reader cannot be made.
+  Recorder(dds::Participant& participant, RecorderOptions options);
+  ~Recorder();
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+
+  // Writes what arrived, waiting up to `wait_ms` for something; false once the file
+  // cannot be written (error() says why).
+  bool pump(int wait_ms);
+  // Stops the readers, writes what is queued and the summary. Idempotent.
+  bool close();
+  RecorderStats stats() const;
+  const std::string& error() const { return writer_.error(); }
+
+  class Subscription;  // one topic's reader, type-erased
+
+ private:
+  struct Pending {
+    std::uint32_t topic_index;
+    mcap::MessageHeader header;
+    std::vector<std::uint8_t> bytes;
+  };
+  struct TopicSlot {
+    std::string name;
+    std::string type_name;
+    std::uint16_t channel_id = 0;  // 0: no sample yet
+    std::uint32_t sequence = 0;
+  };
+  template <typename T>
+  void subscribe(dds::Participant& participant, const dds::Topic<T>& topic);
+  void enqueue(Pending pending);
+  std::uint16_t channel_for(TopicSlot& slot);
+
+  RecorderOptions options_;
+  mcap::Writer writer_;
+  std::vector<TopicSlot> slots_;  // fixed after construction
+  std::map<std::string, std::uint16_t> schema_ids_;
+  std::vector<std::unique_ptr<Subscription>> subscriptions_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::vector<Pending> queue_;
+  std::size_t pending_bytes_ = 0;
+  std::uint64_t received_ = 0;
+  std::uint64_t dropped_ = 0;
+  std::atomic<std::uint64_t> written_{0};
+  std::atomic<std::uint64_t> channels_{0};
+  std::atomic<std::uint64_t> file_bytes_{0};
+  bool closed_ = false;
+};
+
+}  // namespace cover::cli
