@@ -25,36 +25,10 @@ const fs::path kPeerDir = COVER_MAVLINK_PEER_DIR;
 constexpr int kSys = 42;
 constexpr int kRunSeconds = 7;  // 1 s of stream, OFFBOARD, a HEARTBEAT to see it, arm
 
-std::string find_node() {
-  const char* path = std::getenv("PATH");
-  const std::string dirs = path != nullptr ? path : "";
-  for (std::size_t at = 0; at <= dirs.size();) {
-    const std::size_t end = std::min(dirs.find(':', at), dirs.size());
-    const fs::path candidate = fs::path(dirs.substr(at, end - at)) / "node";
-    if (end > at && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-    at = end + 1;
-  }
-  return "";
-}
-
-// A loopback UDP port free now (bound and released; the kernel does not hand it out again
-// at once).
-int free_udp_port() {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address));
-  socklen_t length = sizeof(address);
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
-  ::close(fd);
-  return ntohs(address.sin_port);
-}
-
 class FcBridgePeer : public ::testing::TestWithParam<const char*> {
  protected:
   void SetUp() override {
-    node_ = find_node();
+    node_ = test::find_node();
     if (node_.empty()) {
       GTEST_SKIP() << "node is not installed: the node-mavlink fake autopilot needs Node >= 18";
     }
@@ -82,7 +56,7 @@ TEST_P(FcBridgePeer, StreamsThenOffboardThenArmsWithFramesTheFakeAccepts) {
   const std::string autopilot = GetParam();
   const bool px4 = autopilot == "px4";
   const auto claim = dds::DomainClaim::claim_any(200, 209);
-  const int port = free_udp_port();
+  const int port = test::free_udp_port();
   process::SpawnOptions fake_options;
   fake_options.capture_stdout = true;
   fake_options.log_file = cover::test::scratch_path("fake_autopilot.log");

@@ -1,7 +1,16 @@
 #pragma once
 
+#include <unistd.h>
+
+#include <sys/socket.h>
+
+#include <netinet/in.h>
+
+#include <arpa/inet.h>
+
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <thread>
@@ -42,6 +51,34 @@ inline dds::ParticipantOptions on_domain(int domain) {
   options.domain_id = domain;
   options.participant_name = "fc-bridge-test";
   return options;
+}
+
+// The `node` executable on $PATH (child processes are started by exec, without a PATH
+// lookup); empty when Node is not installed.
+inline std::string find_node() {
+  const char* path = std::getenv("PATH");
+  const std::string dirs = path != nullptr ? path : "";
+  for (std::size_t at = 0; at <= dirs.size();) {
+    const std::size_t end = std::min(dirs.find(':', at), dirs.size());
+    const std::filesystem::path candidate = std::filesystem::path(dirs.substr(at, end - at)) / "node";
+    if (end > at && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    at = end + 1;
+  }
+  return "";
+}
+
+// A loopback UDP port free now (bound and released; the kernel does not hand it out again
+// at once).
+inline int free_udp_port() {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address));
+  socklen_t length = sizeof(address);
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
+  ::close(fd);
+  return ntohs(address.sin_port);
 }
 
 // cover-fc-bridge for UAV 0 on `domain`, its log in the test's scratch folder.

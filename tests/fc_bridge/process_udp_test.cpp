@@ -104,22 +104,11 @@ class UdpAutopilot {
   std::thread thread_;
 };
 
-int free_udp_port() {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address));
-  socklen_t length = sizeof(address);
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
-  ::close(fd);
-  return ntohs(address.sin_port);
-}
 
 struct Rig {
   Rig()
       : claim(dds::DomainClaim::claim_any(200, 209)),
-        port(free_udp_port()),
+        port(test::free_udp_port()),
         bridge(test::start_bridge(
             claim.domain(), {"--autopilot", "px4", "--url",
                              "udpin://127.0.0.1:" + std::to_string(port), "--clock", "system"})),
