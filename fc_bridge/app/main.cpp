@@ -16,6 +16,7 @@
 #include "cover/logging/log.hpp"
 #include "cover/mavlink/connection_url.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "cover/time_sync/clock_responder.hpp"
 #include "fc_bridge_node.hpp"
 #include "signing_key_file.hpp"
 
@@ -127,6 +128,9 @@ int main(int argc, char** argv) {
         cli.dds.resolve("cover-fc-bridge-" + std::to_string(cli.uav_id));
     log_start(cli, options, dds);
     cover::dds::Participant participant(dds);
+    // Its UAV agent takes the autopilot's state: it measures this host's clock.
+    cover::time_sync::ClockResponder clock_responder(
+        participant, "cover-fc-bridge-" + std::to_string(cli.uav_id));
     cover::fc_bridge::FcBridgeNode node(participant, options, cover::mavlink::make_link(url));
     if (!node.start() && url.kind != cover::mavlink::ConnectionUrl::Kind::Serial) {
       std::cerr << "cover-fc-bridge: the link " << url.to_string() << " could not start\n";

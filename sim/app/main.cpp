@@ -22,6 +22,7 @@
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
 #include "cover/sim/percentile.hpp"
+#include "cover/time_sync/clock_responder.hpp"
 #include "fleet.hpp"
 #include "sim_node.hpp"
 
@@ -308,6 +309,8 @@ int main(int argc, char** argv) {
     cover::shm::SeqlockWriter<cover::sim::SharedWorld> segment(
         segment_name, cover::sim::kWorldSegmentLayoutVersion);
     cover::dds::Participant participant(dds);
+    // The UAV agents take its relative states: they measure its clock (docs/time.md).
+    cover::time_sync::ClockResponder clock_responder(participant, "cover-sim");
     cover::sim::SimNode node(participant, segment, fleet, options, params);
     spdlog::info(
         "{}: {} UAV(s), {} UGV(s), seed {}, clock {}, flight controller {}, UGV IMU {}, {} on "

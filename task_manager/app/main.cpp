@@ -12,6 +12,7 @@
 #include "cover/logging/log.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/task_manager/store_error.hpp"
+#include "cover/time_sync/offset_monitor.hpp"
 #include "manager_node.hpp"
 
 namespace {
@@ -44,6 +45,12 @@ int main(int argc, char** argv) {
     cover::task_manager::TaskStore store(db_path);
     const auto participant_options = dds.resolve("cover-task-manager");
     cover::dds::Participant participant(participant_options);
+    // The manager judges the agents' samples: it measures its clock against theirs and
+    // logs the offsets (docs/time.md).
+    cover::time_sync::OffsetMonitor clock_offsets(
+        participant, {"cover-task-manager",
+                      {"cover-uav-agent-*", "cover-ugv-agent-*", "cover-fc-bridge-*"},
+                      cover::time_sync::TimeSyncParams::load_beside(config_path)});
     const auto active = store.in_states(
         {cover::task_manager::TaskState::Dispatched, cover::task_manager::TaskState::Running});
     spdlog::info("database {} (schema {}): {} task(s) in flight to re-learn; {} on domain {}",

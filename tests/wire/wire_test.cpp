@@ -173,6 +173,23 @@ TEST(Wire, TraceCarriesWhatTheRecorderReads) {
   EXPECT_EQ(wire::from_msg(bad).failsafe, mission::Failsafe::SolverError);
 }
 
+TEST(Wire, StatusCarriesTheLargestClockOffsetAndItsPeer) {
+  mission::ControllerOutput output;
+  wire::UavStatusInputs in;
+  in.uav_id = 2;
+  in.output = &output;
+  msg::UavStatus m = wire::to_status(in);
+  EXPECT_EQ(m.max_clock_offset_ms, 0.0);
+  EXPECT_EQ(m.max_offset_peer, "");  // none measured yet
+  in.max_clock_offset_ms = -52.25;
+  in.max_offset_peer = "ugv1-pi/cover-ugv-agent-1";
+  m = wire::to_status(in);
+  EXPECT_EQ(m.max_clock_offset_ms, -52.25);
+  EXPECT_EQ(m.max_offset_peer, "ugv1-pi/cover-ugv-agent-1");
+  in.max_clock_offset_ms = std::nan("");
+  EXPECT_EQ(wire::to_status(in).max_clock_offset_ms, 0.0);
+}
+
 TEST(Wire, TaskFieldByField) {
   mission::Task task;
   task.task_id = "deliver-7";

@@ -43,7 +43,8 @@ void add_options(CLI::App& app, CommandLine& cli) {
                  "on each fresh relative state; system: the host's clock (field)")
       ->check(CLI::IsMember({"lockstep", "realtime", "system"}))
       ->capture_default_str();
-  app.add_option("--config-dir", cli.config_dir, "folder of mission.yaml, planner.yaml, sampc.yaml")
+  app.add_option("--config-dir", cli.config_dir,
+                 "folder of mission.yaml, planner.yaml, sampc.yaml, intake.yaml, time_sync.yaml")
       ->capture_default_str();
   app.add_option("--method", cli.method,
                  "override sampc.yaml's mode: " + cover::sampc::mode_names(" | "));
@@ -67,6 +68,8 @@ cover::uav_agent::AgentOptions agent_options(const CommandLine& cli) {
   if (!cli.task_file.empty())
     options.task = cover::mission::load_task_file(cli.task_file, cli.ugv_count);
   options.intake = cover::wire::IntakeLimits::load_file(cli.config_dir + "/intake.yaml");
+  options.time_sync =
+      cover::time_sync::TimeSyncParams::load_file(cli.config_dir + "/time_sync.yaml");
   return options;
 }
 

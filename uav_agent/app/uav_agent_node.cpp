@@ -45,6 +45,17 @@ std::string failsafe_event(const mission::ControllerStatus& s, mission::Failsafe
   return line;
 }
 
+// The processes whose samples a UAV agent takes: its relative states (the simulator or
+// a mocap relay), the UGVs' IMUs, its autopilot's state.
+time_sync::MonitorOptions monitor_options(const AgentOptions& options) {
+  time_sync::MonitorOptions m;
+  m.process = "cover-uav-agent-" + std::to_string(options.uav_id);
+  m.peers = {"cover-sim", "cover-mocap-relay*", "cover-ugv-agent-*",
+             "cover-fc-bridge-" + std::to_string(options.uav_id)};
+  m.params = options.time_sync;
+  return m;
+}
+
 }  // namespace
 
 UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
@@ -58,6 +69,8 @@ UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
       reference_writer_(participant.make_writer(dds::topics::uav_reference(options_.uav_id))),
       intake_(participant, options_.uav_id),
       fc_gate_(participant, options_.uav_id, options_.fc_bridge, options_.fc_stale_after_s),
+      clock_responder_(participant, "cover-uav-agent-" + std::to_string(options_.uav_id)),
+      clock_offsets_(participant, monitor_options(options_)),
       clock_(participant, options_.clock) {
   if (options_.task) accept(*options_.task, 0.0);
 }
@@ -219,16 +232,27 @@ void UavAgentNode::take_requests(double now_s) {
 }
 
 void UavAgentNode::accept(const mission::Task& task, double now_s) {
-  if (fc_gate_.bridge_present() && !held_task_ &&
-      (!loop_.task() || mission::is_terminal(loop_.task_state()))) {
-    if (const auto reason = fc_gate_.not_ready_reason()) {
+  if (!held_task_ && (!loop_.task() || mission::is_terminal(loop_.task_state()))) {
+    if (const auto reason = start_blocker()) {
       held_task_ = task;
       held_reason_.clear();
-      spdlog::info("task '{}' waits for the autopilot: {}", task.task_id, *reason);
+      spdlog::info("task '{}' {}", task.task_id, *reason);
       return;
     }
   }
   start(task, now_s);
+}
+
+// The autopilot first (without it nothing flies), then the clocks: an input stamped on a
+// clock 0.1 s off is stale on arrival, and one ahead is refused (intake.yaml).
+std::optional<std::string> UavAgentNode::start_blocker() const {
+  if (const auto reason = fc_gate_.not_ready_reason()) {
+    return "waiting for the autopilot: " + *reason;
+  }
+  if (const auto reason = clock_offsets_.limit_reason()) {
+    return "waiting for the clocks to agree: " + *reason;
+  }
+  return std::nullopt;
 }
 
 void UavAgentNode::start(const mission::Task& task, double now_s) {
@@ -252,18 +276,21 @@ void UavAgentNode::start(const mission::Task& task, double now_s) {
 // flight fails the moment it stops (a pilot's mode switch, its own failsafe, its link
 // lost), and holds afresh once it flies them again.
 void UavAgentNode::follow_autopilot(double now_s) {
-  const std::optional<std::string> reason = fc_gate_.not_ready_reason();
   if (held_task_) {
-    if (!reason) {
-      spdlog::info("autopilot ready: starting task '{}'", held_task_->task_id);
+    const std::optional<std::string> blocker = start_blocker();
+    if (!blocker) {
+      spdlog::info("starting task '{}' (was {})", held_task_->task_id, held_reason_);
       const mission::Task task = std::move(*held_task_);
       held_task_.reset();
       start(task, now_s);
-    } else if (*reason != held_reason_) {
-      held_reason_ = *reason;
+    } else if (*blocker != held_reason_) {
+      held_reason_ = *blocker;
       publish_held_status(now_s);
     }
   }
+  // A flight in progress is failed by its autopilot only: a clock drifting mid-flight
+  // shows in the status and the ladder, which act on the inputs' ages.
+  const std::optional<std::string> reason = fc_gate_.not_ready_reason();
   const mission::MissionController* controller = loop_.controller();
   if (!controller) return;
   if (!controller->yielded() && reason && loop_.output().command.armed) {
@@ -278,10 +305,9 @@ void UavAgentNode::follow_autopilot(double now_s) {
 }
 
 void UavAgentNode::publish_held_status(double now_s) {
-  spdlog::info("task '{}' waits for the autopilot: {}", held_task_->task_id, held_reason_);
-  msg::TaskStatus status =
-      wire::rejected_task_status(wire::to_msg(*held_task_, now_s), options_.uav_id, now_s,
-                                 "waiting for the autopilot: " + held_reason_);
+  spdlog::info("task '{}' {}", held_task_->task_id, held_reason_);
+  msg::TaskStatus status = wire::rejected_task_status(wire::to_msg(*held_task_, now_s),
+                                                      options_.uav_id, now_s, held_reason_);
   status.state = msg::TaskState::TASK_PENDING;
   task_status_writer_.write(status);
 }
@@ -302,6 +328,10 @@ void UavAgentNode::publish_status(double now_s) {
   in.state = loop_.task_state();
   in.output = &loop_.output();
   in.rejected_samples = inputs_.rejections().total();
+  if (const auto worst = clock_offsets_.largest()) {
+    in.max_clock_offset_ms = time_sync::ns_to_ms(worst->estimate.offset_ns);
+    in.max_offset_peer = worst->peer;
+  }
   if (const mission::Task* task = loop_.task()) {
     in.task_id = task->task_id;
     in.process_count = static_cast<std::uint32_t>(task->processes.size());

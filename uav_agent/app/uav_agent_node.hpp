@@ -6,6 +6,9 @@
 
 #include "cover/dds/participant.hpp"
 #include "cover/sim_clock/agent_clock.hpp"
+#include "cover/time_sync/clock_responder.hpp"
+#include "cover/time_sync/offset_monitor.hpp"
+#include "cover/time_sync/time_sync_params.hpp"
 #include "cover/uav/uav_loop.hpp"
 #include "cover/wire/intake.hpp"
 #include "dds_uav_io.hpp"
@@ -34,6 +37,9 @@ struct AgentOptions {
   bool fc_bridge = false;
   // The bridge publishes at 10 Hz: silent this long (wall clock) counts as not ready.
   double fc_stale_after_s = 1.0;
+  // config/time_sync.yaml: a task waits while the clock offset to a peer whose samples
+  // the agent takes (simulator or mocap relay, UGV agents, its bridge) exceeds the limit.
+  time_sync::TimeSyncParams time_sync;
 };
 
 // The UAV agent: DDS inputs -> UavLoop -> DDS command, trace, status, task status.
@@ -51,6 +57,8 @@ class UavAgentNode {
   void take_requests(double now_s);
   void accept(const mission::Task& task, double now_s);
   void start(const mission::Task& task, double now_s);
+  // Why an accepted task may not start now (the autopilot, the clocks); nullopt: it may.
+  std::optional<std::string> start_blocker() const;
   void follow_autopilot(double now_s);
   void publish_held_status(double now_s);
   void publish_status(double now_s);
@@ -67,9 +75,11 @@ class UavAgentNode {
   dds::Writer<msg::ReferenceTrajectory> reference_writer_;
   TaskIntake intake_;
   FcGate fc_gate_;
-  std::optional<mission::Task> held_task_;  // accepted, waiting for the autopilot
-  std::string held_reason_;                 // why it waits (last published)
-  std::string autopilot_failure_;           // why the autopilot took the task over
+  time_sync::ClockResponder clock_responder_;  // the task manager measures this host's clock
+  time_sync::OffsetMonitor clock_offsets_;     // this host's clock to the inputs' hosts
+  std::optional<mission::Task> held_task_;     // accepted, waiting for start_blocker() to clear
+  std::string held_reason_;                    // why it waits (last published)
+  std::string autopilot_failure_;              // why the autopilot took the task over
   sim_clock::AgentClock clock_;
   double next_status_s_ = 0.0;
   double last_step_s_ = 0.0;  // time of the last control step (the status stamp between steps)

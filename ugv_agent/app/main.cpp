@@ -18,6 +18,8 @@
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/shm/segment_name.hpp"
 #include "cover/sim/world_state.hpp"
+#include "cover/time_sync/clock_responder.hpp"
+#include "cover/time_sync/offset_monitor.hpp"
 #include "imu_publisher.hpp"
 #include "source_factory.hpp"
 #include "ugv_agent.hpp"
@@ -96,8 +98,10 @@ int run(const CommandLine& cli) {
   UgvAgentParams params;
   cover::dds::ParticipantOptions dds_options;
   SourceOptions source_options = cli.source;
+  cover::time_sync::TimeSyncParams time_sync;
   try {
     params = UgvAgentParams::load_file(cli.config_path);
+    time_sync = cover::time_sync::TimeSyncParams::load_beside(cli.config_path);
     dds_options = cli.dds.resolve("cover-ugv-agent-" + std::to_string(cli.source.ugv_id));
     source_options.dds_domain = dds_options.domain_id;
     if (source_options.kind == "sim") {
@@ -112,6 +116,12 @@ int run(const CommandLine& cli) {
   }
 
   cover::dds::Participant participant(dds_options);
+  // The UAV agents take this UGV's IMU: they measure this host's clock, and this agent
+  // logs its offset to them (docs/time.md).
+  const std::string process = "cover-ugv-agent-" + std::to_string(cli.source.ugv_id);
+  cover::time_sync::ClockResponder clock_responder(participant, process);
+  cover::time_sync::OffsetMonitor clock_offsets(participant,
+                                                {process, {"cover-uav-agent-*"}, time_sync});
   ImuPublisher publisher(participant, static_cast<std::uint32_t>(cli.source.ugv_id));
   std::unique_ptr<ImuSource> source;
   try {

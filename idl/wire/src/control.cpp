@@ -1,6 +1,7 @@
 #include "cover/wire/control.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "cover/wire/eigen.hpp"
@@ -88,6 +89,8 @@ msg::UavStatus to_status(const UavStatusInputs& in) {
   m.speed_m_s = in.velocity_m_s.norm();
   m.rejected_samples = static_cast<std::uint32_t>(
       std::min<std::uint64_t>(in.rejected_samples, std::numeric_limits<std::uint32_t>::max()));
+  m.max_clock_offset_ms = std::isfinite(in.max_clock_offset_ms) ? in.max_clock_offset_ms : 0.0;
+  m.max_offset_peer = in.max_offset_peer;
   return m;
 }
 

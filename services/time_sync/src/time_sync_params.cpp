@@ -1,11 +1,20 @@
 #include "cover/time_sync/time_sync_params.hpp"
 
 #include <cmath>
+#include <filesystem>
 
 namespace cover::time_sync {
 
 TimeSyncParams TimeSyncParams::load_file(const std::string& path) {
   return from_yaml(config::load_yaml_file(path), path);
+}
+
+TimeSyncParams TimeSyncParams::load_beside(const std::string& other_config) {
+  const std::filesystem::path path =
+      std::filesystem::path(other_config).parent_path() / "time_sync.yaml";
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return TimeSyncParams{};
+  return load_file(path.string());
 }
 
 TimeSyncParams TimeSyncParams::from_yaml(const YAML::Node& document, const std::string& source) {

@@ -34,6 +34,11 @@ struct UavStatusInputs {
   Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
   bool payload_attached = false;
   std::uint64_t rejected_samples = 0;  // the intake's count (saturates on the wire)
+  // The largest clock offset to a peer whose samples the agent takes (signed: the peer's
+  // clock minus ours), and that peer (host/process); empty: none measured. Non-finite
+  // reads as 0 on the wire.
+  double max_clock_offset_ms = 0.0;
+  std::string max_offset_peer;
 };
 msg::UavStatus to_status(const UavStatusInputs& in);
 

@@ -20,6 +20,9 @@ struct TimeSyncParams {
   double peer_timeout_s = 5.0;  // a peer that has not answered this long is forgotten
 
   static TimeSyncParams load_file(const std::string& path);
+  // time_sync.yaml in the folder of `other_config` (a process's own --config file); the
+  // defaults when there is none.
+  static TimeSyncParams load_beside(const std::string& other_config);
   static TimeSyncParams from_yaml(const YAML::Node& document, const std::string& source);
   void validate() const;
 };

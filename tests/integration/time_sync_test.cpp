@@ -1,0 +1,164 @@
+// Time across hosts (docs/time.md) with the real processes: the UAV agent measures its
+// clock against the simulator's and the UGV agents', reports the largest offset in its
+// status, holds a task while one exceeds time_sync.max_offset_ms (naming both hosts and
+// the offset in the task's status) and flies it once that host's clock is right again.
+// The "other host" is a UGV agent started with the test-only COVER_TEST_CLOCK_OFFSET_MS.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <set>
+#include <string>
+#include <thread>
+
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/mission/task.hpp"
+#include "cover/process/child_process.hpp"
+#include "cover/sim/world_segment.hpp"
+#include "cover/wire/task.hpp"
+#include "process_support.hpp"
+#include "sim_system.hpp"
+
+namespace {
+
+using cover::test::bin;
+using cover::test::SimSystem;
+using namespace std::chrono_literals;
+
+constexpr int kDomain = 147;  // this suite's of 140..148 (tests/time_sync takes 140..144)
+
+double time_scale() {
+  const char* text = std::getenv("COVER_TEST_TIME_SCALE");
+  const double scale = text ? std::atof(text) : 1.0;
+  return scale > 0.0 ? scale : 1.0;
+}
+std::chrono::milliseconds scaled(std::chrono::milliseconds t) {
+  return std::chrono::milliseconds(
+      static_cast<long>(static_cast<double>(t.count()) * time_scale()));
+}
+
+// Polls `condition` every 20 ms until it holds or `timeout` (scaled) passes.
+bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
+  const auto give_up = std::chrono::steady_clock::now() + scaled(timeout);
+  while (!condition()) {
+    if (std::chrono::steady_clock::now() >= give_up) return condition();
+    std::this_thread::sleep_for(20ms);
+  }
+  return true;
+}
+
+// UGV agent 1 of `system`, started again with its clock shifted by `offset_ms` ("": not).
+void restart_ugv1(SimSystem& system, const std::string& offset_ms, const std::string& log) {
+  auto& ugv = system.ugvs().at(1);
+  const int code = ugv->terminate(scaled(10s), SIGINT);
+  EXPECT_TRUE(code == 0 || code == 130) << code;  // 130: stopped while it waited for the world
+  cover::process::SpawnOptions options = cover::test::quiet("cyclone", system.domain(), log);
+  if (!offset_ms.empty()) options.extra_env.push_back("COVER_TEST_CLOCK_OFFSET_MS=" + offset_ms);
+  ugv = std::make_unique<cover::process::ChildProcess>(
+      std::vector<std::string>{bin("cover-ugv-agent"), "--id", "1", "--run-id", system.run_id()},
+      options);
+}
+
+void hold_with_the_offset_named_then_fly() {
+  SimSystem system(kDomain, "ts", {"--scenario", "scenario2", "--standing"});
+  restart_ugv1(system, "50", system.log_name("ugv1_offset"));
+  auto uav = system.spawn(
+      {bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2"}, "uav");
+
+  cover::dds::ParticipantOptions options;
+  options.domain_id = system.domain();
+  cover::dds::Participant station(options);
+  auto status = station.make_reader(cover::dds::topics::uav_status(0));
+  auto task_status = station.make_reader(cover::dds::topics::task_status());
+  auto requests = station.make_writer(cover::dds::topics::task_request());
+  auto world = std::make_unique<cover::sim::SharedWorld>();
+  ASSERT_TRUE(system.world().read(*world));
+  const double start_z_m = world->uavs[0].state.position_m.z;  // on its deck
+  auto latest_status = [&] {
+    const auto s = status.latest();
+    return s ? s->sample : cover::msg::UavStatus{};
+  };
+
+  // The agent reports the shifted UGV agent as its largest offset, ~+50 ms.
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const auto s = latest_status();
+        return s.max_offset_peer.find("/cover-ugv-agent-1") != std::string::npos &&
+               std::abs(s.max_clock_offset_ms - 50.0) <= 1.0;
+      },
+      30s))
+      << "status reports " << latest_status().max_clock_offset_ms << " ms to '"
+      << latest_status().max_offset_peer << "'";
+  std::printf("[ measured ] UAV agent -> UGV agent 1 (+50 ms injected): %+.3f ms\n",
+              latest_status().max_clock_offset_ms);
+  const std::string peer = latest_status().max_offset_peer;
+
+  // The task is held, with the reason.
+  const cover::mission::Task task =
+      cover::mission::load_task_file(std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml", 2);
+  ASSERT_TRUE(requests.wait_for_readers(1, scaled(20s)));
+  std::string held;
+  auto next_send = std::chrono::steady_clock::now();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        if (std::chrono::steady_clock::now() >= next_send) {
+          requests.write(cover::wire::to_msg(task, 0.0));  // re-sent: a volatile request
+          next_send += 300ms;
+        }
+        const auto s = task_status.latest();
+        if (!s || s->sample.task_id != task.task_id) return false;
+        held = s->sample.message;
+        return s->sample.state == cover::msg::TaskState::TASK_PENDING;
+      },
+      20s))
+      << "last task status: " << held;
+  EXPECT_NE(held.find("waiting for the clocks to agree: clock offset from "), std::string::npos)
+      << held;
+  EXPECT_NE(held.find("/cover-uav-agent-0 to " + peer + " is 5"), std::string::npos) << held;
+  EXPECT_NE(held.find("limit 20 ms"), std::string::npos) << held;
+  std::printf("[ held     ] %s\n", held.c_str());
+  // Still held a while later: nothing flies.
+  std::this_thread::sleep_for(500ms);
+  EXPECT_EQ(task_status.latest()->sample.state, cover::msg::TaskState::TASK_PENDING);
+  ASSERT_TRUE(system.world().read(*world));
+  EXPECT_LT(world->uavs[0].state.position_m.z, start_z_m + 0.05);
+
+  // The same UGV agent with a right clock: the task starts and the UAV takes off.
+  restart_ugv1(system, "", system.log_name("ugv1"));
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const auto s = task_status.latest();
+        return s && s->sample.task_id == task.task_id &&
+               s->sample.state == cover::msg::TaskState::TASK_RUNNING;
+      },
+      20s))
+      << "last task status: " << task_status.latest()->sample.message;
+  EXPECT_TRUE(system.wait_for_world(
+      [&](const cover::sim::SharedWorld& w) {
+        return w.uavs[0].state.position_m.z > start_z_m + 0.3;
+      },
+      scaled(20s)));
+  // Every peer now within a millisecond: same host, loopback.
+  ASSERT_TRUE(wait_until([&] { return std::abs(latest_status().max_clock_offset_ms) < 1.0; }, 10s))
+      << latest_status().max_clock_offset_ms << " ms to " << latest_status().max_offset_peer;
+  std::printf("[ measured ] UAV agent's largest offset, no injection: %+.3f ms (%s)\n",
+              latest_status().max_clock_offset_ms, latest_status().max_offset_peer.c_str());
+
+  EXPECT_EQ(uav->terminate(scaled(10s), SIGINT), 0);
+  system.stop(scaled(10s));
+}
+
+TEST(TimeAcrossHosts, OffsetHoldsTheTaskWithTheReasonAndItFliesOnceGone) {
+  const auto shm_before = cover::test::shm_entries();
+  hold_with_the_offset_named_then_fly();
+  for (const std::string& name : cover::test::shm_entries()) {
+    EXPECT_TRUE(shm_before.count(name) > 0) << "left in /dev/shm: " << name;
+  }
+}
+
+}  // namespace
