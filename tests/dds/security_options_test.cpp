@@ -144,7 +144,8 @@ TEST(Identities, NamesRoundTripAndOthersAreRefused) {
                           "ground-station--1", "uav-agent-1234567"}) {
     EXPECT_FALSE(parse_identity(bad)) << bad;
   }
-  EXPECT_EQ(fleet_identities(Fleet{2, 1, 1}).size(), 6u);
+  // sim, task-manager, mocap-relay, 2 UGV agents, a UAV agent, its bridge, a ground station.
+  EXPECT_EQ(fleet_identities(Fleet{2, 1, 1}).size(), 8u);
 }
 
 // Least privilege, from the catalogue: every catalogued topic of the fleet has exactly
@@ -170,7 +171,7 @@ TEST(AccessRules, LeastPrivilegeOverTheWholeCatalogue) {
   EXPECT_EQ(writers(topics::uav_command(1).name()), Names{"uav-agent-1"});
   EXPECT_EQ(writers(topics::task_request().name()), Names{"task-manager"});
   EXPECT_EQ(writers(topics::manager_request().name()), Names{"ground-station-0"});
-  EXPECT_EQ(writers(topics::relative_state(1, 0).name()), Names{"sim"});
+  EXPECT_EQ(writers(topics::relative_state(1, 0).name()), (Names{"mocap-relay", "sim"}));
   EXPECT_EQ(writers(topics::ugv_imu(1).name()), Names{"ugv-agent-1"});
   // Every catalogue pattern is published and subscribed by someone in the fleet.
   for (const auto& info : topic_catalog()) {
@@ -200,6 +201,13 @@ TEST(AccessRules, LeastPrivilegeOverTheWholeCatalogue) {
   EXPECT_TRUE(contains(station.publish, topics::fc_request().name()));
   EXPECT_EQ(identity_name({Role::FcBridge, 1}), "fc-bridge-1");
   EXPECT_EQ(parse_identity("fc-bridge-1")->role, Role::FcBridge);
+  // The motion-capture relay publishes every relative state and reads nothing.
+  const TopicAccess relay = topic_access({Role::MocapRelay, 0}, fleet);
+  EXPECT_TRUE(contains(relay.publish, topics::relative_state(1, 0).name()));
+  EXPECT_FALSE(contains(relay.publish, topics::uav_command(0).name()));
+  EXPECT_TRUE(relay.subscribe.empty());
+  EXPECT_EQ(identity_name({Role::MocapRelay, 0}), "mocap-relay");
+  EXPECT_EQ(parse_identity("mocap-relay")->role, Role::MocapRelay);
 }
 
 }  // namespace

@@ -294,7 +294,8 @@ TEST(SecurityFleet, CheckReportsLeastPrivilegeAndExpiry) {
   const Outcome check = cover_cli({"security", "check", fleet.string(), "--json"}, "check.log");
   ASSERT_EQ(check.exit_code, 0) << check.out << check.log;
   const auto report = nlohmann::json::parse(check.out);
-  ASSERT_EQ(report["identities"].size(), 7u);  // sim, task-manager, 2 UGVs, 2 UAVs, 1 station
+  // sim, task-manager, mocap-relay, 2 UGVs, 2 UAVs, their 2 bridges, 1 station
+  ASSERT_EQ(report["identities"].size(), 10u);
   const auto publishes = [&](const std::string& topic) {
     std::vector<std::string> who;
     for (const auto& identity : report["identities"]) {
@@ -309,7 +310,7 @@ TEST(SecurityFleet, CheckReportsLeastPrivilegeAndExpiry) {
   EXPECT_EQ(publishes("cover/uav/1/cmd"), Names{"uav-agent-1"});
   EXPECT_EQ(publishes("cover/task/request"), Names{"task-manager"});
   EXPECT_EQ(publishes("cover/manager/request"), Names{"ground-station-0"});
-  EXPECT_EQ(publishes("cover/uav/1/rel/0"), Names{"sim"});
+  EXPECT_EQ(publishes("cover/uav/1/rel/0"), (Names{"sim", "mocap-relay"}));
   EXPECT_EQ(publishes("cover/ugv/1/imu"), Names{"ugv-agent-1"});
   for (const auto& identity : report["identities"]) {
     EXPECT_TRUE(identity["valid"].get<bool>());

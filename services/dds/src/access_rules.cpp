@@ -39,7 +39,9 @@ inline constexpr Grant kStation{Role::GroundStation};
 inline constexpr std::tuple kAccess{
     AccessRule<msg::UgvImu>{{{Role::UgvAgent, kOwn}},
                             {{Role::UavAgent}, {Role::TaskManager}, kStation}},
-    AccessRule<msg::RelativeState>{{{Role::Sim}}, {{Role::UavAgent, kOwn}, kStation}},
+    // The simulator's own relative states, or the motion-capture relay's (cover-sim --mocap).
+    AccessRule<msg::RelativeState>{{{Role::Sim}, {Role::MocapRelay}},
+                                   {{Role::UavAgent, kOwn}, kStation}},
     AccessRule<msg::UavCommand>{{{Role::UavAgent, kOwn}},
                                 {{Role::Sim}, {Role::FcBridge, kOwn}, kStation}},
     AccessRule<msg::UavStatus>{{{Role::UavAgent, kOwn}},
@@ -74,12 +76,13 @@ struct RoleName {
   std::string_view prefix;
   bool numbered;
 };
-constexpr std::array<RoleName, 6> kRoleNames{{{Role::Sim, "sim", false},
+constexpr std::array<RoleName, 7> kRoleNames{{{Role::Sim, "sim", false},
                                               {Role::TaskManager, "task-manager", false},
                                               {Role::UgvAgent, "ugv-agent-", true},
                                               {Role::UavAgent, "uav-agent-", true},
                                               {Role::FcBridge, "fc-bridge-", true},
-                                              {Role::GroundStation, "ground-station-", true}}};
+                                              {Role::GroundStation, "ground-station-", true},
+                                              {Role::MocapRelay, "mocap-relay", false}}};
 
 // The UGV and UAV ids a concrete topic name was bound to.
 struct Binding {
@@ -169,7 +172,7 @@ std::optional<Identity> parse_identity(std::string_view name) {
 }
 
 std::vector<Identity> fleet_identities(const Fleet& fleet) {
-  std::vector<Identity> all{{Role::Sim, 0}, {Role::TaskManager, 0}};
+  std::vector<Identity> all{{Role::Sim, 0}, {Role::TaskManager, 0}, {Role::MocapRelay, 0}};
   for (std::uint32_t k = 0; k < fleet.ugvs; ++k) all.push_back({Role::UgvAgent, k});
   for (std::uint32_t u = 0; u < fleet.uavs; ++u) all.push_back({Role::UavAgent, u});
   for (std::uint32_t u = 0; u < fleet.uavs; ++u) all.push_back({Role::FcBridge, u});

@@ -30,6 +30,7 @@ std::optional<dds::Identity> identity_by_role(const std::string& executable,
   if (program == "cover-sim") return dds::Identity{dds::Role::Sim, 0};
   if (program == "cover-task-manager") return dds::Identity{dds::Role::TaskManager, 0};
   if (program == "cover") return dds::Identity{dds::Role::GroundStation, 0};
+  if (program == "cover-mocap-relay") return dds::Identity{dds::Role::MocapRelay, 0};
   const auto id = id_argument(args);
   if (!id) return std::nullopt;
   if (program == "cover-ugv-agent") return dds::Identity{dds::Role::UgvAgent, *id};
@@ -47,7 +48,7 @@ std::string launch_identity(const std::string& process_name, const std::string& 
     if (!dds::parse_identity(explicit_identity)) {
       throw std::invalid_argument("process '" + process_name + "': identity '" + explicit_identity +
                                   "' is not an identity name (sim, task-manager, ugv-agent-K, "
-                                  "uav-agent-U, ground-station-N)");
+                                  "uav-agent-U, fc-bridge-U, ground-station-N, mocap-relay)");
     }
     return explicit_identity;
   }

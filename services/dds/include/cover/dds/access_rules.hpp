@@ -13,7 +13,7 @@ namespace cover::dds {
 // The topic names come from the catalogue (topics.hpp); a catalogued message type with
 // no access rule does not compile (access_rules.cpp).
 
-enum class Role { Sim, UgvAgent, UavAgent, FcBridge, TaskManager, GroundStation };
+enum class Role { Sim, UgvAgent, UavAgent, FcBridge, TaskManager, GroundStation, MocapRelay };
 
 // One process of the fleet. `id`: UGV k, UAV u or ground station n; 0 for the simulator
 // and the task manager, which are one of a kind.
@@ -24,7 +24,7 @@ struct Identity {
 };
 
 // "sim", "task-manager", "ugv-agent-<k>", "uav-agent-<u>", "fc-bridge-<u>",
-// "ground-station-<n>".
+// "ground-station-<n>", "mocap-relay" (one per fleet, like the simulator).
 std::string identity_name(const Identity& identity);
 // The inverse of identity_name; nullopt for any other text.
 std::optional<Identity> parse_identity(std::string_view name);

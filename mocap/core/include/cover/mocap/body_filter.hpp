@@ -1,0 +1,72 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+
+#include "cover/mocap/frame_convention.hpp"
+#include "cover/mocap/relay_params.hpp"
+
+namespace cover::mocap {
+
+// One axis of a constant-velocity Kalman filter: state (p, v), white acceleration.
+class CvAxis {
+ public:
+  void reset(double position, double position_var, double velocity_var);
+  void predict(double dt_s, double accel_var);
+  // Returns the innovation (measurement - prediction).
+  double update(double measurement, double measurement_var);
+  double position() const { return x_[0]; }
+  double velocity() const { return x_[1]; }
+  double position_var() const { return p_[0][0]; }
+  // The state `dt_s` ahead, without changing the filter.
+  double position_at(double dt_s) const { return x_[0] + x_[1] * dt_s; }
+
+ private:
+  double x_[2] = {0.0, 0.0};
+  double p_[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
+};
+
+// What the relay knows of one rigid body: position and velocity (three CV axes), yaw and
+// yaw rate (a CV filter on the unwrapped yaw), the last measured attitude's tilt, and
+// whether it is tracked. Times are the capture times, ns.
+class BodyFilter {
+ public:
+  enum class Update { Accepted, Started, Jump, Restarted };
+
+  explicit BodyFilter(const RelayParams& params) : params_(&params) {}
+
+  // A measurement at `stamp_ns` (later than the last one).
+  Update measure(std::int64_t stamp_ns, const WorldPose& pose);
+  // Tracked at `stamp_ns`: warmed up, measured within lost_after_s, not jumping.
+  bool tracked_at(std::int64_t stamp_ns) const;
+  bool jumping() const { return jump_since_ns_ >= 0; }
+  bool started() const { return updates_ > 0; }
+  std::int64_t last_measured_ns() const { return last_ns_; }
+
+  // The state predicted to `stamp_ns` (>= the last measurement).
+  Eigen::Vector3d position_at(std::int64_t stamp_ns) const;
+  Eigen::Vector3d velocity() const;
+  double position_std_m() const;
+  // The attitude with its yaw from the filter (tilt as last measured), and the angular
+  // velocity about world z.
+  Eigen::Quaterniond attitude_at(std::int64_t stamp_ns) const;
+  double yaw_rate_rad_s() const { return yaw_.velocity(); }
+
+ private:
+  void restart(std::int64_t stamp_ns, const WorldPose& pose);
+  void predict_to(std::int64_t stamp_ns);
+
+  const RelayParams* params_;
+  CvAxis axes_[3];
+  CvAxis yaw_;
+  Eigen::Quaterniond tilt_ = Eigen::Quaterniond::Identity();  // attitude without its yaw
+  std::int64_t last_ns_ = -1;
+  std::int64_t jump_since_ns_ = -1;
+  int updates_ = 0;
+};
+
+// The yaw (about world z) of an attitude.
+double yaw_of(const Eigen::Quaterniond& q);
+
+}  // namespace cover::mocap
