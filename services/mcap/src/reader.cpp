@@ -75,6 +75,9 @@ bool Reader::scan(const MessageCallback& on_message) {
     return false;
   }
   magic_seen_ = true;
+  // Over every byte before DataEnd: the only check of the records chunk CRCs do not cover.
+  std::uint32_t data_crc = crc32_update(0, magic, sizeof(magic));
+  bool in_data = true;
   std::uint64_t offset = sizeof(kMagic);
   Bytes content;
   while (!stopped_) {
@@ -117,10 +120,28 @@ bool Reader::scan(const MessageCallback& on_message) {
       report(offset, "read error in a " + op_name(op) + " record");
       break;
     }
+    if (op == static_cast<std::uint8_t>(Op::DataEnd) && in_data) {
+      in_data = false;
+      check_data_crc(offset, content, data_crc);
+    } else if (in_data) {
+      data_crc = crc32_update(data_crc, prefix, sizeof(prefix));
+      data_crc = crc32_update(data_crc, content.data(), content.size());
+    }
     if (read_record(offset, op, content, on_message) == Step::Stop) break;
     offset += kRecordPrefixBytes + length;
   }
   return issues_.empty() && footer_seen_;
+}
+
+void Reader::check_data_crc(std::uint64_t offset, const Bytes& content, std::uint32_t computed) {
+  ByteReader in(content.data(), content.size());
+  std::uint32_t stored = 0;
+  if (!in.u32(stored)) {
+    report(offset, "malformed DataEnd record");
+  } else if (stored != 0 && stored != computed) {
+    report(offset, "data section CRC mismatch: a byte before offset " + std::to_string(offset) +
+                       " is corrupt (in a record no chunk CRC covers, if no chunk was reported)");
+  }
 }
 
 Reader::Step Reader::read_record(std::uint64_t offset, std::uint8_t op, const Bytes& content,

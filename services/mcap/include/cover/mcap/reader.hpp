@@ -72,6 +72,7 @@ class Reader {
   Step read_record(std::uint64_t offset, std::uint8_t op, const Bytes& content,
                    const MessageCallback& on_message);
   Step read_chunk(std::uint64_t offset, const Bytes& content, const MessageCallback& on_message);
+  void check_data_crc(std::uint64_t offset, const Bytes& content, std::uint32_t computed);
   bool read_schema(ByteReader& in);
   bool read_channel(ByteReader& in);
   bool read_statistics(ByteReader& in);
