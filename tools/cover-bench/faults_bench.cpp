@@ -224,8 +224,9 @@ class FaultRun {
     // Scenario 2 flies for ~10 s: from the climb (2 s) to the final stage's approach (8 s).
     if (!whole_run) row_.fault_time_s = std::uniform_real_distribution<double>(2.0, 8.0)(random);
     // One name per run, so that a crashed run's logs survive the runs after it.
-    run_id_ =
-        "fb_" + std::to_string(getpid()) + "_" + fault + "_" + mix + "_" + std::to_string(seed);
+    // (the fault's name cut to 12 characters: a run id is at most 40, and they stay distinct)
+    run_id_ = "fb_" + std::to_string(getpid()) + "_" + fault.substr(0, 12) + "_" + mix + "_" +
+              std::to_string(seed);
     const cover::bench::VendorMix& v = cover::bench::vendor_mix(mix);
     std::vector<std::string> sim{(kBinDir / "cover-sim").string(),
                                  "--scenario",
