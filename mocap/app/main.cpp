@@ -15,6 +15,7 @@
 #include "cover/logging/log.hpp"
 #include "cover/mocap/relay_params.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "cover/time_sync/clock_responder.hpp"
 #include "relay_node.hpp"
 
 namespace {
@@ -86,6 +87,8 @@ int main(int argc, char** argv) {
     const cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-mocap-relay");
     log_start(params, dds);
     cover::dds::Participant participant(dds);
+    // The UAV agents take its relative states: they measure this host's clock.
+    cover::time_sync::ClockResponder clock_responder(participant, "cover-mocap-relay");
     cover::mocap::RelayNode node(participant, params, client_options(params));
     node.run();
     return 0;

@@ -23,17 +23,11 @@ RelayNode::RelayNode(dds::Participant& participant, const RelayParams& params,
       assembler_(params.bodies.size(), static_cast<std::int64_t>(params.frame_timeout_s * 1e9)),
       estimator_(params),
       server_clock_(params.time_source, params.offset_window_s) {
-  std::vector<RelativeOutput> probe;
-  Frame empty;
-  empty.bodies.resize(params_.bodies.size());
-  // The pairs' order: the estimator's, learnt from one empty frame.
-  RelativeEstimator order(params_);
-  order.on_frame(empty, 0, probe);
-  for (const auto& o : probe) {
+  for (const auto& [uav, ugv] : estimator_.pair_ids()) {
     writers_.push_back(participant.make_writer(dds::topics::relative_state(
-        static_cast<std::uint32_t>(o.uav), static_cast<std::uint32_t>(o.ugv))));
+        static_cast<std::uint32_t>(uav), static_cast<std::uint32_t>(ugv))));
   }
-  outputs_.reserve(probe.size());
+  outputs_.reserve(writers_.size());
 }
 
 void RelayNode::on_report(const vrpn::TrackerReport& report) {

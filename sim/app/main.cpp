@@ -54,6 +54,8 @@ struct CommandLine {
   std::string ugv_imu = "shm";
   int ugv_imu_bind_port_base = 14680;
   int ugv_imu_peer_port_base = 14640;
+  std::string mocap;  // vrpn[:PORT]
+  std::string mocap_config = cover::config::default_config_dir() + "/sim/mocap.yaml";
   cover::dds::DdsCliOptions dds;
 };
 
@@ -277,6 +279,13 @@ int main(int argc, char** argv) {
                  "for the agents' input timeout)")
       ->expected(2);
   add_mavlink_options(app, cli);
+  app.add_option("--mocap", cli.mocap,
+                 "vrpn[:PORT] (3883): serve every vehicle's world pose as a VRPN tracker (ugv<k>, "
+                 "uav<u>) instead of publishing the relative states: a cover-mocap-relay makes "
+                 "them (docs/mocap.md); the run starts once it is connected");
+  app.add_option("--mocap-config", cli.mocap_config,
+                 "the simulated mocap system: rate, latency, noise, dropouts, up axis, units")
+      ->capture_default_str();
   cli.dds.add_to(app);
   CLI11_PARSE(app, argc, argv);
   cover::logging::init("sim");
@@ -297,6 +306,7 @@ int main(int argc, char** argv) {
                                             : cover::sim::SimClockMode::Realtime;
     options.standing = cli.standing;
     options.mavlink = mavlink_options(cli, fleet, autopilots.params);
+    options.mocap = cover::sim::parse_mocap_option(cli.mocap, cli.mocap_config);
     if (!cli.relative_gap.empty()) {
       if (!(cli.relative_gap[0] >= 0.0 && cli.relative_gap[1] > 0.0)) {
         throw cover::config::ConfigError("--relative-gap: START_S must be >= 0, DURATION_S > 0");

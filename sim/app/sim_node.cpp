@@ -68,6 +68,7 @@ SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>&
                    options_.mavlink.params.ugv_system_id_base + k, ugv_imu_links_->describe(k));
     }
   }
+  if (options_.mocap.enabled) mocap_ = std::make_unique<MocapLink>(fleet_, options_.mocap);
   if (fleet.has_autopilots()) start_autopilot_links();
 }
 
@@ -115,6 +116,14 @@ SimExit SimNode::run() {
 bool SimNode::wait_for_agents() {
   const auto deadline =
       std::chrono::steady_clock::now() + clock::to_milliseconds(params_.startup_timeout_s);
+  while (mocap_ && !mocap_->wait_for_client(100ms)) {
+    if (process::ShutdownSignal::requested()) return false;
+    if (std::chrono::steady_clock::now() >= deadline) {
+      spdlog::error("no cover-mocap-relay connected to the VRPN server {} after {:.0f} s",
+                    mocap_->describe(), params_.startup_timeout_s);
+      return false;
+    }
+  }
   for (int u = 0; u < fleet_.uav_count(); ++u) {
     // With autopilots the command goes to the bridge: only the trace comes here.
     while ((!uses_autopilots() && command_readers_[u].matched_writers() == 0) ||
@@ -154,7 +163,8 @@ void SimNode::publish_tick() {
   const double t = fleet_.time_s();
   std::int64_t relative_stamp_ns = -1;
   const bool withheld = relative_withheld(t);
-  for (int u = 0; u < fleet_.uav_count() && !withheld; ++u) {
+  if (mocap_) relative_stamp_ns = mocap_->serve(fleet_, withheld);
+  for (int u = 0; u < fleet_.uav_count() && !withheld && !mocap_; ++u) {
     const World& world = fleet_.world(u);
     if (!world.relative_sensor().has_measurement()) continue;
     for (int k = 0; k < world.ugv_count(); ++k) {

@@ -15,6 +15,7 @@
 #include "cover/dds/topics.hpp"
 #include "cover/shm/seqlock_writer.hpp"
 #include "fleet.hpp"
+#include "mocap_link.hpp"
 #include "ugv_imu_links.hpp"
 
 namespace cover::sim {
@@ -45,6 +46,8 @@ struct SimRunOptions {
   double relative_gap_start_s = -1.0;
   double relative_gap_s = 0.0;
   MavlinkRunOptions mavlink;
+  // Served as VRPN trackers to a cover-mocap-relay instead of published (--mocap vrpn).
+  MocapRunOptions mocap;
 };
 
 // Why a run ended.
@@ -147,6 +150,7 @@ class SimNode {
   bool mode_switch_done_ = false;
   bool heartbeat_stop_done_ = false;
   std::unique_ptr<UgvImuLinks> ugv_imu_links_;
+  std::unique_ptr<MocapLink> mocap_;  // --mocap: the relative states go out as mocap poses
 
   std::vector<dds::Reader<msg::UavCommand>> command_readers_;
   std::vector<dds::Reader<msg::ControlTrace>> trace_readers_;

@@ -20,6 +20,12 @@ RelativeEstimator::RelativeEstimator(const RelayParams& params) : params_(params
   }
 }
 
+std::vector<std::pair<int, int>> RelativeEstimator::pair_ids() const {
+  std::vector<std::pair<int, int>> ids;
+  for (const Pair& p : pairs_) ids.emplace_back(p.uav, p.ugv);
+  return ids;
+}
+
 void RelativeEstimator::note_body(std::size_t body, BodyFilter::Update update,
                                   const BodySample& sample, std::int64_t server_ns) {
   const BodyBinding& b = params_.bodies[body];

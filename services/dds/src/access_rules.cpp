@@ -65,9 +65,10 @@ inline constexpr std::tuple kAccess{
     // stamps samples another host takes answers.
     AccessRule<msg::TimeSyncRequest>{
         {{Role::UavAgent}, {Role::UgvAgent}, {Role::TaskManager}},
-        {{Role::Sim}, {Role::UgvAgent}, {Role::UavAgent}, {Role::FcBridge}, kStation}},
+        {{Role::Sim}, {Role::UgvAgent}, {Role::UavAgent}, {Role::FcBridge}, {Role::MocapRelay},
+         kStation}},
     AccessRule<msg::TimeSyncReply>{
-        {{Role::Sim}, {Role::UgvAgent}, {Role::UavAgent}, {Role::FcBridge}},
+        {{Role::Sim}, {Role::UgvAgent}, {Role::UavAgent}, {Role::FcBridge}, {Role::MocapRelay}},
         {{Role::UavAgent}, {Role::UgvAgent}, {Role::TaskManager}, kStation}},
 };
 

@@ -40,6 +40,8 @@ class RelativeEstimator {
   // its capture time on our clock. Overwrites `out` (one entry per pair, sized once).
   void on_frame(const Frame& frame, std::int64_t stamp_ns, std::vector<RelativeOutput>& out);
   std::size_t pair_count() const { return pairs_.size(); }
+  // The (uav, ugv) ids of the outputs, in their order.
+  std::vector<std::pair<int, int>> pair_ids() const;
   const EstimatorStats& stats() const { return stats_; }
 
  private:
