@@ -18,12 +18,13 @@ struct HasStamp : std::false_type {};
 template <typename T>
 struct HasStamp<T, std::void_t<decltype(std::declval<T>().stamp_ns)>> : std::true_type {};
 
-// The sample's own time; its receive time for a type without a stamp (none today).
+// The sample's own stamp (simulated time from 0 in a lockstep run); its receive time for
+// a negative stamp or a type without one (none today).
 template <typename T>
 std::uint64_t publish_time_ns(const T& sample, std::int64_t received_ns) {
   if constexpr (HasStamp<T>::value) {
-    return sample.stamp_ns > 0 ? static_cast<std::uint64_t>(sample.stamp_ns)
-                               : static_cast<std::uint64_t>(received_ns);
+    return sample.stamp_ns >= 0 ? static_cast<std::uint64_t>(sample.stamp_ns)
+                                : static_cast<std::uint64_t>(received_ns);
   } else {
     return static_cast<std::uint64_t>(received_ns);
   }

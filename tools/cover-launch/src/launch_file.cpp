@@ -177,6 +177,7 @@ LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& con
   launch.optional("grace_period_s", file.grace_period_s);
   launch.optional("variables", file.variables);
   launch.optional("security", file.security);
+  launch.optional("record", file.record);
   YAML::Node processes;
   launch.require("processes", processes);
   launch.reject_unknown_keys();

@@ -79,6 +79,7 @@ struct Flags {
   std::string security;
   int domain_id = -1;
   bool json = false;
+  bool record = false;
 };
 
 void add_flags(CLI::App& app, Flags& flags) {
@@ -97,6 +98,9 @@ void add_flags(CLI::App& app, Flags& flags) {
   app.add_option("--security", flags.security,
                  "DDS-Security fleet directory (cover security init): each process runs secure "
                  "with its identity by role (default: the file's launch.security, else plain)");
+  app.add_flag("--record", flags.record,
+               "Record every catalogued topic into <run_dir>/recording.mcap (as record: true; "
+               "docs/recording.md)");
   app.add_flag("--json", flags.json,
                "Print result.json plus processes, run_dir and exit_code as one JSON object");
 }
@@ -129,6 +133,7 @@ LaunchOptions make_options(const Flags& flags, const LaunchFile& file) {
                         : default_run_dir(std::filesystem::current_path().string(), file.name,
                                           std::chrono::system_clock::now());
   options.security_directory = flags.security;
+  options.record = flags.record;
   options.launcher_pid = getpid();
   return options;
 }

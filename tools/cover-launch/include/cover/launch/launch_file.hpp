@@ -45,6 +45,8 @@ struct LaunchFile {
   // A DDS-Security fleet directory (cover security init): every process runs secure with
   // its own identity. Relative to the launch file's folder; empty: plain DDS.
   std::string security;
+  // Records the run into <run_dir>/recording.mcap (recording.hpp): `record:`.
+  bool record = false;
   std::string directory;  // the launch file's folder, for relative executable paths
 
   // Throws ConfigError naming the offending process, key or argument.

@@ -21,6 +21,7 @@ struct LaunchOptions {
   // A DDS-Security fleet directory (absolute or relative to the cwd); replaces the file's
   // launch.security. Empty: the file's.
   std::string security_directory;
+  bool record = false;  // --record: as the file's `record: true`
   pid_t launcher_pid = 0;
 };
 

@@ -1,0 +1,38 @@
+#include "cover/launch/recording.hpp"
+
+#include <cstdlib>
+#include <stdexcept>
+
+#include "cover/launch/executable_lookup.hpp"
+
+namespace cover::launch {
+
+std::string recorder_executable() {
+  const char* path = std::getenv("PATH");
+  if (resolve_executable("cover", "", self_executable_dir(), path != nullptr ? path : "")) {
+    return "cover";
+  }
+  return COVER_CLI_BUILD_PATH;
+}
+
+ProcessSpec recorder_spec(const std::string& executable) {
+  ProcessSpec spec;
+  spec.name = kRecorderName;
+  spec.executable = executable;
+  spec.args = {"record", "-o", std::string("{run_dir}/") + kRecordingFileName};
+  spec.respawn.enabled = false;
+  return spec;
+}
+
+void add_recorder(LaunchFile& file, const std::string& executable) {
+  for (const auto& process : file.processes) {
+    if (process.name == kRecorderName) {
+      throw std::invalid_argument(
+          std::string("record: the launch file already has a process named '") + kRecorderName +
+          "'");
+    }
+  }
+  file.processes.insert(file.processes.begin(), recorder_spec(executable));
+}
+
+}  // namespace cover::launch
