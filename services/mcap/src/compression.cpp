@@ -112,9 +112,35 @@ void compress(Compression compression, const std::uint8_t* data, std::size_t siz
   }
 }
 
+namespace {
+
+// Checked before allocating: a corrupt size field must not make a reader allocate what
+// the compressed bytes cannot hold.
+bool plausible_size(std::string_view compression, const std::uint8_t* data, std::size_t size,
+                    std::size_t uncompressed_size, std::string& error) {
+  if (compression == "lz4" && uncompressed_size > size * 256 + 64) {
+    error = "lz4: " + std::to_string(size) + " bytes cannot hold the " +
+            std::to_string(uncompressed_size) + " the chunk declares";
+    return false;
+  }
+  if (compression == "zstd") {
+    const unsigned long long content = ZSTD_getFrameContentSize(data, size);
+    if (content != ZSTD_CONTENTSIZE_UNKNOWN && content != uncompressed_size) {
+      error = content == ZSTD_CONTENTSIZE_ERROR
+                  ? std::string("zstd: not a zstd frame")
+                  : "zstd: the frame holds " + std::to_string(content) +
+                        " bytes, the chunk declares " + std::to_string(uncompressed_size);
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 bool decompress(std::string_view compression, const std::uint8_t* data, std::size_t size,
                 std::size_t uncompressed_size, Bytes& out, std::string& error) {
-  out.assign(uncompressed_size, 0);
+  if (!plausible_size(compression, data, size, uncompressed_size, error)) return false;
   if (compression.empty()) {
     if (size != uncompressed_size) {
       error = "uncompressed chunk of " + std::to_string(size) + " bytes declares " +
@@ -124,6 +150,7 @@ bool decompress(std::string_view compression, const std::uint8_t* data, std::siz
     out.assign(data, data + size);
     return true;
   }
+  out.assign(uncompressed_size, 0);
   if (compression == "zstd") return decompress_zstd(data, size, out, error);
   if (compression == "lz4") return decompress_lz4(data, size, out, error);
   error = "unknown compression '" + std::string(compression) + "'";
