@@ -232,11 +232,21 @@ void UavAgentNode::take_requests(double now_s) {
 }
 
 void UavAgentNode::accept(const mission::Task& task, double now_s) {
-  if (!held_task_ && (!loop_.task() || mission::is_terminal(loop_.task_state()))) {
+  if (held_task_) {
+    // A sender re-sends until it sees its task taken: the held one is taken. Another task
+    // is refused as while flying (starting it would bypass what the held one waits for).
+    if (held_task_->task_id == task.task_id) return;
+    const std::string reason = "busy: task '" + held_task_->task_id + "' is " + held_reason_;
+    spdlog::error("task '{}' rejected: {}", task.task_id, reason);
+    task_status_writer_.write(
+        wire::rejected_task_status(wire::to_msg(task, now_s), options_.uav_id, now_s, reason));
+    return;
+  }
+  if (!loop_.task() || mission::is_terminal(loop_.task_state())) {
     if (const auto reason = start_blocker()) {
       held_task_ = task;
-      held_reason_.clear();
-      spdlog::info("task '{}' {}", task.task_id, *reason);
+      held_reason_ = *reason;
+      publish_held_status(now_s);
       return;
     }
   }
