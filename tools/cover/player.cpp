@@ -61,11 +61,17 @@ Player::~Player() = default;
 // first sample goes out.
 bool Player::prepare(PlayStats& stats) {
   std::map<std::string, std::string> types;  // topic -> schema name
+  std::map<std::string, std::string> unplayed;
   bool any = false;
   mcap::Reader reader(options_.path);
   reader.scan([&](const mcap::MessageView& m) {
-    if (!topic_selected(m.channel->topic, options_.topic_globs)) return true;
-    types.emplace(m.channel->topic, m.schema != nullptr ? m.schema->name : "");
+    const std::string type = m.schema != nullptr ? m.schema->name : "";
+    const bool answer = options_.lockstep && type == msg::UavCommand::kTypeName;
+    if (answer || !topic_selected(m.channel->topic, options_.topic_globs)) {
+      unplayed.emplace(m.channel->topic, type);
+      return true;
+    }
+    types.emplace(m.channel->topic, type);
     first_log_ns_ = any ? std::min(first_log_ns_, m.header.log_time_ns) : m.header.log_time_ns;
     any = true;
     return true;
@@ -84,7 +90,47 @@ bool Player::prepare(PlayStats& stats) {
     }
     if (!made) stats.skipped_topics.push_back(topic);
   }
+  if (options_.lockstep) listen_for_answers(unplayed);
   return stats.is_mcap;
+}
+
+void Player::listen_for_answers(const std::map<std::string, std::string>& recorded_types) {
+  for (const auto& [topic, type] : recorded_types) {
+    if (type != msg::UavCommand::kTypeName) continue;
+    try {
+      answers_.emplace(topic,
+                       participant_.make_reader(dds::catalogued_topic<msg::UavCommand>(topic)));
+    } catch (const dds::DdsError&) {
+      // not a catalogued command topic: nothing to wait for
+    }
+  }
+}
+
+// Lockstep: waits until the live agent has published its command for the recorded one's
+// stamp, as the simulator waits for every agent's answer before the next tick.
+bool Player::await_answer(const mcap::MessageView& recorded, PlayStats& stats,
+                          const std::function<bool()>& stop_requested) {
+  const auto reader = answers_.find(recorded.channel->topic);
+  if (reader == answers_.end()) return true;
+  static const dds::CdrCodec codec(dds::type_support<msg::UavCommand>());
+  msg::UavCommand command;
+  if (!codec.deserialize(recorded.data, recorded.size, &command)) return true;
+  ++stats.answers_awaited;
+  auto& live = reader->second;
+  const auto deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(options_.answer_timeout_s));
+  while (true) {
+    const std::uint64_t seen = live.received_count();
+    const auto latest = live.latest();
+    if (latest && latest->sample.stamp_ns >= command.stamp_ns) return true;
+    if (stop_requested && stop_requested()) return false;
+    if (Clock::now() >= deadline) {
+      ++stats.answers_missing;
+      return true;
+    }
+    live.wait_for_sample(std::chrono::milliseconds(50), seen);
+  }
 }
 
 PlayStats Player::run(const std::function<bool()>& stop_requested) {
@@ -101,12 +147,19 @@ PlayStats Player::run(const std::function<bool()>& stop_requested) {
   const auto wall_start = Clock::now();
   mcap::Reader reader(options_.path);
   reader.scan([&](const mcap::MessageView& m) {
+    if (m.header.log_time_ns < start_ns) return true;
+    if (options_.lockstep) {
+      if (!await_answer(m, stats, stop_requested)) {
+        stats.stopped = true;
+        return false;
+      }
+    }
     const auto publisher = publishers_.find(m.channel->topic);
-    if (publisher == publishers_.end() || m.header.log_time_ns < start_ns) return true;
+    if (publisher == publishers_.end()) return true;
     const double offset_s = static_cast<double>(m.header.log_time_ns - start_ns) * 1e-9 / rate;
     const auto when = wall_start + std::chrono::duration_cast<Clock::duration>(
                                        std::chrono::duration<double>(offset_s));
-    if (!sleep_until(when, stop_requested)) {
+    if (!options_.lockstep && !sleep_until(when, stop_requested)) {
       stats.stopped = true;
       return false;
     }

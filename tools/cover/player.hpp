@@ -18,11 +18,19 @@ struct PlayOptions {
   std::vector<std::string> topic_globs;  // empty: every recorded topic
   double start_s = 0.0;                  // skip the recording's first S seconds
   double delay_s = 0.5;  // between making the writers and the first sample: discovery
+  // Replay into live agents in the simulator's lockstep order instead of at the recorded
+  // pace: a UAV command recorded between two played samples (an agent's answer to a tick)
+  // holds the next one back until the live agent has published its command for that
+  // stamp. Recorded commands are then not played (the agents make them).
+  bool lockstep = false;
+  double answer_timeout_s = 5.0;  // lockstep: then the sample goes out anyway (counted)
 };
 
 struct PlayStats {
   std::uint64_t published = 0;
   std::uint64_t undecodable = 0;            // payloads that are not their type's CDR
+  std::uint64_t answers_awaited = 0;        // lockstep: recorded commands waited for
+  std::uint64_t answers_missing = 0;        // lockstep: of those, not heard within the timeout
   std::vector<std::string> skipped_topics;  // not catalogued, or another type than recorded
   std::vector<mcap::ReadIssue> issues;      // damaged or cut file: what was readable played
   bool is_mcap = false;
@@ -47,10 +55,14 @@ class Player {
 
  private:
   bool prepare(PlayStats& stats);
+  void listen_for_answers(const std::map<std::string, std::string>& recorded_types);
+  bool await_answer(const mcap::MessageView& recorded, PlayStats& stats,
+                    const std::function<bool()>& stop_requested);
 
   dds::Participant& participant_;
   PlayOptions options_;
   std::map<std::string, std::unique_ptr<Publisher>> publishers_;  // by topic
+  std::map<std::string, dds::Reader<msg::UavCommand>> answers_;   // lockstep, by topic
   std::uint64_t first_log_ns_ = 0;
 };
 

@@ -83,6 +83,10 @@ RecordCommands::RecordCommands(CLI::App& app) {
                    "seconds between making the writers and the first sample (discovery)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  play_->add_flag("--lockstep", play_options_.lockstep,
+                  "replay into live UAV agents in the simulator's lockstep order: each recorded "
+                  "command holds the next sample back until the agent's command for its stamp "
+                  "is heard (then as fast as they answer); recorded commands are not played");
   play_dds_.add_to(*play_);
   play_->footer(
       "Exit: 0 played to the end (or stopped by SIGINT), 1 the file is cut or damaged (its\n"
@@ -165,6 +169,10 @@ int RecordCommands::play() {
   spdlog::info("published {} samples{}{}", stats.published,
                stats.undecodable ? ", " + std::to_string(stats.undecodable) + " undecodable" : "",
                stats.stopped ? " (stopped)" : "");
+  if (play_options_.lockstep) {
+    spdlog::info("lockstep: {} agent answers awaited, {} not heard within {} s",
+                 stats.answers_awaited, stats.answers_missing, play_options_.answer_timeout_s);
+  }
   return stats.issues.empty() ? kBagOk : kBagDamaged;
 }
 

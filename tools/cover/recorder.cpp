@@ -64,7 +64,8 @@ void Recorder::subscribe(dds::Participant& participant, const dds::Topic<T>& top
   slots_.push_back(TopicSlot{topic.name(), T::kTypeName});
   auto subscription = std::make_unique<TypedSubscription<T>>();
   subscription->codec = codec;
-  subscription->reader = participant.make_reader(topic, [this, index](const T& sample) {
+  const auto deep = topic.with_history_depth(options_.history_depth);
+  subscription->reader = participant.make_reader(deep, [this, index](const T& sample) {
     const std::int64_t received_ns = clock::system_ns();
     Pending pending{index, {}, {}};
     pending.header.log_time_ns = static_cast<std::uint64_t>(received_ns);

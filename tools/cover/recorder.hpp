@@ -20,6 +20,10 @@ struct RecorderOptions {
   std::vector<std::string> topic_globs;  // empty: every catalogued topic of the fleet
   FleetSize fleet;
   mcap::WriterOptions writer;
+  // Keep-last depth of the recorder's readers (the catalogue's is 1 for most topics): a
+  // burst that arrives while the recorder's receive thread is descheduled waits in the
+  // reader instead of overwriting its predecessor.
+  int history_depth = 64;
   // Received samples not yet written, in bytes: beyond it new samples are dropped
   // (counted) rather than the recorder's memory growing without bound.
   std::size_t max_pending_bytes = 64 * 1024 * 1024;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -24,6 +25,15 @@ class Topic {
   const std::string& name() const { return name_; }
   const QosProfile& qos() const { return qos_; }
   bool catalogued() const { return catalogued_; }
+
+  // The same topic with a keep-last history of at least `depth`: for a reader whose
+  // callback may run late and must not lose a sample meanwhile (the flight recorder).
+  // History is no part of DDS's request/offer matching: it still matches every writer.
+  Topic with_history_depth(int depth) const {
+    Topic deeper = *this;
+    deeper.qos_.history_depth = std::max(deeper.qos_.history_depth, depth);
+    return deeper;
+  }
 
   // For tests and benchmarks only: a topic outside the catalogue (e.g. "cover_test/...").
   // Creating a writer/reader on it checks the name is NOT a catalogued pattern (throws
