@@ -7,6 +7,9 @@ namespace cover::mocap {
 namespace {
 
 constexpr double kInitialVelocityVar = 25.0;  // (5 m/s)^2: anything a vehicle does
+// Weight of a new tilt measurement: a time constant of ~0.1 s at 100 Hz (vehicles' roll and
+// pitch as frames change slowly; mocap attitude noise is ~2 mrad).
+constexpr double kTiltGain = 0.1;
 
 double wrap_pi(double a) {
   return std::remainder(a, 2.0 * M_PI);
@@ -58,6 +61,7 @@ void BodyFilter::restart(std::int64_t stamp_ns, const WorldPose& pose) {
   const double ry = params_->filter.yaw_noise_rad * params_->filter.yaw_noise_rad;
   yaw_.reset(yaw, ry, 4.0);
   tilt_ = Eigen::Quaterniond(Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ())) * pose.attitude;
+  measured_ = pose.attitude;
   last_ns_ = stamp_ns;
   jump_since_ns_ = -1;
   updates_ = 1;
@@ -97,7 +101,10 @@ BodyFilter::Update BodyFilter::measure(std::int64_t stamp_ns, const WorldPose& p
   const double measured = yaw_.position() + wrap_pi(yaw - yaw_.position());
   const double ry = params_->filter.yaw_noise_rad * params_->filter.yaw_noise_rad;
   yaw_.update(measured, ry);
-  tilt_ = Eigen::Quaterniond(Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ())) * pose.attitude;
+  const Eigen::Quaterniond tilt =
+      Eigen::Quaterniond(Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ())) * pose.attitude;
+  tilt_ = tilt_.slerp(kTiltGain, tilt).normalized();
+  measured_ = pose.attitude;
   last_ns_ = stamp_ns;
   jump_since_ns_ = -1;
   ++updates_;

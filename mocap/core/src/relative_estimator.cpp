@@ -122,7 +122,7 @@ RelativeOutput RelativeEstimator::relative(const Pair& pair, std::int64_t server
       world_to_ugv * Eigen::Vector3d(0.0, 0.0, ugv.yaw_rate_rad_s());
   o.state.position_m = p;
   o.state.velocity_m_s = world_to_ugv * (uav.velocity() - ugv.velocity()) - omega_in_ugv.cross(p);
-  o.state.attitude = (world_to_ugv * uav.attitude_at(server_ns)).normalized();
+  o.state.attitude = (world_to_ugv * uav.measured_attitude()).normalized();
   o.position_std_m = std::hypot(uav.position_std_m(), ugv.position_std_m());
   // Never a NaN on the wire, whatever came in.
   const bool finite = o.state.position_m.allFinite() && o.state.velocity_m_s.allFinite() &&

@@ -48,9 +48,12 @@ class BodyFilter {
   Eigen::Vector3d position_at(std::int64_t stamp_ns) const;
   Eigen::Vector3d velocity() const;
   double position_std_m() const;
-  // The attitude with its yaw from the filter (tilt as last measured), and the angular
-  // velocity about world z.
+  // The attitude smoothed for use as a frame (a UGV's G_k): yaw from the filter, tilt
+  // low-passed; and the angular velocity about world z. A UGV's attitude noise times the
+  // UAV's distance is a position error, its yaw-rate noise a velocity error.
   Eigen::Quaterniond attitude_at(std::int64_t stamp_ns) const;
+  // The last accepted attitude as measured (the UAV's own: no lag).
+  const Eigen::Quaterniond& measured_attitude() const { return measured_; }
   double yaw_rate_rad_s() const { return yaw_.velocity(); }
 
  private:
@@ -61,6 +64,7 @@ class BodyFilter {
   CvAxis axes_[3];
   CvAxis yaw_;
   Eigen::Quaterniond tilt_ = Eigen::Quaterniond::Identity();  // attitude without its yaw
+  Eigen::Quaterniond measured_ = Eigen::Quaterniond::Identity();
   std::int64_t last_ns_ = -1;
   std::int64_t jump_since_ns_ = -1;
   int updates_ = 0;
