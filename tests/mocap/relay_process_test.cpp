@@ -104,6 +104,14 @@ class RelayRun {
   }
 
   bool matched() { return reader_.wait_for_writers(1, scaled(20s)); }
+  // Whether a sample stamped `stamp_ns` or later arrived (valid ones only if asked): the
+  // topic is best effort, so not necessarily the last one sent.
+  bool reached(std::int64_t stamp_ns, bool valid_only = false) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return std::any_of(samples_.begin(), samples_.end(), [&](const Sample& s) {
+      return s.state.stamp_ns >= stamp_ns && (s.state.valid || !valid_only);
+    });
+  }
   std::vector<Sample> samples() {
     std::lock_guard<std::mutex> lock(mutex_);
     return samples_;
@@ -178,12 +186,8 @@ TEST(MocapRelayProcess, ScriptedMotionWithinTheAccuracyTargets) {
   ASSERT_TRUE(run.matched());
   ASSERT_TRUE(server.wait_for_clients(1, scaled(20s)));
   const auto sent = stream(server, 1.0, 4.0);
-  ASSERT_TRUE(wait_until(
-      [&] {
-        const auto s = run.samples();
-        return !s.empty() && s.back().state.stamp_ns >= sent.rbegin()->first;
-      },
-      5s));
+  ASSERT_TRUE(wait_until([&] { return run.reached(sent.rbegin()->first - 100'000'000); }, 5s));
+  wait_until([&] { return run.reached(sent.rbegin()->first); }, 500ms);  // the last, if it comes
   std::vector<double> position, velocity, latency_ms;
   int valid = 0;
   for (const Sample& s : run.samples()) {
@@ -209,8 +213,9 @@ TEST(MocapRelayProcess, ScriptedMotionWithinTheAccuracyTargets) {
   EXPECT_LE(percentile(position, 0.99), 0.005);
   EXPECT_LE(percentile(velocity, 0.99), 0.05);
   // The 2 ms p99 is the relay's own (socket to written, in its log); here TCP and
-  // DDS delivery are included, on a machine CI loads: the median holds it, the p99 is loose.
-  EXPECT_LE(percentile(latency_ms, 0.5), 2.0 * time_scale());
+  // DDS delivery are included, on a machine CI loads: both bounds are loose (measured on
+  // the 2-core VM: p50 0.3 ms, p99 0.7-16 ms).
+  EXPECT_LE(percentile(latency_ms, 0.5), 5.0 * time_scale());
   EXPECT_LE(percentile(latency_ms, 0.99), 50.0 * time_scale());
   EXPECT_EQ(run.stop(), 0);
 }
@@ -221,12 +226,7 @@ TEST(MocapRelayProcess, ABodyGoneForThreeTenthsIsInvalidThenValidAgain) {
   ASSERT_TRUE(run.matched());
   ASSERT_TRUE(server.wait_for_clients(1, scaled(20s)));
   stream(server, 1.0, 2.2, [](double t) { return !(t >= 1.495 && t < 1.795); });
-  ASSERT_TRUE(wait_until(
-      [&] {
-        const auto s = run.samples();
-        return !s.empty() && s.back().state.stamp_ns >= 2'180'000'000;
-      },
-      5s));
+  ASSERT_TRUE(wait_until([&] { return run.reached(2'100'000'000); }, 5s));
   int invalid_in_gap = 0, valid_after = 0, invalid_after = 0;
   for (const Sample& s : run.samples()) {
     const double t = static_cast<double>(s.state.stamp_ns) * 1e-9;
@@ -235,7 +235,7 @@ TEST(MocapRelayProcess, ABodyGoneForThreeTenthsIsInvalidThenValidAgain) {
     if (t >= 1.9) (s.state.valid ? valid_after : invalid_after)++;
   }
   EXPECT_GE(invalid_in_gap, 20);  // every frame of the gap past lost_after_s
-  EXPECT_GE(valid_after, 25);
+  EXPECT_GE(valid_after, 20);
   EXPECT_EQ(invalid_after, 0);
   const std::string log = run.log();
   EXPECT_NE(log.find("uav0 in ugv0: invalid at t = 1.5"), std::string::npos) << log;
@@ -257,12 +257,7 @@ TEST(MocapRelayProcess, ReconnectsWhenTheServerIsKilledAndRestarted) {
   server = std::make_unique<mocap::VrpnServer>(server_options(port));
   ASSERT_TRUE(server->wait_for_clients(1, scaled(10s)));
   stream(*server, 5.0, 5.5);
-  ASSERT_TRUE(wait_until(
-      [&] {
-        const auto s = run.samples();
-        return !s.empty() && s.back().state.stamp_ns >= 5'400'000'000 && s.back().state.valid;
-      },
-      5s));
+  ASSERT_TRUE(wait_until([&] { return run.reached(5'300'000'000, true); }, 5s));
   EXPECT_FALSE(run.relay().wait(0ms).has_value()) << "the relay restarted or died";
   EXPECT_EQ(run.stop(), 0);
 }
@@ -310,12 +305,7 @@ TEST(MocapRelayProcess, GarbageFromTheServerIsCountedNotACrash) {
   ASSERT_TRUE(run.matched());
   ASSERT_TRUE(server->wait_for_clients(1, scaled(10s)));
   stream(*server, 2.0, 2.3);
-  ASSERT_TRUE(wait_until(
-      [&] {
-        const auto s = run.samples();
-        return !s.empty() && s.back().state.stamp_ns >= 2'200'000'000;
-      },
-      5s));
+  ASSERT_TRUE(wait_until([&] { return run.reached(2'150'000'000); }, 5s));
   EXPECT_FALSE(run.relay().wait(0ms).has_value());
   EXPECT_EQ(run.stop(), 0);
   EXPECT_NE(run.log().find("1 bad lengths"), std::string::npos) << run.log();
