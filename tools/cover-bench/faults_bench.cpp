@@ -222,7 +222,12 @@ class FaultRun {
     std::mt19937_64 random(seed);
     const bool whole_run = fault == "mocap_dropout" || fault == "imu_fault";
     // Scenario 2 flies for ~10 s: from the climb (2 s) to the final stage's approach (8 s).
-    if (!whole_run) row_.fault_time_s = std::uniform_real_distribution<double>(2.0, 8.0)(random);
+    // Through the bridge it starts ~2 s later (setpoints stream 1 s before OFFBOARD, then
+    // the arming): the same stretch of flight.
+    const double start_s = through_bridge(fault) ? 4.0 : 2.0;
+    if (!whole_run) {
+      row_.fault_time_s = std::uniform_real_distribution<double>(start_s, start_s + 6.0)(random);
+    }
     // One name per run, so that a crashed run's logs survive the runs after it.
     // (the fault's name cut to 12 characters: a run id is at most 40, and they stay distinct)
     run_id_ = "fb_" + std::to_string(getpid()) + "_" + fault.substr(0, 12) + "_" + mix + "_" +

@@ -39,9 +39,13 @@ void RunRecorder::record(const mission::ControllerStatus& status,
   record_path(status, ws);
   if (options_.record_step_trace) record_step(status, command, world);
   // An aborted task is over for the run once its safe action has disarmed the motors, a
-  // task failed by the failsafe ladder once its emergency landing has.
+  // task failed by the failsafe ladder once its emergency landing has, one the autopilot
+  // took over (a pilot's mode switch, its link or bridge lost) once the UAV is at rest:
+  // the run watches the autopilot land it.
   const bool landing = status.failsafe == mission::Failsafe::EmergencyHover ||
-                       status.failsafe == mission::Failsafe::EmergencyLanding;
+                       status.failsafe == mission::Failsafe::EmergencyLanding ||
+                       (status.failsafe == mission::Failsafe::AutopilotControl &&
+                        !world.state().uav_contact.resting);
   const bool over = mission::is_terminal(status.stage.state) && !landing &&
                     (status.stage.state != mission::MissionState::Aborted || !command.armed);
   if (done_time_s_ < 0.0 && over) done_time_s_ = ws.time_s;
