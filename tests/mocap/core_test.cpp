@@ -45,7 +45,7 @@ TEST(MocapParams, TheShippedFileHoldsTheDefaults) {
   EXPECT_EQ(p.units, d.units);
   EXPECT_EQ(p.filter.accel_noise_m_s2, d.filter.accel_noise_m_s2);
   EXPECT_EQ(p.filter.position_noise_m, d.filter.position_noise_m);
-  EXPECT_EQ(p.filter.yaw_accel_noise_rad_s2, d.filter.yaw_accel_noise_rad_s2);
+  EXPECT_EQ(p.filter.yaw_jerk_noise_rad_s3, d.filter.yaw_jerk_noise_rad_s3);
   EXPECT_EQ(p.filter.yaw_noise_rad, d.filter.yaw_noise_rad);
   EXPECT_EQ(p.jump_gate_m, d.jump_gate_m);
   EXPECT_EQ(p.jump_reset_s, d.jump_reset_s);

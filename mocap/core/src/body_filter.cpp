@@ -54,12 +54,34 @@ double CvAxis::update(double z, double r) {
   return innovation;
 }
 
+void CaAxis::reset(double angle, double angle_var, double rate_var, double accel_var) {
+  x_ << angle, 0.0, 0.0;
+  p_ = Eigen::Vector3d(angle_var, rate_var, accel_var).asDiagonal();
+}
+
+void CaAxis::predict(double dt, double q) {
+  Eigen::Matrix3d f;
+  f << 1.0, dt, 0.5 * dt * dt, 0.0, 1.0, dt, 0.0, 0.0, 1.0;
+  const double d2 = dt * dt, d3 = d2 * dt, d4 = d3 * dt, d5 = d4 * dt;
+  Eigen::Matrix3d noise;
+  noise << d5 / 20.0, d4 / 8.0, d3 / 6.0, d4 / 8.0, d3 / 3.0, d2 / 2.0, d3 / 6.0, d2 / 2.0, dt;
+  x_ = f * x_;
+  p_ = f * p_ * f.transpose() + q * noise;
+}
+
+void CaAxis::update(double z, double r) {
+  const double s = p_(0, 0) + r;
+  const Eigen::Vector3d k = p_.col(0) / s;
+  x_ += k * (z - x_[0]);
+  p_ -= k * p_.row(0);
+}
+
 void BodyFilter::restart(std::int64_t stamp_ns, const WorldPose& pose) {
   const double r = params_->filter.position_noise_m * params_->filter.position_noise_m;
   for (int i = 0; i < 3; ++i) axes_[i].reset(pose.position_m[i], r, kInitialVelocityVar);
   const double yaw = yaw_of(pose.attitude);
   const double ry = params_->filter.yaw_noise_rad * params_->filter.yaw_noise_rad;
-  yaw_.reset(yaw, ry, 4.0);
+  yaw_.reset(yaw, ry, 4.0, 4.0);
   tilt_ = Eigen::Quaterniond(Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ())) * pose.attitude;
   measured_ = pose.attitude;
   last_ns_ = stamp_ns;
@@ -71,7 +93,7 @@ void BodyFilter::predict_to(std::int64_t stamp_ns) {
   const double dt = static_cast<double>(stamp_ns - last_ns_) * 1e-9;
   const double qa = params_->filter.accel_noise_m_s2 * params_->filter.accel_noise_m_s2;
   for (auto& axis : axes_) axis.predict(dt, qa);
-  const double qy = params_->filter.yaw_accel_noise_rad_s2 * params_->filter.yaw_accel_noise_rad_s2;
+  const double qy = params_->filter.yaw_jerk_noise_rad_s3 * params_->filter.yaw_jerk_noise_rad_s3;
   yaw_.predict(dt, qy);
 }
 
@@ -98,7 +120,7 @@ BodyFilter::Update BodyFilter::measure(std::int64_t stamp_ns, const WorldPose& p
   for (int i = 0; i < 3; ++i) axes_[i].update(pose.position_m[i], r);
   // Yaw unwrapped against the prediction.
   const double yaw = yaw_of(pose.attitude);
-  const double measured = yaw_.position() + wrap_pi(yaw - yaw_.position());
+  const double measured = yaw_.angle() + wrap_pi(yaw - yaw_.angle());
   const double ry = params_->filter.yaw_noise_rad * params_->filter.yaw_noise_rad;
   yaw_.update(measured, ry);
   const Eigen::Quaterniond tilt =
@@ -132,7 +154,7 @@ double BodyFilter::position_std_m() const {
 
 Eigen::Quaterniond BodyFilter::attitude_at(std::int64_t stamp_ns) const {
   const double dt = static_cast<double>(stamp_ns - last_ns_) * 1e-9;
-  return (Eigen::Quaterniond(Eigen::AngleAxisd(yaw_.position_at(dt), Eigen::Vector3d::UnitZ())) *
+  return (Eigen::Quaterniond(Eigen::AngleAxisd(yaw_.angle_at(dt), Eigen::Vector3d::UnitZ())) *
           tilt_)
       .normalized();
 }

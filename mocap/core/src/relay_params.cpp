@@ -58,7 +58,7 @@ RelayParams RelayParams::from_yaml(const YAML::Node& document, const std::string
   config::YamlReader filter = reader.child("filter");
   filter.optional("accel_noise_m_s2", p.filter.accel_noise_m_s2);
   filter.optional("position_noise_m", p.filter.position_noise_m);
-  filter.optional("yaw_accel_noise_rad_s2", p.filter.yaw_accel_noise_rad_s2);
+  filter.optional("yaw_jerk_noise_rad_s3", p.filter.yaw_jerk_noise_rad_s3);
   filter.optional("yaw_noise_rad", p.filter.yaw_noise_rad);
   filter.reject_unknown_keys();
   reader.reject_unknown_keys();
@@ -90,7 +90,7 @@ void RelayParams::validate() const {
                 "must be in [0.001, 1000]");
   config::check(in(filter.position_noise_m, 1e-6, 1.0), "mocap.filter.position_noise_m",
                 "must be in [1e-6, 1] m");
-  config::check(in(filter.yaw_accel_noise_rad_s2, 1e-3, 1e4), "mocap.filter.yaw_accel_noise_rad_s2",
+  config::check(in(filter.yaw_jerk_noise_rad_s3, 1e-3, 1e4), "mocap.filter.yaw_jerk_noise_rad_s3",
                 "must be in [0.001, 10000]");
   config::check(in(filter.yaw_noise_rad, 1e-6, 1.0), "mocap.filter.yaw_noise_rad",
                 "must be in [1e-6, 1] rad");

@@ -27,6 +27,23 @@ class CvAxis {
   double p_[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
 };
 
+// A constant-acceleration Kalman filter on one angle: state (angle, rate, acceleration),
+// white jerk. A UGV's yaw rate follows its turns without the lag a constant-rate model has
+// while the rate changes (the lag times the UAV's distance is a velocity error).
+class CaAxis {
+ public:
+  void reset(double angle, double angle_var, double rate_var, double accel_var);
+  void predict(double dt_s, double jerk_var);
+  void update(double measurement, double measurement_var);
+  double angle() const { return x_[0]; }
+  double rate() const { return x_[1]; }
+  double angle_at(double dt_s) const { return x_[0] + x_[1] * dt_s + 0.5 * x_[2] * dt_s * dt_s; }
+
+ private:
+  Eigen::Vector3d x_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d p_ = Eigen::Matrix3d::Identity();
+};
+
 // What the relay knows of one rigid body: position and velocity (three CV axes), yaw and
 // yaw rate (a CV filter on the unwrapped yaw), the last measured attitude's tilt, and
 // whether it is tracked. Times are the capture times, ns.
@@ -54,7 +71,7 @@ class BodyFilter {
   Eigen::Quaterniond attitude_at(std::int64_t stamp_ns) const;
   // The last accepted attitude as measured (the UAV's own: no lag).
   const Eigen::Quaterniond& measured_attitude() const { return measured_; }
-  double yaw_rate_rad_s() const { return yaw_.velocity(); }
+  double yaw_rate_rad_s() const { return yaw_.rate(); }
 
  private:
   void restart(std::int64_t stamp_ns, const WorldPose& pose);
@@ -62,7 +79,7 @@ class BodyFilter {
 
   const RelayParams* params_;
   CvAxis axes_[3];
-  CvAxis yaw_;
+  CaAxis yaw_;
   Eigen::Quaterniond tilt_ = Eigen::Quaterniond::Identity();  // attitude without its yaw
   Eigen::Quaterniond measured_ = Eigen::Quaterniond::Identity();
   std::int64_t last_ns_ = -1;

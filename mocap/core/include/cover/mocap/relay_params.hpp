@@ -19,9 +19,9 @@ struct BodyBinding {
 
 // The per-body constant-velocity Kalman filter (docs/mocap.md: method and delay).
 struct FilterParams {
-  double accel_noise_m_s2 = 8.0;        // 1-sigma white acceleration of a body, per axis
-  double position_noise_m = 0.001;      // 1-sigma of a mocap position, per axis
-  double yaw_accel_noise_rad_s2 = 5.0;  // yaw rate: 24 mrad/s noise at 2 mrad, 35 ms lag
+  double accel_noise_m_s2 = 8.0;       // 1-sigma white acceleration of a body, per axis
+  double position_noise_m = 0.001;     // 1-sigma of a mocap position, per axis
+  double yaw_jerk_noise_rad_s3 = 1.0;  // yaw: constant-acceleration model
   double yaw_noise_rad = 0.004;
 };
 
