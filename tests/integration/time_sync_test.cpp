@@ -11,11 +11,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <set>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
@@ -32,7 +38,9 @@ using cover::test::bin;
 using cover::test::SimSystem;
 using namespace std::chrono_literals;
 
-constexpr int kDomain = 147;  // this suite's of 140..148 (tests/time_sync takes 140..144)
+// This suite's of 140..148 (tests/time_sync takes 140..144).
+constexpr int kDomain = 147;
+constexpr int kManagerDomain = 148;
 
 double time_scale() {
   const char* text = std::getenv("COVER_TEST_TIME_SCALE");
@@ -146,7 +154,9 @@ void hold_with_the_offset_named_then_fly() {
   // Still held a while later (the re-sent request included): nothing flies.
   requests.write(cover::wire::to_msg(task, 0.0));
   std::this_thread::sleep_for(500ms);
-  EXPECT_EQ(latest_status().task_id, "");  // the agent flies no task
+  // Its status reports the held task as its own, pending: not an idle agent.
+  EXPECT_EQ(latest_status().task_id, task.task_id);
+  EXPECT_EQ(latest_status().task_state, cover::msg::TaskState::TASK_PENDING);
   ASSERT_TRUE(system.world().read(*world));
   EXPECT_LT(world->uavs[0].state.position_m.z, start_z_m + 0.05);
 
@@ -162,7 +172,7 @@ void hold_with_the_offset_named_then_fly() {
       << "last task status: " << task_status.latest()->sample.message;
   EXPECT_TRUE(system.wait_for_world(
       [&](const cover::sim::SharedWorld& w) {
-        return w.uavs[0].state.position_m.z > start_z_m + 0.3;
+        return w.uavs[0].state.position_m.z > start_z_m + 0.1;
       },
       scaled(20s)));
   // Every peer now within a millisecond: same host, loopback.
@@ -179,6 +189,117 @@ void hold_with_the_offset_named_then_fly() {
 
 TEST(TimeAcrossHosts, OffsetHoldsTheTaskWithTheReasonAndItFliesOnceGone) {
   hold_with_the_offset_named_then_fly();
+}
+
+// `cover ARGS --json` on `system`'s domain: its exit code and last JSON line.
+std::pair<int, nlohmann::json> cover_cli(SimSystem& system, std::vector<std::string> args) {
+  args.insert(args.begin(), COVER_CLI);
+  args.insert(args.end(), {"--json", "--timeout", "20"});
+  cover::process::SpawnOptions options =
+      cover::test::quiet("cyclone", system.domain(), system.log_name("cover"));
+  options.append_log = true;
+  options.capture_stdout = true;
+  cover::process::ChildProcess cli(args, options);
+  std::string last;
+  while (const auto line = cli.read_line(scaled(60s))) {
+    if (!line->empty()) last = *line;
+  }
+  return {cli.wait(scaled(30s)).value_or(-1), nlohmann::json::parse(last, nullptr, false)};
+}
+
+nlohmann::json record_of(SimSystem& system, const std::string& task_id) {
+  const auto [code, reply] = cover_cli(system, {"status", task_id});
+  if (code != 0 || !reply.contains("tasks") || reply["tasks"].empty()) return {};
+  return reply["tasks"][0];
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Through the task manager: the record shows why the agent holds the task, the manager
+// does not fail it for not starting (the agent reports it as its pending task), and it
+// flies once the clock is right; the manager logs its own offsets to the agents.
+void task_manager_shows_the_hold() {
+  SimSystem system(kManagerDomain, "tsm", {"--scenario", "scenario2", "--standing"});
+  restart_ugv1(system, "50", system.log_name("ugv1_offset"));
+  auto uav = system.spawn(
+      {bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2"}, "uav");
+  // What is tested is the hold, not heartbeats: a loaded machine's 1 s stall must not fail
+  // the task as "went silent" (the shipped heartbeat_timeout_s).
+  const std::string config = cover::test::scratch_path(system.run_id() + "_manager.yaml");
+  std::ofstream(config) << "task_manager:\n  heartbeat_timeout_s: 5.0\n";
+  auto manager =
+      system.spawn({bin("cover-task-manager"), "--db",
+                    cover::test::scratch_path(system.run_id() + ".db"), "--config", config},
+                   "manager");
+  cover::dds::ParticipantOptions options;
+  options.domain_id = system.domain();
+  cover::dds::Participant station(options);
+  auto status = station.make_reader(cover::dds::topics::uav_status(0));
+  auto task_status = station.make_reader(cover::dds::topics::task_status());
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const auto s = status.latest();
+        return s && std::abs(s->sample.max_clock_offset_ms - 50.0) <= 1.0;
+      },
+      30s));
+  auto world = std::make_unique<cover::sim::SharedWorld>();
+  ASSERT_TRUE(system.world().read(*world));
+  const double start_z_m = world->uavs[0].state.position_m.z;
+
+  const auto [submitted, reply] =
+      cover_cli(system, {"submit", std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml"});
+  ASSERT_EQ(submitted, 0) << reply.dump();
+  nlohmann::json record;
+  ASSERT_TRUE(wait_until(
+      [&] {
+        record = record_of(system, "scenario2");
+        return record.value("reason", "").find("waiting for the clocks to agree") !=
+               std::string::npos;
+      },
+      30s))
+      << record.dump();
+  std::printf("[ manager  ] %s: %s\n", record.value("state", "").c_str(),
+              record.value("reason", "").c_str());
+  // Past the manager's dispatch timeout (5 s): still held, not failed (the agent reports
+  // the held task as its own), not flying.
+  std::this_thread::sleep_for(scaled(6s));
+  record = record_of(system, "scenario2");
+  EXPECT_NE(record.value("state", ""), "MANAGED_FAILED") << record.dump();
+  EXPECT_NE(record.value("reason", "").find("waiting for the clocks to agree"), std::string::npos)
+      << record.dump();
+  ASSERT_TRUE(system.world().read(*world));
+  EXPECT_LT(world->uavs[0].state.position_m.z, start_z_m + 0.05);
+
+  // Released: the agent starts the task (its stage line replaces the reason). Whether the
+  // flight then succeeds is the other tests' matter (and a loaded machine's).
+  restart_ugv1(system, "", system.log_name("ugv1"));
+  EXPECT_TRUE(wait_until(
+      [&] {
+        const auto s = task_status.latest();
+        return s && s->sample.task_id == "scenario2" &&
+               s->sample.state == cover::msg::TaskState::TASK_RUNNING &&
+               s->sample.message.find("waiting") == std::string::npos;
+      },
+      20s));
+  // The manager followed the agent all along: never "did not take the task".
+  record = record_of(system, "scenario2");
+  EXPECT_EQ(record.value("reason", "").find("did not take"), std::string::npos) << record.dump();
+
+  EXPECT_EQ(manager->terminate(scaled(10s), SIGINT), 0);
+  EXPECT_EQ(uav->terminate(scaled(10s), SIGINT), 0);
+  system.stop(scaled(10s));
+  const std::string log = file_text(system.log_path("manager"));
+  EXPECT_NE(log.find("clock offset to "), std::string::npos) << "the manager logs its offsets";
+  EXPECT_NE(log.find("/cover-ugv-agent-1 +"), std::string::npos) << log;
+  EXPECT_NE(log.find("beyond the 20 ms limit"), std::string::npos) << log;
+  EXPECT_FALSE(std::filesystem::exists(system.segment_path())) << system.segment_path();
+}
+
+TEST(TimeAcrossHosts, TheTaskManagerShowsWhyTheAgentHoldsTheTask) {
+  task_manager_shows_the_hold();
 }
 
 }  // namespace

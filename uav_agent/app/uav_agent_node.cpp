@@ -342,7 +342,13 @@ void UavAgentNode::publish_status(double now_s) {
     in.max_clock_offset_ms = time_sync::ns_to_ms(worst->estimate.offset_ns);
     in.max_offset_peer = worst->peer;
   }
-  if (const mission::Task* task = loop_.task()) {
+  if (held_task_) {
+    // The task it holds is its task: a ground side that dispatched it must see it taken
+    // (and why it waits, in its TaskStatus), not an idle agent to send it to again.
+    in.task_id = held_task_->task_id;
+    in.state = mission::MissionState::NotStarted;
+    in.process_count = static_cast<std::uint32_t>(held_task_->processes.size());
+  } else if (const mission::Task* task = loop_.task()) {
     in.task_id = task->task_id;
     in.process_count = static_cast<std::uint32_t>(task->processes.size());
     mission::RelativeMeasurement state;
