@@ -13,6 +13,8 @@ namespace cover::mocap {
 namespace {
 
 constexpr std::int64_t kStatsPeriodNs = 10'000'000'000;
+// The messages of one repeated frame arrive together; the next repetition 20 ms later.
+constexpr std::int64_t kRepeatSpacingNs = 5'000'000;
 
 }  // namespace
 
@@ -42,7 +44,19 @@ void RelayNode::on_report(const vrpn::TrackerReport& report) {
     sample.pose = to_world(report.position, report.quaternion_xyzw, params_.up_axis, params_.units);
   }
   const std::int64_t arrival_ns = clock::system_ns();
-  if (assembler_.add(report.body, report.time.to_ns(), arrival_ns, sample)) {
+  const bool complete = assembler_.add(report.body, report.time.to_ns(), arrival_ns, sample);
+  if (assembler_.repeat()) {
+    // The newest frame again (a lockstep simulator republishing its tick, every 20 ms):
+    // its states again, once per repetition, in case they were lost on their way.
+    const std::int64_t now_ns = clock::monotonic_ns();
+    if (now_ns - republished_mono_ns_ >= kRepeatSpacingNs) {
+      republished_mono_ns_ = now_ns;
+      ++republished_frames_;
+      write_outputs();
+    }
+    return;
+  }
+  if (complete) {
     publish(assembler_.frame(), clock::monotonic_ns());
     if (assembler_.poll(arrival_ns)) publish(assembler_.frame(), clock::monotonic_ns());
   }
@@ -51,6 +65,12 @@ void RelayNode::on_report(const vrpn::TrackerReport& report) {
 void RelayNode::publish(const Frame& frame, std::int64_t completed_mono_ns) {
   const std::int64_t stamp_ns = server_clock_.to_ours(frame.server_ns, frame.first_arrival_ns);
   estimator_.on_frame(frame, stamp_ns, outputs_);
+  write_outputs();
+  latency_ns_[latency_count_++ % latency_ns_.size()] = clock::monotonic_ns() - completed_mono_ns;
+  ++published_frames_;
+}
+
+void RelayNode::write_outputs() {
   for (std::size_t i = 0; i < outputs_.size() && i < writers_.size(); ++i) {
     const RelativeOutput& o = outputs_[i];
     msg::RelativeState m = wire::to_msg(o.state, static_cast<std::uint32_t>(o.uav),
@@ -59,8 +79,6 @@ void RelayNode::publish(const Frame& frame, std::int64_t completed_mono_ns) {
     m.valid = o.valid;
     writers_[i].write(m);
   }
-  latency_ns_[latency_count_++ % latency_ns_.size()] = clock::monotonic_ns() - completed_mono_ns;
-  ++published_frames_;
 }
 
 void RelayNode::log_stats() {
@@ -72,13 +90,14 @@ void RelayNode::log_stats() {
     return sorted.empty() ? 0.0 : sorted[static_cast<std::size_t>(q * (sorted.size() - 1))] * 1e-6;
   };
   spdlog::info(
-      "frames {} published, relay latency p50 {:.3f} ms p99 {:.3f} ms (last {}), offset {:.3f} "
+      "frames {} published ({} again on request), relay latency p50 {:.3f} ms p99 {:.3f} ms (last "
+      "{}), offset {:.3f} "
       "ms, {} jumps, {} restarts, {} invalid outputs, {} late samples; VRPN: {} connections, "
       "{} poses, {} lost samples, {} refused messages, {} bad lengths",
-      published_frames_, pct(0.5), pct(0.99), n, server_clock_.offset_ns() * 1e-6,
-      estimator_.stats().jumps, estimator_.stats().restarts, estimator_.stats().invalid_outputs,
-      assembler_.late_samples(), s.connections, s.session.poses, s.session.lost_samples,
-      s.session.refused(), s.session.bad_lengths);
+      published_frames_, republished_frames_, pct(0.5), pct(0.99), n,
+      server_clock_.offset_ns() * 1e-6, estimator_.stats().jumps, estimator_.stats().restarts,
+      estimator_.stats().invalid_outputs, assembler_.late_samples(), s.connections, s.session.poses,
+      s.session.lost_samples, s.session.refused(), s.session.bad_lengths);
 }
 
 void RelayNode::run() {

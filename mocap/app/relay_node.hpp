@@ -26,6 +26,7 @@ class RelayNode {
  private:
   void on_report(const vrpn::TrackerReport& report);
   void publish(const Frame& frame, std::int64_t completed_mono_ns);
+  void write_outputs();
   void log_stats();
 
   RelayParams params_;
@@ -40,6 +41,8 @@ class RelayNode {
   std::array<std::int64_t, 1024> latency_ns_{};
   std::uint64_t latency_count_ = 0;
   std::uint64_t published_frames_ = 0;
+  std::uint64_t republished_frames_ = 0;
+  std::int64_t republished_mono_ns_ = 0;
   std::uint64_t velocity_reports_ = 0;
   std::int64_t next_stats_mono_ns_ = 0;
 };

@@ -71,7 +71,13 @@ bool MocapLink::wait_for_client(std::chrono::milliseconds timeout) const {
 }
 
 std::int64_t MocapLink::serve(const Fleet& fleet, bool withheld) {
-  if (fleet.tick() == served_tick_) return withheld ? -1 : newest_sent_ns_;
+  if (fleet.tick() == served_tick_) {
+    // The tick published again (an agent has not answered): so is its newest frame, whose
+    // relative states may have been lost on their way (the relay writes them again).
+    if (withheld || !last_sent_) return -1;
+    server_.send_frame(last_sent_->capture_ns, last_sent_->poses);
+    return newest_sent_ns_;
+  }
   served_tick_ = fleet.tick();
   const WorldState& world = fleet.world(0).state();
   const int ugvs = fleet.world(0).ugv_count();
@@ -90,6 +96,7 @@ std::int64_t MocapLink::serve(const Fleet& fleet, bool withheld) {
   for (const auto& frame : released_) {
     server_.send_frame(frame.capture_ns, frame.poses);
     newest_sent_ns_ = frame.capture_ns;
+    last_sent_ = frame;
   }
   return newest_sent_ns_;
 }

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,9 +34,10 @@ class MocapLink {
   // Throws std::runtime_error when the port cannot be bound.
   MocapLink(const Fleet& fleet, const MocapRunOptions& options);
 
-  // Captures the fleet's poses on a new tick (once per tick, whatever the number of
-  // calls), sends the frames whose latency has passed (none while `withheld`), and returns
-  // the newest capture time sent, ns (-1: none yet): the tick's relative_stamp_ns.
+  // Captures the fleet's poses on a new tick (once per tick), sends the frames whose
+  // latency has passed (none while `withheld`), and returns the newest capture time sent,
+  // ns (-1: none yet): the tick's relative_stamp_ns. Called again for the same tick (the
+  // tick published again), it sends that newest frame again.
   std::int64_t serve(const Fleet& fleet, bool withheld);
   bool wait_for_client(std::chrono::milliseconds timeout) const;
   std::string describe() const;
@@ -48,6 +50,7 @@ class MocapLink {
   std::vector<mocap::MocapFrame> released_;
   std::uint64_t served_tick_ = UINT64_MAX;
   std::int64_t newest_sent_ns_ = -1;
+  std::optional<mocap::MocapFrame> last_sent_;
 };
 
 }  // namespace cover::sim

@@ -111,6 +111,10 @@ TEST(MocapAssembler, CompletesOnAllBodiesANewerStampOrTheTimeout) {
   EXPECT_EQ(a.frame().server_ns, 300);
   EXPECT_FALSE(a.add(1, 300, 40, s));  // its frame is gone
   EXPECT_EQ(a.late_samples(), 1u);
+  EXPECT_FALSE(a.repeat());
+  EXPECT_FALSE(a.add(0, 300, 50, s));  // the frame sent again (a lockstep tick republished)
+  EXPECT_TRUE(a.repeat());
+  EXPECT_EQ(a.late_samples(), 1u);
 }
 
 TEST(MocapClock, OffsetIsTheSmallestDelayInTheWindow) {

@@ -26,7 +26,14 @@ void FrameAssembler::complete() {
 
 bool FrameAssembler::add(int body, std::int64_t server_ns, std::int64_t arrival_ns,
                          const BodySample& sample) {
+  repeat_ = false;
   if (body < 0 || static_cast<std::size_t>(body) >= current_.bodies.size()) return false;
+  // A body of the frame completed last, again: the frame repeated (not a late body).
+  if (server_ns == last_done_ns_ && !(open_ && current_.server_ns > server_ns) &&
+      done_.bodies[static_cast<std::size_t>(body)].reported) {
+    repeat_ = true;
+    return false;
+  }
   if (server_ns <= last_done_ns_) {
     ++late_;  // its frame is gone
     return false;

@@ -35,6 +35,9 @@ class FrameAssembler {
   bool poll(std::int64_t now_ns);
   const Frame& frame() const { return done_; }
   bool pending() const { return open_; }
+  // The last add() was a message of the frame completed last, sent again (the simulator
+  // does, when a lockstep tick is published again): its outputs may be written again.
+  bool repeat() const { return repeat_; }
   std::uint64_t late_samples() const { return late_; }
 
  private:
@@ -49,6 +52,7 @@ class FrameAssembler {
   std::int64_t last_done_ns_ = INT64_MIN;
   std::uint64_t late_ = 0;
   bool carry_complete_ = false;
+  bool repeat_ = false;
 };
 
 }  // namespace cover::mocap
