@@ -2,6 +2,7 @@
 // and a time_sync_peer child answering with its (possibly shifted) clock.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "cover/dds/access_rules.hpp"
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/process/child_process.hpp"
@@ -113,6 +115,34 @@ void report(const char* what, const PeerOffset& p) {
   std::printf("[ measured ] %s: offset %+.3f ms, delay %.3f ms, uncertainty %.3f ms\n", what,
               ns_to_ms(p.estimate.offset_ns), ns_to_ms(p.estimate.delay_ns),
               ns_to_ms(p.estimate.uncertainty_ns));
+}
+
+bool has(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// DDS-Security: who asks and who answers, least privilege.
+TEST(TimeSyncAccess, AgentsAndTheManagerAskSimAgentsAndBridgesAnswer) {
+  using dds::Role;
+  const std::string request = dds::topics::time_request().name();
+  const std::string reply = dds::topics::time_reply().name();
+  const dds::Fleet fleet{2, 1, 1};
+  auto access = [&](Role role) { return dds::topic_access({role, 0}, fleet); };
+  for (const Role asker : {Role::UavAgent, Role::UgvAgent, Role::TaskManager}) {
+    EXPECT_TRUE(has(access(asker).publish, request)) << static_cast<int>(asker);
+    EXPECT_TRUE(has(access(asker).subscribe, reply)) << static_cast<int>(asker);
+  }
+  for (const Role answerer : {Role::Sim, Role::UgvAgent, Role::UavAgent, Role::FcBridge}) {
+    EXPECT_TRUE(has(access(answerer).subscribe, request)) << static_cast<int>(answerer);
+    EXPECT_TRUE(has(access(answerer).publish, reply)) << static_cast<int>(answerer);
+  }
+  EXPECT_FALSE(has(access(Role::TaskManager).publish, reply));
+  EXPECT_FALSE(has(access(Role::Sim).publish, request));
+  EXPECT_FALSE(has(access(Role::FcBridge).publish, request));
+  // A ground station may watch the exchange, not take part in it.
+  EXPECT_TRUE(has(access(Role::GroundStation).subscribe, reply));
+  EXPECT_FALSE(has(access(Role::GroundStation).publish, request));
+  EXPECT_FALSE(has(access(Role::GroundStation).publish, reply));
 }
 
 class BetweenVendors : public ::testing::TestWithParam<std::pair<dds::Vendor, std::string>> {};
