@@ -90,14 +90,14 @@ void RelayNode::log_stats() {
     return sorted.empty() ? 0.0 : sorted[static_cast<std::size_t>(q * (sorted.size() - 1))] * 1e-6;
   };
   spdlog::info(
-      "frames {} published ({} again on request), relay latency p50 {:.3f} ms p99 {:.3f} ms (last "
-      "{}), offset {:.3f} "
-      "ms, {} jumps, {} restarts, {} invalid outputs, {} late samples; VRPN: {} connections, "
-      "{} poses, {} lost samples, {} refused messages, {} bad lengths",
+      "frames {} published ({} again on request), relay latency p50 {:.3f} ms p99 {:.3f} ms "
+      "(last {}), offset {:.3f} ms, {} jumps, {} restarts, {} invalid outputs, {} late samples; "
+      "VRPN: {} connections, {} poses, {} lost samples, {} refused messages, {} bad lengths, {} "
+      "velocity reports (unused: the filter's velocity is)",
       published_frames_, republished_frames_, pct(0.5), pct(0.99), n,
       server_clock_.offset_ns() * 1e-6, estimator_.stats().jumps, estimator_.stats().restarts,
       estimator_.stats().invalid_outputs, assembler_.late_samples(), s.connections, s.session.poses,
-      s.session.lost_samples, s.session.refused(), s.session.bad_lengths);
+      s.session.lost_samples, s.session.refused(), s.session.bad_lengths, velocity_reports_);
 }
 
 void RelayNode::run() {
