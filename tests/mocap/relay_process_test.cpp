@@ -21,6 +21,7 @@
 #include "cover/clock/clock.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
+#include "cover/sim/mocap/mocap_feed.hpp"
 #include "cover/sim/mocap/vrpn_server.hpp"
 #include "process_support.hpp"
 #include "scripted_motion.hpp"
@@ -79,14 +80,14 @@ mocap::WirePose wire(const motion::Pose& p) {
 // The relay of uav0 ("UAV_A") in ugv0 ("Truck_2"), the test's reader of cover/uav/0/rel/0.
 class RelayRun {
  public:
-  explicit RelayRun(std::uint16_t port)
+  explicit RelayRun(std::uint16_t port, const std::string& frame = "")
       : claim_(cover::dds::DomainClaim::claim_any(111, 119)),
         config_(cover::test::scratch_path("mocap.yaml")),
         log_(cover::test::scratch_path("relay.log")),
         participant_(options(claim_.domain())) {
     std::ofstream(config_) << "mocap:\n  server: \"127.0.0.1:" << port
                            << "\"\n  time_source: server\n  backoff_max_s: 0.3\n"
-                           << "  bodies: {uav0: UAV_A, ugv0: Truck_2}\n";
+                           << frame << "  bodies: {uav0: UAV_A, ugv0: Truck_2}\n";
     reader_ = participant_.make_reader(cover::dds::topics::relative_state(0, 0),
                                        [this](const cover::msg::RelativeState& m) {
                                          std::lock_guard<std::mutex> lock(mutex_);
@@ -149,15 +150,23 @@ mocap::ServerOptions server_options(std::uint16_t port = 0) {
 }
 
 // Streams the scripted motion at 100 Hz of wall time over server time [t0, t1); `uav_present`
-// decides per frame. Returns each frame's send time by its stamp.
+// decides per frame; `up_axis` / `units`: the server's frame. Returns each frame's send
+// time by its stamp.
 std::map<std::int64_t, std::int64_t> stream(
     mocap::VrpnServer& server, double t0, double t1,
-    const std::function<bool(double)>& uav_present = [](double) { return true; }) {
+    const std::function<bool(double)>& uav_present = [](double) { return true; },
+    const std::string& up_axis = "z", const std::string& units = "m") {
   std::map<std::int64_t, std::int64_t> sent;
   auto next = std::chrono::steady_clock::now();
   for (int i = 0; t0 + i * 0.01 < t1 - 1e-9; ++i) {
     const double t = t0 + i * 0.01;
     std::vector<mocap::WirePose> frame{wire(motion::ugv(t)), wire(motion::uav(t))};
+    if (up_axis != "z" || units != "m") {
+      const motion::Pose poses[2] = {motion::ugv(t), motion::uav(t)};
+      for (int i = 0; i < 2; ++i) {
+        frame[i] = mocap::to_wire({poses[i].position_m, poses[i].attitude}, up_axis, units);
+      }
+    }
     frame[1].present = uav_present(t);
     const std::int64_t stamp = std::llround(t * 1e9);
     sent[stamp] = cover::clock::monotonic_ns();
@@ -217,6 +226,35 @@ TEST(MocapRelayProcess, ScriptedMotionWithinTheAccuracyTargets) {
   // the 2-core VM: p50 0.3 ms, p99 0.7-16 ms).
   EXPECT_LE(percentile(latency_ms, 0.5), 5.0 * time_scale());
   EXPECT_LE(percentile(latency_ms, 0.99), 50.0 * time_scale());
+  EXPECT_EQ(run.stop(), 0);
+}
+
+// A y-up server in millimetres (OptiTrack Motive's defaults, some Vicon setups): the relay
+// configured so gives the same states. The server's conversion (sim/mocap) and the relay's
+// (mocap/core) are separate code.
+TEST(MocapRelayProcess, AYUpServerInMillimetresGivesTheSameStates) {
+  mocap::VrpnServer server(server_options());
+  RelayRun run(server.port(), "  up_axis: y\n  units: mm\n");
+  ASSERT_TRUE(run.matched());
+  ASSERT_TRUE(server.wait_for_clients(1, scaled(20s)));
+  stream(
+      server, 1.0, 1.6, [](double) { return true; }, "y", "mm");
+  ASSERT_TRUE(wait_until([&] { return run.reached(1'500'000'000); }, 5s));
+  int compared = 0;
+  for (const Sample& s : run.samples()) {
+    const double t = static_cast<double>(s.state.stamp_ns) * 1e-9;
+    if (t < 1.1) continue;
+    ASSERT_TRUE(s.state.valid);
+    const auto& p = s.state.position_m;
+    const auto& q = s.state.attitude;
+    EXPECT_LE((Eigen::Vector3d(p.x, p.y, p.z) - motion::uav_in_ugv(t)).norm(), 0.001) << t;
+    EXPECT_LE(
+        Eigen::Quaterniond(q.w, q.x, q.y, q.z).angularDistance(motion::uav_attitude_in_ugv(t)),
+        0.001)
+        << t;
+    ++compared;
+  }
+  EXPECT_GE(compared, 40);
   EXPECT_EQ(run.stop(), 0);
 }
 

@@ -60,4 +60,18 @@ TEST(MocapScenario, Scenario2InLockstepThroughTheRelayLandsWithin5cm) {
   EXPECT_EQ(log.find("inputs missing"), std::string::npos);
 }
 
+TEST(MocapScenario, ABadMocapFlagIsAUsageError) {
+  for (const std::string value : {"tcp", "vrpn:0", "vrpn:70000", "vrpn:12x"}) {
+    cover::process::SpawnOptions spawn;
+    spawn.log_file = cover::test::scratch_path("sim.log");
+    cover::process::ChildProcess sim({cover::test::bin("cover-sim"), "--mocap", value}, spawn);
+    const auto code = sim.wait(scaled(30s));
+    ASSERT_TRUE(code.has_value());
+    EXPECT_EQ(*code, 2) << value;
+    std::ifstream log(spawn.log_file);
+    const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("--mocap"), std::string::npos) << text;
+  }
+}
+
 }  // namespace
