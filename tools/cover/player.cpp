@@ -11,12 +11,6 @@
 
 namespace cover::cli {
 
-class Player::Publisher {
- public:
-  virtual ~Publisher() = default;
-  virtual bool publish(const std::uint8_t* data, std::size_t size) = 0;
-};
-
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -106,33 +100,6 @@ void Player::listen_for_answers(const std::map<std::string, std::string>& record
   }
 }
 
-// Lockstep: waits until the live agent has published its command for the recorded one's
-// stamp, as the simulator waits for every agent's answer before the next tick.
-bool Player::await_answer(const mcap::MessageView& recorded, PlayStats& stats,
-                          const std::function<bool()>& stop_requested) {
-  const auto reader = answers_.find(recorded.channel->topic);
-  if (reader == answers_.end()) return true;
-  static const dds::CdrCodec codec(dds::type_support<msg::UavCommand>());
-  msg::UavCommand command;
-  if (!codec.deserialize(recorded.data, recorded.size, &command)) return true;
-  ++stats.answers_awaited;
-  auto& live = reader->second;
-  const auto deadline =
-      Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                         std::chrono::duration<double>(options_.answer_timeout_s));
-  while (true) {
-    const std::uint64_t seen = live.received_count();
-    const auto latest = live.latest();
-    if (latest && latest->sample.stamp_ns >= command.stamp_ns) return true;
-    if (stop_requested && stop_requested()) return false;
-    if (Clock::now() >= deadline) {
-      ++stats.answers_missing;
-      return true;
-    }
-    live.wait_for_sample(std::chrono::milliseconds(50), seen);
-  }
-}
-
 PlayStats Player::run(const std::function<bool()>& stop_requested) {
   PlayStats stats;
   if (!prepare(stats) || publishers_.empty()) return stats;
@@ -142,24 +109,19 @@ PlayStats Player::run(const std::function<bool()>& stop_requested) {
     stats.stopped = true;
     return stats;
   }
+  if (options_.lockstep) return run_lockstep(std::move(stats), stop_requested);
   const auto start_ns = first_log_ns_ + static_cast<std::uint64_t>(options_.start_s * 1e9);
   const double rate = options_.rate > 0 ? options_.rate : 1.0;
   const auto wall_start = Clock::now();
   mcap::Reader reader(options_.path);
   reader.scan([&](const mcap::MessageView& m) {
     if (m.header.log_time_ns < start_ns) return true;
-    if (options_.lockstep) {
-      if (!await_answer(m, stats, stop_requested)) {
-        stats.stopped = true;
-        return false;
-      }
-    }
     const auto publisher = publishers_.find(m.channel->topic);
     if (publisher == publishers_.end()) return true;
     const double offset_s = static_cast<double>(m.header.log_time_ns - start_ns) * 1e-9 / rate;
     const auto when = wall_start + std::chrono::duration_cast<Clock::duration>(
                                        std::chrono::duration<double>(offset_s));
-    if (!options_.lockstep && !sleep_until(when, stop_requested)) {
+    if (!sleep_until(when, stop_requested)) {
       stats.stopped = true;
       return false;
     }

@@ -4,6 +4,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -18,10 +19,11 @@ struct PlayOptions {
   std::vector<std::string> topic_globs;  // empty: every recorded topic
   double start_s = 0.0;                  // skip the recording's first S seconds
   double delay_s = 0.5;  // between making the writers and the first sample: discovery
-  // Replay into live agents in the simulator's lockstep order instead of at the recorded
-  // pace: a UAV command recorded between two played samples (an agent's answer to a tick)
-  // holds the next one back until the live agent has published its command for that
-  // stamp. Recorded commands are then not played (the agents make them).
+  // Replay into live UAV agents with the simulator's lockstep protocol instead of at the
+  // recorded pace (lockstep_replay.cpp): tick after tick, the inputs the tick names (its
+  // relative_stamp_ns, imu_stamp_ns) are published, then the tick, then the player waits
+  // for every agent that answered it in the recording to answer it again. Recorded UAV
+  // commands are not played (the agents make them).
   bool lockstep = false;
   double answer_timeout_s = 5.0;  // lockstep: then the sample goes out anyway (counted)
 };
@@ -51,13 +53,21 @@ class Player {
   // Plays to the end of the file, or until stop_requested() (checked at least every 50 ms).
   PlayStats run(const std::function<bool()>& stop_requested);
 
-  class Publisher;
+  // One topic's typed writer, fed the recorded CDR.
+  class Publisher {
+   public:
+    virtual ~Publisher() = default;
+    // False when the bytes are not the topic type's CDR.
+    virtual bool publish(const std::uint8_t* data, std::size_t size) = 0;
+  };
 
  private:
   bool prepare(PlayStats& stats);
   void listen_for_answers(const std::map<std::string, std::string>& recorded_types);
-  bool await_answer(const mcap::MessageView& recorded, PlayStats& stats,
-                    const std::function<bool()>& stop_requested);
+  // lockstep_replay.cpp
+  PlayStats run_lockstep(PlayStats stats, const std::function<bool()>& stop_requested);
+  bool wait_for_answers(const std::set<std::string>& topics, std::int64_t stamp_ns,
+                        PlayStats& stats, const std::function<bool()>& stop_requested);
 
   dds::Participant& participant_;
   PlayOptions options_;

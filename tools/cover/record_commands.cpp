@@ -24,6 +24,13 @@ std::string default_file_name() {
   return name;
 }
 
+// Room for ~0.5 s of a 4-UAV, 8-UGV fleet's samples while the recorder is descheduled:
+// with the OS default (208 KiB) a lockstep run under load lost 50-100 ms windows.
+constexpr int kRecorderReceiveBufferBytes = 8 * 1024 * 1024;
+
+constexpr int kStopQuietMs = 200;
+constexpr int kStopDrainMaxMs = 2000;  // within cover-launch's default grace period (3 s)
+
 std::string compression_label(const mcap::Compression compression) {
   const auto name = mcap::compression_name(compression);
   return name.empty() ? "none" : std::string(name);
@@ -108,7 +115,9 @@ int RecordCommands::record() {
   if (record_options_.path.empty()) record_options_.path = default_file_name();
   record_options_.writer.compression = *mcap::parse_compression(compression_);
   record_options_.writer.chunk_duration_ns = static_cast<std::int64_t>(chunk_duration_s_ * 1e9);
-  dds::Participant participant(record_dds_.resolve("cover-recorder"));
+  dds::ParticipantOptions participant_options = record_dds_.resolve("cover-recorder");
+  participant_options.receive_buffer_bytes = kRecorderReceiveBufferBytes;
+  dds::Participant participant(participant_options);
   std::unique_ptr<Recorder> recorder;
   try {
     recorder = std::make_unique<Recorder>(participant, record_options_);
@@ -129,6 +138,9 @@ int RecordCommands::record() {
          (duration_s_ <= 0 || elapsed_s() < duration_s_)) {
     ok = recorder->pump(50);
   }
+  // A stop (SIGINT, --duration) may come while the receive path is still behind: what
+  // the network buffered is written before the file is closed.
+  ok = ok && recorder->drain(kStopQuietMs, kStopDrainMaxMs);
   ok = recorder->close() && ok;
   const RecorderStats stats = recorder->stats();
   if (!ok) {

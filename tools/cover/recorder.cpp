@@ -89,6 +89,7 @@ void Recorder::enqueue(Pending pending) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ++received_;
+    last_received_ns_ = clock::monotonic_ns();
     if (closed_ || pending.bytes.empty() ||
         pending_bytes_ + pending.bytes.size() > options_.max_pending_bytes) {
       ++dropped_;
@@ -131,6 +132,19 @@ bool Recorder::pump(int wait_ms) {
   }
   ok = writer_.flush_due() && ok;
   file_bytes_ = writer_.bytes_written();
+  return ok;
+}
+
+bool Recorder::drain(int quiet_ms, int max_ms) {
+  const std::int64_t start_ns = clock::monotonic_ns();
+  bool ok = true;
+  while (ok && clock::monotonic_ns() - start_ns < max_ms * 1'000'000LL) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (clock::monotonic_ns() - last_received_ns_ >= quiet_ms * 1'000'000LL) break;
+    }
+    ok = pump(10);
+  }
   return ok;
 }
 

@@ -56,6 +56,10 @@ class Recorder {
   // Writes what arrived, waiting up to `wait_ms` for something; false once the file
   // cannot be written (error() says why).
   bool pump(int wait_ms);
+  // Keeps writing until no sample arrived for `quiet_ms` (the receive path, behind under
+  // load, catches up with what the network buffered) or `max_ms` passed: call at a stop,
+  // before close().
+  bool drain(int quiet_ms, int max_ms);
   // Stops the readers, writes what is queued and the summary. Idempotent.
   bool close();
   RecorderStats stats() const;
@@ -92,6 +96,7 @@ class Recorder {
   std::size_t pending_bytes_ = 0;
   std::uint64_t received_ = 0;
   std::uint64_t dropped_ = 0;
+  std::int64_t last_received_ns_ = 0;  // monotonic
   std::atomic<std::uint64_t> written_{0};
   std::atomic<std::uint64_t> channels_{0};
   std::atomic<std::uint64_t> file_bytes_{0};

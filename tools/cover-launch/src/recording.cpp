@@ -21,10 +21,8 @@ ProcessSpec recorder_spec(const std::string& executable) {
   spec.executable = executable;
   spec.args = {"record", "-o", std::string("{run_dir}/") + kRecordingFileName};
   spec.respawn.enabled = false;
-  // Cyclone's receive path keeps up where Fast DDS's loses bursts: a lockstep Scenario 2
-  // (~9x real time) under a load of 6 on 2 cores lost 30 windows of 50-100 ms per run on
-  // Fast DDS, none in 3 runs on Cyclone. The vendors interoperate; --dds overrides it.
-  spec.dds = "cyclone";
+  // On the launch's usual vendor (Fast DDS; --dds overrides): a Cyclone recorder matches
+  // Fast DDS writers ~2 s late, and would miss the start of a lockstep run.
   return spec;
 }
 

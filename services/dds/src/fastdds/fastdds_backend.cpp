@@ -105,6 +105,9 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
     // send would stall every writer of this process that long: drop instead, as a lossy
     // link would.
     udp->non_blocking_send = !options.peers.empty();
+    if (options.receive_buffer_bytes > 0) {
+      udp->receiveBufferSize = static_cast<std::uint32_t>(options.receive_buffer_bytes);
+    }
     qos.transport().use_builtin_transports = false;
     qos.transport().user_transports.push_back(udp);
     if (options.fastdds_shared_memory) {

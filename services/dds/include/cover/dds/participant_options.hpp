@@ -32,6 +32,10 @@ struct ParticipantOptions {
   // (Fast DDS 3 s, Cyclone 30 s). On a lossy link a lost announcement delays discovery
   // by one period: a UAV agent that discovers a UGV's IMU writer late fails its stage.
   double announcement_period_s = 0.0;
+  // Fast DDS's UDP receive buffer, bytes; 0: the OS default (212992 on Debian 12). A
+  // process that must not lose a burst while it is descheduled (the flight recorder) asks
+  // for more; Linux caps it at net.core.rmem_max. Cyclone sizes its own (>= 1 MiB).
+  int receive_buffer_bytes = 0;
   std::string participant_name = "cover";
   // DDS-Security (authentication, access control, encryption); off by default.
   SecurityOptions security;

@@ -16,8 +16,7 @@ inline constexpr const char* kRecordingFileName = "recording.mcap";
 // `cover` beside the launcher, then on $PATH, then the one of this build tree.
 std::string recorder_executable();
 
-// The recorder's process, on Cyclone DDS, never respawned (a restart would truncate the
-// recording).
+// The recorder's process, never respawned (a restart would truncate the recording).
 ProcessSpec recorder_spec(const std::string& executable);
 
 // Puts the recorder first in `file`; throws std::invalid_argument when a process of the
