@@ -25,6 +25,7 @@
 #include "bench_registry.hpp"
 #include "bench_stats.hpp"
 #include "cover/config/yaml_reader.hpp"
+#include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
@@ -215,7 +216,11 @@ class FaultRun {
  public:
   FaultRun(const std::string& fault, const std::string& mix, std::uint64_t seed, int domain,
            const std::string& dir)
-      : fault_(fault), domain_(domain), dir_(dir), probe_(domain) {
+      : claim_(cover::dds::DomainClaim::claim(domain, std::chrono::minutes(10))),
+        fault_(fault),
+        domain_(domain),
+        dir_(dir),
+        probe_(domain) {
     row_.fault = fault;
     row_.mix = mix;
     row_.seed = seed;
@@ -440,6 +445,9 @@ class FaultRun {
                   std::to_string(ugvs_exited) + "/2 UGV agents exited";
   }
 
+  // First: the domain is this run's until every process of it has stopped (a test or
+  // another benchmark publishing there once ended a run with its own UAV 0's samples).
+  cover::dds::DomainClaim claim_;
   std::string fault_;
   int domain_;
   std::string dir_;
