@@ -2,9 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "cover/config/config_error.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "cover/time_sync/exchange.hpp"
 #include "cover/time_sync/offset_filter.hpp"
 #include "cover/time_sync/peer_name.hpp"
@@ -175,6 +178,19 @@ TEST(TimeSyncParams, BadKeysAndValuesAreNamed) {
             std::string::npos);
   EXPECT_NE(error_of("time_sync: {peer_timeout_s: 0.5}").find("time_sync.peer_timeout_s"),
             std::string::npos);
+}
+
+TEST(TimeSyncParams, LoadBesideAProcesssOwnConfig) {
+  // The UGV agent and the task manager read time_sync.yaml beside their --config file.
+  const std::string dir = cover::test::scratch_path("with");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/time_sync.yaml") << "time_sync:\n  max_offset_ms: 7.5\n";
+  EXPECT_EQ(TimeSyncParams::load_beside(dir + "/task_manager.yaml").max_offset_ms, 7.5);
+  const std::string empty = cover::test::scratch_path("without");
+  std::filesystem::create_directories(empty);
+  EXPECT_EQ(TimeSyncParams::load_beside(empty + "/ugv_agent.yaml").max_offset_ms, 20.0);
+  std::ofstream(dir + "/time_sync.yaml") << "time_sync:\n  max_offset_ms: -1\n";
+  EXPECT_THROW(TimeSyncParams::load_beside(dir + "/x.yaml"), config::ConfigError);
 }
 
 }  // namespace
