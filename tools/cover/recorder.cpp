@@ -30,6 +30,8 @@ std::uint64_t publish_time_ns(const T& sample, std::int64_t received_ns) {
   }
 }
 
+constexpr std::size_t kWakeBytes = 1024 * 1024;
+
 }  // namespace
 
 bool topic_selected(const std::string& topic, const std::vector<std::string>& globs) {
@@ -97,6 +99,9 @@ void Recorder::enqueue(Pending pending) {
     }
     pending_bytes_ += pending.bytes.size();
     queue_.push_back(std::move(pending));
+    // pump() takes the queue in batches, every wait_ms: waking it for every sample would
+    // cost a context switch per sample (half the recorder's CPU at 900 samples/s).
+    if (pending_bytes_ < kWakeBytes) return;
   }
   arrived_.notify_one();
 }
@@ -118,7 +123,8 @@ bool Recorder::pump(int wait_ms) {
   std::vector<Pending> batch;
   {
     std::unique_lock<std::mutex> lock(mutex_);
-    arrived_.wait_for(lock, std::chrono::milliseconds(wait_ms), [&] { return !queue_.empty(); });
+    arrived_.wait_for(lock, std::chrono::milliseconds(wait_ms),
+                      [&] { return pending_bytes_ >= kWakeBytes; });
     batch.swap(queue_);
     pending_bytes_ = 0;
   }
