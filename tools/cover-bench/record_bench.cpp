@@ -4,7 +4,8 @@
 // simulator's clock 100 Hz: 3340 samples/s), and at --scale times those rates: samples
 // lost (published after the recorder heard every writer, missing from the file), samples
 // per second written, file bytes per flight minute, and the recorder's CPU share of one
-// core (utime + stime from /proc over the measured window), per compression.
+// core (utime + stime from /proc over the measured window), per compression; then the
+// recorder's CPU share during a realtime Scenario 2 recorded by cover-launch --record.
 #include <unistd.h>
 
 #include <chrono>
@@ -23,6 +24,7 @@
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
 #include "cover/clock/clock.hpp"
+#include "cover/config/yaml_reader.hpp"
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
@@ -34,6 +36,12 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
+
+#ifdef COVER_LAUNCH
+const std::string kLauncher = COVER_LAUNCH;
+#else
+const std::string kLauncher = "cover-launch";
+#endif
 
 #ifdef COVER_CLI
 const std::string kCover = COVER_CLI;
@@ -221,6 +229,29 @@ Row run_row(const std::string& compression, double scale, double duration_s, int
   return row;
 }
 
+// The launch's recorder during a realtime Scenario 2 (cover-launch --record): its CPU
+// share of one core as it logs it at exit; negative when the run failed.
+double scenario2_cpu_share(int domain, const fs::path& dir) {
+  const fs::path run_dir = dir / "scenario2";
+  cover::process::SpawnOptions options;
+  options.log_file = (dir / "launch.log").string();
+  cover::process::ChildProcess launch(
+      {kLauncher, cover::config::default_config_dir() + "/launch/scenario2.yaml", "--clock",
+       "realtime", "--record", "--domain", std::to_string(domain), "--run-dir", run_dir.string()},
+      options);
+  if (launch.wait(120s).value_or(-1) != 0) return -1.0;
+  std::ifstream log(run_dir / "recorder.log");
+  std::string line;
+  double share = -1.0;
+  while (std::getline(log, line)) {
+    const auto at = line.find(" s: ");
+    if (line.find("recorder CPU") != std::string::npos && at != std::string::npos) {
+      share = std::stod(line.substr(at + 4)) / 100.0;
+    }
+  }
+  return share;
+}
+
 int run(const std::vector<std::string>& args) {
   CLI::App app{"cover-bench record: the flight recorder against a 4-UAV, 4-UGV fleet"};
   double duration_s = 10.0;
@@ -243,6 +274,7 @@ int run(const std::vector<std::string>& args) {
       rows.push_back(run_row(compression, scale, duration_s, claim.domain(), dir));
     }
   }
+  const double scenario2_share = scenario2_cpu_share(claim.domain(), dir);
   fs::remove_all(dir);
 
   nlohmann::json out = nlohmann::json::array();
@@ -258,7 +290,10 @@ int run(const std::vector<std::string>& args) {
                    {"cpu_share_of_one_core", r.cpu_share}});
   }
   if (json) {
-    std::cout << nlohmann::json{{"record", out}}.dump() << std::endl;
+    std::cout << nlohmann::json{{"record", out},
+                                {"scenario2_realtime_recorder_cpu_share", scenario2_share}}
+                     .dump()
+              << std::endl;
     return 0;
   }
   std::printf("%-6s %6s %10s %10s %6s %10s %14s %8s\n", "compr", "scale", "published", "recorded",
@@ -270,6 +305,8 @@ int run(const std::vector<std::string>& args) {
                 static_cast<unsigned long long>(r.published - std::min(r.published, r.recorded)),
                 r.samples_per_s, r.bytes_per_minute / (1024.0 * 1024.0), 100.0 * r.cpu_share);
   }
+  std::printf("realtime Scenario 2 (cover-launch --record): recorder %.1f%% of one core\n",
+              100.0 * scenario2_share);
   return 0;
 }
 
