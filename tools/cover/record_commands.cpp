@@ -93,9 +93,9 @@ RecordCommands::RecordCommands(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   play_->add_flag("--lockstep", play_options_.lockstep,
-                  "replay into live UAV agents in the simulator's lockstep order: each recorded "
-                  "command holds the next sample back until the agent's command for its stamp "
-                  "is heard (then as fast as they answer); recorded commands are not played");
+                  "replay a lockstep run into live UAV agents by the simulator's protocol: per "
+                  "tick the inputs it names, the tick, then each agent's answer awaited (as fast "
+                  "as they answer); recorded commands are not played (docs/recording.md)");
   play_dds_.add_to(*play_);
   play_->footer(
       "Exit: 0 played to the end (or stopped by SIGINT), 1 the file is cut or damaged (its\n"
