@@ -66,7 +66,7 @@ void Recorder::subscribe(dds::Participant& participant, const dds::Topic<T>& top
   slots_.push_back(TopicSlot{topic.name(), T::kTypeName});
   auto subscription = std::make_unique<TypedSubscription<T>>();
   subscription->codec = codec;
-  const auto deep = topic.with_history_depth(options_.history_depth);
+  const auto deep = topic.with_history_depth(options_.history_depth).without_deadline();
   subscription->reader = participant.make_reader(deep, [this, index](const T& sample) {
     const std::int64_t received_ns = clock::system_ns();
     Pending pending{index, {}, {}};

@@ -35,6 +35,15 @@ class Topic {
     return deeper;
   }
 
+  // The same topic without a deadline: for a reader that does not watch the sample period
+  // (the flight recorder), which spares a timer rescheduled on every sample. A reader
+  // without a deadline matches every writer (deadline is requested <= offered).
+  Topic without_deadline() const {
+    Topic relaxed = *this;
+    relaxed.qos_.deadline_s = 0.0;
+    return relaxed;
+  }
+
   // For tests and benchmarks only: a topic outside the catalogue (e.g. "cover_test/...").
   // Creating a writer/reader on it checks the name is NOT a catalogued pattern (throws
   // DdsError otherwise), so it cannot bypass the catalogue's type and QoS.
