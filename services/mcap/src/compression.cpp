@@ -11,6 +11,7 @@ namespace {
 // Level 1: the recorder runs next to the control loop; zstd -1 already takes CDR samples
 // to a fraction of their size (docs/benchmarks.md, cover-bench record).
 constexpr int kZstdLevel = 1;
+constexpr std::size_t kMaxUnsizedZstdBytes = 64 * 1024 * 1024;
 
 void compress_zstd(const std::uint8_t* data, std::size_t size, Bytes& out) {
   const std::size_t start = out.size();
@@ -125,6 +126,12 @@ bool plausible_size(std::string_view compression, const std::uint8_t* data, std:
   }
   if (compression == "zstd") {
     const unsigned long long content = ZSTD_getFrameContentSize(data, size);
+    // A frame without its size (streaming writers) gets a cap instead: chunks are ~1 MiB.
+    if (content == ZSTD_CONTENTSIZE_UNKNOWN && uncompressed_size > kMaxUnsizedZstdBytes) {
+      error = "zstd: a frame of unknown size cannot be trusted with the " +
+              std::to_string(uncompressed_size) + " bytes the chunk declares";
+      return false;
+    }
     if (content != ZSTD_CONTENTSIZE_UNKNOWN && content != uncompressed_size) {
       error = content == ZSTD_CONTENTSIZE_ERROR
                   ? std::string("zstd: not a zstd frame")
@@ -140,6 +147,10 @@ bool plausible_size(std::string_view compression, const std::uint8_t* data, std:
 
 bool decompress(std::string_view compression, const std::uint8_t* data, std::size_t size,
                 std::size_t uncompressed_size, Bytes& out, std::string& error) {
+  if (!compression.empty() && compression != "zstd" && compression != "lz4") {
+    error = "unknown compression '" + std::string(compression) + "'";
+    return false;
+  }
   if (!plausible_size(compression, data, size, uncompressed_size, error)) return false;
   if (compression.empty()) {
     if (size != uncompressed_size) {
@@ -152,9 +163,7 @@ bool decompress(std::string_view compression, const std::uint8_t* data, std::siz
   }
   out.assign(uncompressed_size, 0);
   if (compression == "zstd") return decompress_zstd(data, size, out, error);
-  if (compression == "lz4") return decompress_lz4(data, size, out, error);
-  error = "unknown compression '" + std::string(compression) + "'";
-  return false;
+  return decompress_lz4(data, size, out, error);
 }
 
 }  // namespace cover::mcap
