@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <random>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -60,25 +62,33 @@ inline std::string find_node() {
   const std::string dirs = path != nullptr ? path : "";
   for (std::size_t at = 0; at <= dirs.size();) {
     const std::size_t end = std::min(dirs.find(':', at), dirs.size());
-    const std::filesystem::path candidate = std::filesystem::path(dirs.substr(at, end - at)) / "node";
+    const std::filesystem::path candidate =
+        std::filesystem::path(dirs.substr(at, end - at)) / "node";
     if (end > at && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
     at = end + 1;
   }
   return "";
 }
 
-// A loopback UDP port free now (bound and released; the kernel does not hand it out again
-// at once).
+// A loopback UDP port free now, below Linux's ephemeral range (32768-60999): a port the
+// kernel hands out for "any port" (a DDS participant's socket) cannot take it between this
+// check and the bind of the process it is meant for.
 inline int free_udp_port() {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address));
-  socklen_t length = sizeof(address);
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
-  ::close(fd);
-  return ntohs(address.sin_port);
+  static std::mt19937 rng(static_cast<unsigned>(::getpid()) ^
+                          static_cast<unsigned>(clock::monotonic_ns()));
+  std::uniform_int_distribution<int> pick(20000, 32000);
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    const int port = pick(rng);
+    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    address.sin_port = htons(static_cast<std::uint16_t>(port));
+    const bool free = ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0;
+    ::close(fd);
+    if (free) return port;
+  }
+  throw std::runtime_error("no free UDP port on 127.0.0.1 in 20000-32000");
 }
 
 // cover-fc-bridge for UAV 0 on `domain`, its log in the test's scratch folder.

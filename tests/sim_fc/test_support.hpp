@@ -51,7 +51,9 @@ inline std::uint16_t free_port_base(int count) {
   std::mt19937 rng(
       static_cast<unsigned>(::getpid()) ^
       static_cast<unsigned>(std::chrono::steady_clock::now().time_since_epoch().count()));
-  std::uniform_int_distribution<int> pick(20000, 60000);
+  // Below Linux's ephemeral range (32768-60999): a port checked free here cannot be taken
+  // by a socket some process (the test's own DDS participant) binds to port 0 meanwhile.
+  std::uniform_int_distribution<int> pick(20000, 32000);
   for (int attempt = 0; attempt < 200; ++attempt) {
     const int base = pick(rng);
     bool all = true;
