@@ -6,7 +6,7 @@
 namespace cover::sim {
 namespace {
 
-// The controller's model (NOTES.md, eqs. 3-8) written independently of the simulator:
+// The controller's model (docs/model.md, eqs. 3-8) written independently of the simulator:
 //   v' = -beta x p - 2 Omega x v - Omega x (Omega x p) + R(q) [0, 0, F] - a
 //   q' = 1/2 q (x) [0, w] - 1/2 [0, Omega] (x) q
 // The simulator's relative states and IMU truth must satisfy it when the plant has no

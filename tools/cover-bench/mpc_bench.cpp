@@ -153,7 +153,7 @@ LoopStats run_closed_loop(const SampcParams& params, const cover::mission::Missi
     if (legs[leg_index].stage != Stage::Transition) {
       stats.tracking_error_m.push_back((x.head<3>() - reference_position).norm());
     }
-    // Stage end (NOTES.md): near the point and slow. Every leg uses reach_tolerance_m: the
+    // Stage end (docs/model.md): near the point and slow. Every leg uses reach_tolerance_m: the
     // transition's looser tolerance allows for drag, and the plant here is the drag-free model.
     const bool arrived =
         (x.head<3>() - legs[leg_index].target).norm() < mission.reach_tolerance_m &&

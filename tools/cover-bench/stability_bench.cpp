@@ -26,7 +26,7 @@ struct Row {
   std::string status;
 };
 
-// Fig. 8's UGV motions (NOTES.md): circle (0.5 m/s, 0.5 rad/s); figure-eight and star at
+// Fig. 8's UGV motions (docs/model.md): circle (0.5 m/s, 0.5 rad/s); figure-eight and star at
 // a peak speed of 0.8 m/s. Both UGVs drive the same pattern around centres 6 m apart.
 void set_pattern(cover::sim::Scenario& scenario, const std::string& pattern) {
   const double centre_x[] = {-3.0, 3.0};

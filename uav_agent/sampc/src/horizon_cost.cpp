@@ -270,7 +270,7 @@ void build_transition_cost(const SampcParams& params, const SampcInput& input, d
     const double state_decay = std::exp(-params.e0 * k);
     node.position_ref_m = input.reference.position_m[k];
     node.position_weight = state_decay * w.position;
-    // NOTES.md puts eq. 30 "at k = 0", but x0 is fixed to the measurement in multiple
+    // docs/model.md puts eq. 30 "at k = 0", but x0 is fixed to the measurement in multiple
     // shooting, so a cost there steers nothing. It is kept there (the paper's reading) and
     // also put on the first free nodes 1..custom_velocity_nodes, the first predicted states,
     // where it acts; later nodes weigh only the vertical velocity. Eq. 30 is a velocity at

@@ -20,7 +20,7 @@ struct Vec3 {
   Eigen::Vector3d eigen() const { return {x, y, z}; }
 };
 
-// Hamilton quaternion, w first (NOTES.md).
+// Hamilton quaternion, w first (docs/model.md).
 struct Quat {
   double w = 1.0;
   double x = 0.0;

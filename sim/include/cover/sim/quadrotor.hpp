@@ -27,7 +27,7 @@ struct QuadrotorParams {
   void validate(const std::string& context = "uav") const;
 };
 
-// The controller's input u = [F, wx, wy, wz] (NOTES.md): F collective thrust per unit
+// The controller's input u = [F, wx, wy, wz] (docs/model.md): F collective thrust per unit
 // NOMINAL mass (m/s^2), w body rates (FLU, rad/s).
 struct QuadrotorCommand {
   double thrust_m_s2 = 0.0;

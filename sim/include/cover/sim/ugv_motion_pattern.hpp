@@ -8,7 +8,7 @@
 
 namespace cover::sim {
 
-// The paper's UGV motions (NOTES.md, scenarios). Every pattern is a C-infinity
+// The paper's UGV motions (docs/model.md, scenarios). Every pattern is a C-infinity
 // parametric planar curve, so velocity, acceleration, yaw rate and yaw acceleration are
 // analytic and the simulated IMU is meaningful. Each curve is defined in a local frame
 // L (origin `origin_m`, x axis rotated by `orientation_rad` from world x):

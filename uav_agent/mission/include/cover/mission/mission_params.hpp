@@ -23,7 +23,7 @@ enum class TransitionReference : std::uint8_t {
 const char* to_string(TransitionReference reference);
 
 // Stage-machine and mission-controller parameters (config/mission.yaml). The paper gives
-// no numbers for the stage-end test; NOTES.md suggests 0.15 m / 0.3 m/s.
+// no numbers for the stage-end test; docs/model.md suggests 0.15 m / 0.3 m/s.
 struct MissionParams {
   // A stage ends when the UAV is within this distance of the stage transition point ...
   double reach_tolerance_m = 0.15;

@@ -8,7 +8,7 @@
 
 namespace cover::model {
 
-// The non-inertial model of paper eqs. 3-8 as NOTES.md writes them, in UGV frame G_k:
+// The non-inertial model of paper eqs. 3-8 as docs/model.md writes them, in UGV frame G_k:
 //   p'     = v
 //   v'     = -beta x p - 2 Omega x v - Omega x (Omega x p) + R(q) [0, 0, F] - a
 //   q'     = 1/2 q (x) [0, w]  -  1/2 [0, Omega] (x) q

@@ -6,7 +6,7 @@
 
 namespace cover::model {
 
-// Quaternions are stored as Eigen::Vector4d in Hamilton convention, `w` first (NOTES.md),
+// Quaternions are stored as Eigen::Vector4d in Hamilton convention, `w` first (docs/model.md),
 // which is the layout inside the state vector. These helpers keep the algebra explicit.
 using QuaternionWxyz = Eigen::Vector4d;
 

@@ -13,7 +13,7 @@ inline constexpr int kStateSize = 19;
 inline constexpr int kInputSize = 4;
 inline constexpr int kUavStateSize = 10;
 
-// Index of the first component of each block of the state (NOTES.md, "System model").
+// Index of the first component of each block of the state (docs/model.md, "System model").
 // The first three blocks are also the layout of UavState.
 namespace idx {
 inline constexpr int kPosition = 0;          // p: UAV position in G_k (m)

@@ -19,7 +19,7 @@ enum class SpeedSource : std::uint8_t {
 
 // What the UAV knows of the reference UGV's motion, all in the UGV body frame G_k.
 // Over the prediction horizon `a` and `beta` are held constant and `Omega` integrates
-// `beta` (NOTES.md: a' = 0, beta' = 0, Omega' = beta).
+// `beta` (docs/model.md: a' = 0, beta' = 0, Omega' = beta).
 struct UgvMotion {
   // Accelerometer reading (gravity included): a UGV at rest on flat ground reads [0, 0, g].
   Eigen::Vector3d specific_force_m_s2{0.0, 0.0, kGravity_m_s2};

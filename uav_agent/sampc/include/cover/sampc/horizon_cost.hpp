@@ -19,7 +19,7 @@ enum class ReferenceMode {
 // Which reference mode `mode` uses at `stage` (Cover and NoRefVxy adapt; ConiMpc does not).
 ReferenceMode reference_mode_for(Mode mode, model::Stage stage);
 
-// The nonlinear least-squares cost of one node k (eq. 24, NOTES.md):
+// The nonlinear least-squares cost of one node k (eq. 24, docs/model.md):
 //   sum_i wp_i (p - p_ref)_i^2 + sum_i wv_i (v - v_ref)_i^2 + sum_i wq_i e_i^2
 //   + wd (px^2 + py^2 - d_ref)^2 + sum_i wu_i (u - u_h)_i^2
 // with the attitude error e = q - (q . q_ref) q_ref, the part of q orthogonal to q_ref:

@@ -14,7 +14,7 @@ namespace cover::sampc {
 // Longest horizon the fixed-size workspaces hold; `horizon_steps` may be anything up to it.
 inline constexpr int kMaxHorizon = 40;
 
-// The paper's comparisons (NOTES.md, "Baselines"):
+// The paper's comparisons (docs/model.md, "Baselines"):
 //  - Cover:    stage-adaptive: xy-z-ref at the transition stage, x-y-z-ref otherwise.
 //  - NoRefVxy: as Cover with Q0v_x = Q0v_y = 0 ("w.o. Ref. Vxy").
 //  - ConiMpc:  x-y-z-ref at every stage (the prior method).

@@ -7,7 +7,7 @@
 namespace cover::sim::fc {
 
 // Which autopilot the simulator imitates: its HEARTBEAT, custom modes, ACK results and
-// failsafe follow that one's rules (../shared/notes/mavlink.md).
+// failsafe follow that one's rules (docs/autopilots.md).
 enum class AutopilotProfile { Px4, ArduPilot };
 const char* to_string(AutopilotProfile profile);  // "px4", "ardupilot"
 std::optional<AutopilotProfile> parse_profile(const std::string& text);

@@ -41,7 +41,7 @@ struct AutopilotStep {
 };
 
 // One UAV's flight controller as a companion computer meets it over MAVLink, with PX4's or
-// ArduPilot's rules (../shared/notes/mavlink.md), driven by the simulator's time:
+// ArduPilot's rules (docs/autopilots.md), driven by the simulator's time:
 //  - starts disarmed in MANUAL / STABILIZE; arms only on COMPONENT_ARM_DISARM (refused in
 //    land mode, and in OFFBOARD / GUIDED_NOGPS without a fresh setpoint; param2 21196 forces);
 //  - OFFBOARD / GUIDED_NOGPS only after setpoints streamed faster than
