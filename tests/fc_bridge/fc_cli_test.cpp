@@ -50,7 +50,7 @@ TEST(CoverFc, StatusAndOperatorCommandsWaitForTheAutopilotsAnswer) {
   fake_options.log_file = cover::test::scratch_path("fake_autopilot.log");
   process::ChildProcess fake({node, (kPeerDir / "fake_autopilot.js").string(), "--port",
                               std::to_string(port), "--autopilot", "px4", "--sysid", "9",
-                              "--duration-s", std::to_string(60 * test::time_scale())},
+                              "--duration-s", std::to_string(60 * cover::test::whole_time_scale())},
                              fake_options);
   auto bridge = test::start_bridge(
       claim.domain(), {"--autopilot", "px4", "--url", "udpout://127.0.0.1:" + std::to_string(port),

@@ -63,7 +63,7 @@ TEST_P(FcBridgePeer, StreamsThenOffboardThenArmsWithFramesTheFakeAccepts) {
   process::ChildProcess fake(
       {node_, (kPeerDir / "fake_autopilot.js").string(), "--port", std::to_string(port),
        "--autopilot", autopilot, "--sysid", std::to_string(kSys), "--duration-s",
-       std::to_string(kRunSeconds * test::time_scale())},
+       std::to_string(kRunSeconds * cover::test::whole_time_scale())},
       fake_options);
   auto bridge = test::start_bridge(claim.domain(), {"--autopilot", autopilot, "--url",
                                                     "udpout://127.0.0.1:" + std::to_string(port),

@@ -22,30 +22,14 @@
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 
 // What the bridge's process tests share: deadlines scaled by COVER_TEST_TIME_SCALE, the
 // bridge started on a domain, and an agent's command stream published over DDS.
 namespace cover::fc_bridge::test {
 
-inline int time_scale() {
-  const char* scale = std::getenv("COVER_TEST_TIME_SCALE");
-  const int value = scale != nullptr ? std::atoi(scale) : 1;
-  return value > 0 ? value : 1;
-}
-
-inline std::chrono::milliseconds scaled(std::chrono::milliseconds timeout) {
-  return timeout * time_scale();
-}
-
-// Polls `condition` every 5 ms until it holds or the (scaled) deadline passes.
-inline bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + scaled(timeout);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return condition();
-}
+using cover::test::scaled;
+using cover::test::wait_until;
 
 inline dds::ParticipantOptions on_domain(int domain) {
   dds::ParticipantOptions options;

@@ -104,7 +104,6 @@ class UdpAutopilot {
   std::thread thread_;
 };
 
-
 struct Rig {
   Rig()
       : claim(dds::DomainClaim::claim_any(200, 209)),
@@ -220,7 +219,7 @@ TEST(FcBridgeProcess, CommandToWireLatency) {
       p50, p99, latency_ms.back(), latency_ms.size());
   RecordProperty("p50_ms", std::to_string(p50));
   RecordProperty("p99_ms", std::to_string(p99));
-  EXPECT_LT(p50, 5.0 * test::time_scale());
+  EXPECT_LT(p50, 5.0 * cover::test::whole_time_scale());
   EXPECT_EQ(rig.bridge.terminate(), 0);
 }
 

@@ -153,7 +153,7 @@ void hold_with_the_offset_named_then_fly() {
       << refused;
   // Still held a while later (the re-sent request included): nothing flies.
   requests.write(cover::wire::to_msg(task, 0.0));
-  std::this_thread::sleep_for(500ms);
+  std::this_thread::sleep_for(500ms);  // a window in which nothing may happen: not a sync
   // Its status reports the held task as its own, pending: not an idle agent.
   EXPECT_EQ(latest_status().task_id, task.task_id);
   EXPECT_EQ(latest_status().task_state, cover::msg::TaskState::TASK_PENDING);
@@ -265,7 +265,7 @@ void task_manager_shows_the_hold() {
               record.value("reason", "").c_str());
   // Past the manager's dispatch timeout (5 s): still held, not failed (the agent reports
   // the held task as its own), not flying.
-  std::this_thread::sleep_for(scaled(6s));
+  std::this_thread::sleep_for(scaled(6s));  // a window in which nothing may happen: not a sync
   record = record_of(system, "scenario2");
   EXPECT_NE(record.value("state", ""), "MANAGED_FAILED") << record.dump();
   EXPECT_NE(record.value("reason", "").find("waiting for the clocks to agree"), std::string::npos)

@@ -20,6 +20,7 @@
 
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 
 namespace cover::launch::testing {
 
@@ -27,15 +28,8 @@ namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::steady_clock;
 
-// COVER_TEST_TIME_SCALE (default 1) stretches every deadline, for slow or sanitized builds.
-inline double time_scale() {
-  const char* text = std::getenv("COVER_TEST_TIME_SCALE");
-  const double scale = text ? std::atof(text) : 1.0;
-  return scale >= 1.0 ? scale : 1.0;
-}
-inline milliseconds scaled(milliseconds timeout) {
-  return milliseconds(static_cast<long>(static_cast<double>(timeout.count()) * time_scale()));
-}
+using cover::test::scaled;
+using cover::test::time_scale;
 
 struct LaunchResult {
   int exit_code = -1;

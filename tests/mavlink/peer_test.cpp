@@ -28,6 +28,7 @@
 #include "cover/mavlink/protocol.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 #include "message_json.hpp"
 #include "sample_messages.hpp"
 #include "stream_builder.hpp"
@@ -38,12 +39,6 @@ namespace {
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using test::Bytes;
-
-int time_scale() {
-  const char* scale = std::getenv("COVER_TEST_TIME_SCALE");
-  const int value = scale != nullptr ? std::atoi(scale) : 1;
-  return value > 0 ? value : 1;
-}
 
 std::string find_node() {
   const char* path = std::getenv("PATH");
@@ -83,8 +78,8 @@ class MavlinkPeer : public ::testing::Test {
     options.null_stdin = true;
     process::ChildProcess child(argv, options);
     std::vector<std::string> lines;
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::seconds(timeout_s * time_scale());
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::seconds(timeout_s * cover::test::whole_time_scale());
     while (std::chrono::steady_clock::now() < deadline) {
       const auto line = child.read_line(milliseconds(200));
       if (line) {
@@ -326,8 +321,9 @@ class AutopilotSession {
   bool until(
       const std::function<bool()>& done, double timeout_s,
       const std::function<void()>& each = [] {}) {
-    const auto deadline = std::chrono::steady_clock::now() +
-                          milliseconds(static_cast<long>(timeout_s * 1000 * time_scale()));
+    const auto deadline =
+        std::chrono::steady_clock::now() +
+        milliseconds(static_cast<long>(timeout_s * 1000 * cover::test::whole_time_scale()));
     while (!done() && std::chrono::steady_clock::now() < deadline) {
       each();
       link_.receive(parser_, milliseconds(20), [this](const Frame& f) { received_.push_back(f); });
@@ -367,13 +363,13 @@ class AutopilotSession {
   nlohmann::json summary(bool terminate) {
     if (terminate) ::kill(process_->pid(), SIGTERM);
     std::optional<std::string> line;
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::seconds(20 * time_scale());
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::seconds(20 * cover::test::whole_time_scale());
     while (!line && std::chrono::steady_clock::now() < deadline) {
       line = process_->read_line(milliseconds(200));
     }
     EXPECT_TRUE(line.has_value()) << "no summary";
-    EXPECT_EQ(process_->wait(std::chrono::seconds(10 * time_scale())), 0);
+    EXPECT_EQ(process_->wait(std::chrono::seconds(10 * cover::test::whole_time_scale())), 0);
     return line ? nlohmann::json::parse(*line) : nlohmann::json();
   }
 

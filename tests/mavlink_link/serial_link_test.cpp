@@ -13,16 +13,12 @@
 #include "cover/mavlink/connection_url.hpp"
 #include "cover/mavlink/link.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 
 namespace cover::mavlink {
 namespace {
 
 using std::chrono::milliseconds;
-
-int time_scale() {
-  const char* scale = std::getenv("COVER_TEST_TIME_SCALE");
-  return scale != nullptr && std::atoi(scale) > 1 ? std::atoi(scale) : 1;
-}
 
 // A pty pair whose slave is reached through a symlink in the scratch folder: the "serial
 // cable". The test holds the master (the autopilot's end).
@@ -45,7 +41,7 @@ struct Cable {
   ~Cable() { pull(); }
   std::string receive() {
     pollfd p{master, POLLIN, 0};
-    if (::poll(&p, 1, 2000 * time_scale()) <= 0) return "";
+    if (::poll(&p, 1, 2000 * cover::test::whole_time_scale()) <= 0) return "";
     std::array<char, 256> buffer{};
     const ssize_t n = ::read(master, buffer.data(), buffer.size());
     return n > 0 ? std::string(buffer.data(), static_cast<std::size_t>(n)) : "";
@@ -54,7 +50,7 @@ struct Cable {
 
 std::string read_text(Link& link) {
   std::array<std::uint8_t, 256> buffer{};
-  for (int i = 0; i < 20 * time_scale() && link.is_open(); ++i) {
+  for (int i = 0; i < 20 * cover::test::whole_time_scale() && link.is_open(); ++i) {
     const std::size_t n = link.read(buffer.data(), buffer.size(), milliseconds(100));
     if (n > 0) return std::string(reinterpret_cast<const char*>(buffer.data()), n);
   }
@@ -84,7 +80,7 @@ TEST(SerialLink, CablePulledClosesTheLinkAndItReopensWhenPutBack) {
   const std::string path = cable->path;
   cable.reset();  // pulled
   std::array<std::uint8_t, 64> buffer{};
-  for (int i = 0; i < 20 * time_scale() && link->is_open(); ++i) {
+  for (int i = 0; i < 20 * cover::test::whole_time_scale() && link->is_open(); ++i) {
     link->read(buffer.data(), buffer.size(), milliseconds(100));
   }
   EXPECT_FALSE(link->is_open());

@@ -13,6 +13,7 @@
 
 #include "cover/mavlink/connection_url.hpp"
 #include "cover/mavlink/link.hpp"
+#include "cover/test/time_scale.hpp"
 
 namespace cover::mavlink {
 namespace {
@@ -38,7 +39,7 @@ class Peer {
   // One datagram within 2 s (scaled), its sender remembered for reply().
   std::string receive() {
     pollfd p{fd_, POLLIN, 0};
-    if (::poll(&p, 1, 2000 * time_scale()) <= 0) return "";
+    if (::poll(&p, 1, 2000 * cover::test::whole_time_scale()) <= 0) return "";
     std::array<char, 512> buffer{};
     sender_length_ = sizeof(sender_);
     const ssize_t n = ::recvfrom(fd_, buffer.data(), buffer.size(), 0,
@@ -57,10 +58,6 @@ class Peer {
     ::sendto(fd_, text.data(), text.size(), 0, reinterpret_cast<sockaddr*>(&address),
              sizeof(address));
   }
-  static int time_scale() {
-    const char* scale = std::getenv("COVER_TEST_TIME_SCALE");
-    return scale != nullptr && std::atoi(scale) > 1 ? std::atoi(scale) : 1;
-  }
 
  private:
   int fd_ = -1;
@@ -72,7 +69,7 @@ class Peer {
 // Reads until a datagram arrives or 2 s (scaled) pass.
 std::string read_text(Link& link) {
   std::array<std::uint8_t, 512> buffer{};
-  for (int i = 0; i < 20 * Peer::time_scale(); ++i) {
+  for (int i = 0; i < 20 * cover::test::whole_time_scale(); ++i) {
     const std::size_t n = link.read(buffer.data(), buffer.size(), milliseconds(100));
     if (n > 0) return std::string(reinterpret_cast<const char*>(buffer.data()), n);
   }

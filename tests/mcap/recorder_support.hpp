@@ -16,16 +16,11 @@
 #include "cover/msg/types.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 
 // What the recorder tests share: running `cover` and the node readers, and a sample as the
 // independent decoder prints it.
 namespace cover::test {
-
-inline std::chrono::milliseconds scaled(std::chrono::milliseconds timeout) {
-  const char* text = std::getenv("COVER_TEST_TIME_SCALE");
-  const double scale = text != nullptr ? std::max(1.0, std::atof(text)) : 1.0;
-  return std::chrono::milliseconds(static_cast<long>(static_cast<double>(timeout.count()) * scale));
-}
 
 inline std::string find_node() {
   const char* path = std::getenv("PATH");

@@ -11,16 +11,11 @@
 #include <random>
 #include <stdexcept>
 #include <thread>
+#include "cover/test/time_scale.hpp"
 
 namespace cover::sim::fc::test {
 
-// A deadline of the tests, stretched by COVER_TEST_TIME_SCALE (a slow or loaded machine).
-inline std::chrono::milliseconds scaled(std::chrono::milliseconds base) {
-  const char* text = std::getenv("COVER_TEST_TIME_SCALE");
-  const double scale = text != nullptr ? std::atof(text) : 1.0;
-  return std::chrono::milliseconds(
-      static_cast<long>(static_cast<double>(base.count()) * (scale > 0.0 ? scale : 1.0)));
-}
+using cover::test::scaled;
 
 // Polls `condition` until it holds or `timeout` passes.
 inline bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {

@@ -18,6 +18,7 @@
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/process/child_process.hpp"
+#include "cover/test/time_scale.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
 
 namespace cover::time_sync {
@@ -25,15 +26,8 @@ namespace {
 
 using namespace std::chrono_literals;
 
-double time_scale() {
-  const char* text = std::getenv("COVER_TEST_TIME_SCALE");
-  const double scale = text ? std::atof(text) : 1.0;
-  return scale > 0.0 ? scale : 1.0;
-}
-std::chrono::milliseconds scaled(std::chrono::milliseconds t) {
-  return std::chrono::milliseconds(
-      static_cast<long>(static_cast<double>(t.count()) * time_scale()));
-}
+using cover::test::scaled;
+using cover::test::time_scale;
 
 // Domains 140..144 (the integration test takes 147); the monitor and its peers share one.
 struct Fixture {

@@ -15,16 +15,13 @@
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
 
-std::chrono::milliseconds scaled(std::chrono::milliseconds timeout) {
-  const char* text = std::getenv("COVER_TEST_TIME_SCALE");
-  const double scale = text ? std::max(1.0, std::atof(text)) : 1.0;
-  return std::chrono::milliseconds(static_cast<long>(static_cast<double>(timeout.count()) * scale));
-}
+using cover::test::scaled;
 
 // Everything `cover ARGS` printed on stdout, and its exit code.
 std::pair<int, std::string> run_cover(std::vector<std::string> args) {

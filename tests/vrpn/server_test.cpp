@@ -14,6 +14,7 @@
 
 #include "cover/sim/mocap/mocap_feed.hpp"
 #include "cover/sim/mocap/vrpn_server.hpp"
+#include "cover/test/time_scale.hpp"
 #include "cover/vrpn/tracker_client.hpp"
 #include "spec_bytes.hpp"
 
@@ -24,13 +25,8 @@ namespace mocap = cover::sim::mocap;
 namespace vrpn = cover::vrpn;
 using namespace std::chrono_literals;
 
-double time_scale() {
-  const char* s = std::getenv("COVER_TEST_TIME_SCALE");
-  return s ? std::max(1.0, std::atof(s)) : 1.0;
-}
-std::chrono::milliseconds scaled(std::chrono::milliseconds d) {
-  return std::chrono::milliseconds(static_cast<long>(d.count() * time_scale()));
-}
+using cover::test::scaled;
+using cover::test::time_scale;
 
 // A plain socket: the test reads exactly what the server writes.
 class RawPeer {
