@@ -10,10 +10,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -33,6 +36,30 @@ constexpr std::chrono::seconds kScriptTimeout{60};
 constexpr int kSkipped = 77;  // scripts/wifi-sim check: not root, or no network namespaces
 constexpr double kMaxLandingErrorM = 0.05;
 
+// This process's names for scripts/wifi-sim (--run TAG): its namespaces, bridge and veth
+// ends are its own, so a crashed earlier run or another test's network is never touched.
+std::string run_tag() {
+  char tag[8];
+  std::snprintf(tag, sizeof tag, "%x", static_cast<unsigned>(getpid()) & 0xffffffu);
+  return tag;
+}
+
+// config/launch/scenario2_wifi.yaml with this run's namespaces (cwifiTAG-NODE for
+// cwifi-NODE), written to the test's scratch folder.
+std::string launch_file_for_run(const std::string& tag) {
+  std::ifstream in(std::string(COVER_CONFIG_DIR) + "/launch/scenario2_wifi.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string from = "netns: cwifi-", to = "netns: cwifi" + tag + "-";
+  for (auto at = yaml.find(from); at != std::string::npos; at = yaml.find(from, at + to.size())) {
+    yaml.replace(at, from.size(), to);
+  }
+  const std::string path = cover::test::scratch_path("scenario2_wifi.yaml");
+  std::ofstream(path) << yaml;
+  return path;
+}
+
 // Every test sets the network up and tears it down (`wifi-sim down`, and segments of its
 // run in /dev/shm), whether it passes, fails or throws.
 class WifiNetwork : public ::testing::Test {
@@ -44,8 +71,9 @@ class WifiNetwork : public ::testing::Test {
     if (check.exit_code == kSkipped) GTEST_SKIP() << check.output;
     ASSERT_EQ(check.exit_code, 0) << check.output;
     network_ = std::make_unique<cover::process::ScopedSetup>(
-        std::vector<std::string>{COVER_WIFI_SIM, "up", "--loss-percent", "10"},
-        std::vector<std::string>{COVER_WIFI_SIM, "down"}, cover::test::scratch_path("wifi_up.log"));
+        std::vector<std::string>{COVER_WIFI_SIM, "--run", tag_, "up", "--loss-percent", "10"},
+        std::vector<std::string>{COVER_WIFI_SIM, "--run", tag_, "down"},
+        cover::test::scratch_path("wifi_up.log"));
     ASSERT_TRUE(network_->ok()) << network_->up_result().output;
   }
 
@@ -64,7 +92,7 @@ class WifiNetwork : public ::testing::Test {
   nlohmann::json fly(const std::vector<std::string>& dds_flags, int domain) {
     const auto claim = cover::test::claim_domain(domain);
     cover::bench::LaunchRequest request;
-    request.launch_file = std::string(COVER_CONFIG_DIR) + "/launch/scenario2_wifi.yaml";
+    request.launch_file = launch_file_for_run(tag_);
     request.domain = domain;
     request.run_dir = cover::test::scratch_dir() / ("cover_wifi_" + std::to_string(domain));
     request.flags = {"--clock", "realtime"};
@@ -103,6 +131,7 @@ class WifiNetwork : public ::testing::Test {
   }
 
  private:
+  const std::string tag_ = run_tag();
   std::unique_ptr<cover::process::ScopedSetup> network_;
   std::string run_id_;
   int exit_code_ = -1;
