@@ -1,93 +1,37 @@
 #include "recorder.hpp"
 
-#include <fnmatch.h>
-
 #include <chrono>
-#include <type_traits>
 #include <utility>
 
 #include "cover/clock/clock.hpp"
-#include "cover/dds/cdr_codec.hpp"
 #include "cover/msg/idl_schema.hpp"
 
 namespace cover::cli {
 namespace {
 
-template <typename T, typename = void>
-struct HasStamp : std::false_type {};
-template <typename T>
-struct HasStamp<T, std::void_t<decltype(std::declval<T>().stamp_ns)>> : std::true_type {};
-
-// The sample's own stamp (simulated time from 0 in a lockstep run); its receive time for
-// a negative stamp or a type without one (none today).
-template <typename T>
-std::uint64_t publish_time_ns(const T& sample, std::int64_t received_ns) {
-  if constexpr (HasStamp<T>::value) {
-    return sample.stamp_ns >= 0 ? static_cast<std::uint64_t>(sample.stamp_ns)
-                                : static_cast<std::uint64_t>(received_ns);
-  } else {
-    return static_cast<std::uint64_t>(received_ns);
-  }
-}
-
 constexpr std::size_t kWakeBytes = 1024 * 1024;
 
 }  // namespace
 
-bool topic_selected(const std::string& topic, const std::vector<std::string>& globs) {
-  if (globs.empty()) return true;
-  for (const auto& glob : globs) {
-    if (::fnmatch(glob.c_str(), topic.c_str(), 0) == 0) return true;
-  }
-  return false;
-}
-
-class Recorder::Subscription {
- public:
-  virtual ~Subscription() = default;
-};
-
-namespace {
-
-template <typename T>
-class TypedSubscription : public Recorder::Subscription {
- public:
-  std::shared_ptr<dds::CdrCodec> codec;
-  dds::Reader<T> reader;  // last: destroyed first, with its receive thread
-};
-
-}  // namespace
-
-template <typename T>
-void Recorder::subscribe(dds::Participant& participant, const dds::Topic<T>& topic) {
-  if (!topic_selected(topic.name(), options_.topic_globs)) return;
-  static const auto codec = std::make_shared<dds::CdrCodec>(dds::type_support<T>());
-  const auto index = static_cast<std::uint32_t>(slots_.size());
-  slots_.push_back(TopicSlot{topic.name(), T::kTypeName});
-  auto subscription = std::make_unique<TypedSubscription<T>>();
-  subscription->codec = codec;
-  const auto deep = topic.with_history_depth(options_.history_depth).without_deadline();
-  subscription->reader = participant.make_reader(deep, [this, index](const T& sample) {
-    const std::int64_t received_ns = clock::system_ns();
-    Pending pending{index, {}, {}};
-    pending.header.log_time_ns = static_cast<std::uint64_t>(received_ns);
-    pending.header.publish_time_ns = publish_time_ns(sample, received_ns);
-    if (!codec->serialize(sample, pending.bytes)) pending.bytes.clear();
-    enqueue(std::move(pending));
-  });
-  subscriptions_.push_back(std::move(subscription));
-}
-
 Recorder::Recorder(dds::Participant& participant, RecorderOptions options)
     : options_(std::move(options)), writer_(options_.path, options_.writer) {
-  for_each_fleet_topic(options_.fleet, [&](const auto& topic) { subscribe(participant, topic); });
+  FleetTapOptions tap;
+  tap.topic_globs = options_.topic_globs;
+  tap.fleet = options_.fleet;
+  tap.history_depth = options_.history_depth;
+  tap_ = std::make_unique<FleetTap>(participant, tap,
+                                    [this](TapSample&& sample) { enqueue(std::move(sample)); });
+  for (const auto& topic : tap_->topics()) slots_.push_back(TopicSlot{topic.name, topic.type_name});
 }
 
 Recorder::~Recorder() {
   close();
 }
 
-void Recorder::enqueue(Pending pending) {
+void Recorder::enqueue(TapSample&& sample) {
+  Pending pending{sample.topic_index, {}, std::move(sample.bytes)};
+  pending.header.log_time_ns = static_cast<std::uint64_t>(sample.received_ns);
+  pending.header.publish_time_ns = sample.publish_time_ns;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ++received_;
@@ -159,7 +103,7 @@ bool Recorder::close() {
     std::lock_guard<std::mutex> lock(mutex_);
     if (closed_) return writer_.error().empty();
   }
-  subscriptions_.clear();  // no callback runs past this line
+  tap_->stop();  // no callback runs past this line
   pump(0);
   {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -11,7 +11,7 @@
 
 #include "cover/dds/participant.hpp"
 #include "cover/mcap/writer.hpp"
-#include "fleet_topics.hpp"
+#include "fleet_tap.hpp"
 
 namespace cover::cli {
 
@@ -38,9 +38,9 @@ struct RecorderStats {
   std::uint64_t topics_subscribed = 0;
 };
 
-// Records DDS samples into an MCAP file: one reader per concrete catalogued topic (those
-// the globs select), each sample serialized to the CDR that crossed the wire (CdrCodec)
-// on the vendor's receive thread and queued; pump() (one thread) writes the queue: a
+// Records DDS samples into an MCAP file: a FleetTap reads every concrete catalogued topic
+// the globs select, each sample serialized to the CDR that crossed the wire (CdrCodec) on
+// the vendor's receive thread and queued; pump() (one thread) writes the queue: a
 // channel (encoding cdr) and its type's schema (omgidl, the type's IDL text) on a topic's
 // first sample, log time = receive time (system clock), publish time = the sample's
 // stamp_ns. Never throws after construction.
@@ -65,8 +65,6 @@ class Recorder {
   RecorderStats stats() const;
   const std::string& error() const { return writer_.error(); }
 
-  class Subscription;  // one topic's reader, type-erased
-
  private:
   struct Pending {
     std::uint32_t topic_index;
@@ -79,16 +77,14 @@ class Recorder {
     std::uint16_t channel_id = 0;  // 0: no sample yet
     std::uint32_t sequence = 0;
   };
-  template <typename T>
-  void subscribe(dds::Participant& participant, const dds::Topic<T>& topic);
-  void enqueue(Pending pending);
+  void enqueue(TapSample&& sample);
   std::uint16_t channel_for(TopicSlot& slot);
 
   RecorderOptions options_;
   mcap::Writer writer_;
   std::vector<TopicSlot> slots_;  // fixed after construction
   std::map<std::string, std::uint16_t> schema_ids_;
-  std::vector<std::unique_ptr<Subscription>> subscriptions_;
+  std::unique_ptr<FleetTap> tap_;  // the readers (FleetTap): one per selected topic
 
   mutable std::mutex mutex_;
   std::condition_variable arrived_;

@@ -1,0 +1,73 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cover/dds/participant.hpp"
+#include "fleet_topics.hpp"
+
+namespace cover::cli {
+
+// One sample as it crossed the wire: the CDR bytes (with the 4-byte encapsulation header)
+// that dds::CdrCodec makes from the received sample, and its times.
+struct TapSample {
+  std::uint32_t topic_index = 0;      // into FleetTap::topics()
+  std::int64_t received_ns = 0;       // system clock at the receive callback
+  std::uint64_t publish_time_ns = 0;  // the sample's stamp_ns (its receive time without one)
+  std::vector<std::uint8_t> bytes;    // empty: the sample could not be serialized
+};
+
+struct TapTopic {
+  std::string name;       // cover/uav/0/rel/1
+  std::string type_name;  // cover::idl::RelativeState (the IDL schema's root)
+};
+
+struct FleetTapOptions {
+  std::vector<std::string> topic_globs;  // empty: every catalogued topic of the fleet
+  FleetSize fleet;
+  // Keep-last depth of the readers (the catalogue's is 1 for most topics): a burst that
+  // arrives while the receive thread is descheduled waits in the reader instead of
+  // overwriting its predecessor.
+  int history_depth = 64;
+};
+
+// A type-erased reader of every concrete catalogued topic a set of globs selects (the
+// recorder's and the live bridge's input): each sample is serialized on the vendor's
+// receive thread to the CDR that crossed the wire and handed to `sink`. `wanted(index)`,
+// when given, is asked first: false skips the serialization (nobody listens to it now).
+// The readers ask for no deadline (deadline is requested <= offered, so they still match
+// every writer; Fast DDS reschedules a deadline timer on every sample).
+class FleetTap {
+ public:
+  using Sink = std::function<void(TapSample&&)>;
+  using Wanted = std::function<bool(std::uint32_t topic_index)>;
+
+  // Throws dds::DdsError when a reader cannot be made.
+  FleetTap(dds::Participant& participant, const FleetTapOptions& options, Sink sink,
+           Wanted wanted = {});
+  ~FleetTap();
+  FleetTap(const FleetTap&) = delete;
+  FleetTap& operator=(const FleetTap&) = delete;
+
+  // Fixed after construction, in catalogue order.
+  const std::vector<TapTopic>& topics() const { return topics_; }
+  // Destroys the readers: no sink call runs past it. Idempotent.
+  void stop();
+
+  class Subscription;  // one topic's reader, type-erased
+
+ private:
+  template <typename T>
+  void subscribe(dds::Participant& participant, const dds::Topic<T>& topic,
+                 const FleetTapOptions& options);
+
+  Sink sink_;
+  Wanted wanted_;
+  std::vector<TapTopic> topics_;
+  std::vector<std::unique_ptr<Subscription>> subscriptions_;
+};
+
+}  // namespace cover::cli
