@@ -178,6 +178,7 @@ LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& con
   launch.optional("variables", file.variables);
   launch.optional("security", file.security);
   launch.optional("record", file.record);
+  launch.optional("foxglove", file.foxglove);
   YAML::Node processes;
   launch.require("processes", processes);
   launch.reject_unknown_keys();

@@ -6,6 +6,7 @@
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/security_options.hpp"
 #include "cover/launch/placeholders.hpp"
+#include "cover/launch/live_view.hpp"
 #include "cover/launch/recording.hpp"
 #include "cover/launch/run_naming.hpp"
 #include "cover/launch/security_identity.hpp"
@@ -57,6 +58,7 @@ LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options) {
                                 ")");
   }
   apply_variables(file, options.variables);
+  if (file.foxglove || options.foxglove) add_live_view(file);
   if (file.record || options.record) add_recorder(file, recorder_executable());
   apply_dds_overrides(file.processes, options.dds_overrides);
 

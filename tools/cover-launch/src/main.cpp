@@ -80,6 +80,7 @@ struct Flags {
   int domain_id = -1;
   bool json = false;
   bool record = false;
+  bool foxglove = false;
 };
 
 void add_flags(CLI::App& app, Flags& flags) {
@@ -100,6 +101,9 @@ void add_flags(CLI::App& app, Flags& flags) {
                  "with its identity by role (default: the file's launch.security, else plain)");
   app.add_flag("--record", flags.record,
                "Record every catalogued topic into <run_dir>/recording.mcap (as record: true; "
+               "docs/recording.md)");
+  app.add_flag("--foxglove", flags.foxglove,
+               "Serve the run live to Foxglove on ws://HOST:8765 (as foxglove: true; "
                "docs/recording.md)");
   app.add_flag("--json", flags.json,
                "Print result.json plus processes, run_dir and exit_code as one JSON object");
@@ -134,6 +138,7 @@ LaunchOptions make_options(const Flags& flags, const LaunchFile& file) {
                                           std::chrono::system_clock::now());
   options.security_directory = flags.security;
   options.record = flags.record;
+  options.foxglove = flags.foxglove;
   options.launcher_pid = getpid();
   return options;
 }

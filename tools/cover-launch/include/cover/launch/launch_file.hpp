@@ -47,6 +47,8 @@ struct LaunchFile {
   std::string security;
   // Records the run into <run_dir>/recording.mcap (recording.hpp): `record:`.
   bool record = false;
+  // Serves the run live to Foxglove (cover-foxglove-bridge, live_view.hpp): `foxglove:`.
+  bool foxglove = false;
   std::string directory;  // the launch file's folder, for relative executable paths
 
   // Throws ConfigError naming the offending process, key or argument.

@@ -22,6 +22,7 @@ struct LaunchOptions {
   // launch.security. Empty: the file's.
   std::string security_directory;
   bool record = false;  // --record: as the file's `record: true`
+  bool foxglove = false;  // --foxglove: as the file's `foxglove: true`
   pid_t launcher_pid = 0;
 };
 
