@@ -53,16 +53,27 @@ TEST(MissionController, StaysIdleAndDisarmedUntilInputsArrive) {
 
 TEST(MissionController, StartsTheTaskAndPlansTheFirstStage) {
   MissionController controller = make_controller();
+  ASSERT_EQ(controller.plan_clock(), cover::mission::PlanClock::Lockstep);
   feed_at_rest(controller, 0.0);
   const auto& out = controller.step(0.0);
   EXPECT_TRUE(out.command.armed);
-  EXPECT_TRUE(out.status.planned);
+  // Requested in this step, flown from the next (plan_adopt_steps 1): meanwhile the
+  // reference coasts from where the UAV rests.
+  EXPECT_FALSE(out.status.planned);
+  EXPECT_TRUE(controller.plan_in_flight());
+  EXPECT_TRUE(out.status.reference_position_m.isZero());
   EXPECT_EQ(out.status.failsafe, Failsafe::None);
   EXPECT_EQ(out.status.stage.state, MissionState::Running);
   EXPECT_EQ(out.status.stage.reference_ugv, 0);
   expect_finite(out.command);
+  feed_at_rest(controller, 0.01);
+  const auto& next = controller.step(0.01);
+  EXPECT_TRUE(next.status.planned);
+  EXPECT_FALSE(controller.plan_in_flight());
+  EXPECT_EQ(next.status.plan_late_steps, 0);
+  EXPECT_DOUBLE_EQ(controller.reference_start_s(), 0.0);  // the plan's time origin: its request
   // Taking off towards [0, 0, 1]: more than hover thrust.
-  EXPECT_GT(out.command.thrust_m_s2, cover::model::kGravity_m_s2);
+  EXPECT_GT(next.command.thrust_m_s2, cover::model::kGravity_m_s2);
   EXPECT_DOUBLE_EQ(controller.reference_trajectory().position(1e9).z(), 1.0);
 }
 
@@ -96,8 +107,10 @@ TEST(MissionController, InputsBackDuringTheHoverResumeTheStageReplanned) {
   feed_at_rest(controller, 0.6);
   const auto& back = controller.step(0.6);
   EXPECT_EQ(back.status.failsafe, Failsafe::None);
-  EXPECT_TRUE(back.status.planned);
+  EXPECT_TRUE(controller.plan_in_flight());
   EXPECT_EQ(back.status.stage.state, MissionState::Running);
+  feed_at_rest(controller, 0.61);
+  EXPECT_TRUE(controller.step(0.61).status.planned);
   EXPECT_DOUBLE_EQ(controller.reference_start_s(), 0.6);
 }
 

@@ -61,7 +61,9 @@ time_sync::MonitorOptions monitor_options(const AgentOptions& options) {
 UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
                            uav::ControllerConfig config)
     : options_(std::move(options)),
-      loop_(options_.uav_id, options_.ugv_count, std::move(config)),
+      loop_(options_.uav_id, options_.ugv_count, std::move(config),
+            options_.clock == sim_clock::ClockMode::Lockstep ? mission::PlanClock::Lockstep
+                                                             : mission::PlanClock::Realtime),
       inputs_(participant, options_.uav_id, options_.ugv_count, options_.intake),
       command_(participant, options_.uav_id),
       status_writer_(participant.make_writer(dds::topics::uav_status(options_.uav_id))),
@@ -325,7 +327,13 @@ void UavAgentNode::publish_held_status(double now_s) {
 void UavAgentNode::publish_reference_if_replanned() {
   const mission::MissionController* controller = loop_.controller();
   if (!controller || !controller->output().status.planned) return;
-  const mission::StageDecision& d = controller->output().status.stage;
+  const mission::ControllerStatus& status = controller->output().status;
+  if (status.plan_late_steps > 0) {
+    // Realtime: the plan was not ready at its step; the loop flew on without it.
+    spdlog::warn("stage plan adopted {} control step(s) late (planned in {:.2f} ms)",
+                 status.plan_late_steps, status.plan_ms);
+  }
+  const mission::StageDecision& d = status.stage;
   reference_writer_.write(wire::to_reference(controller->reference_trajectory(), options_.uav_id,
                                              controller->reference_start_s(), d.reference_ugv,
                                              d.stage));

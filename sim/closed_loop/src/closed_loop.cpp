@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/sim/percentile.hpp"
 #include "cover/sim/run_recorder.hpp"
 #include "cover/sim/svg_plot.hpp"
 #include "cover/sim/world.hpp"
@@ -37,8 +38,17 @@ ClosedLoopResult ClosedLoop::run() const {
   RunRecorder recorder(scenario_, scenario_.task, config_.mission, options_);
   WorldUavInputs inputs(world);
   PlantCommandOutput plant;
+  std::vector<double> step_us;
+  step_us.reserve(static_cast<std::size_t>(scenario_.max_duration_s * options_.control_rate_hz) +
+                  1);
+  double plan_wait_max_ms = 0.0;
   while (!recorder.finished(world.state().time_s)) {
+    const auto step_start = std::chrono::steady_clock::now();
     const mission::ControllerOutput& out = loop.step(world.state().time_s, inputs, plant);
+    step_us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() -
+                                                                step_start)
+                          .count());
+    if (out.status.planned) plan_wait_max_ms = std::max(plan_wait_max_ms, out.status.plan_wait_ms);
     if (out.command.release_payload && world.release_payload()) recorder.record_release(world);
     recorder.record(out.status, out.command, world);
     for (int i = 0; i < physics_per_control; ++i) world.step(plant.command());
@@ -48,6 +58,10 @@ ClosedLoopResult ClosedLoop::run() const {
       recorder.finish(world, loop.output().status, loop.describe(), loop.task_state());
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  result.step_median_us = percentile(step_us, 0.5);
+  result.step_p99_us = percentile(step_us, 0.99);
+  result.step_max_us = step_us.empty() ? 0.0 : *std::max_element(step_us.begin(), step_us.end());
+  result.plan_wait_max_ms = plan_wait_max_ms;
   result.realtime_factor =
       result.wall_time_s > 0.0 ? world.state().time_s / result.wall_time_s : 0.0;
   if (options_.transition_bounds) recorder.add_transition_bounds(result);

@@ -30,10 +30,12 @@ std::string summary(const mission::Task& task) {
 
 }  // namespace
 
-UavLoop::UavLoop(std::uint32_t uav_id, int ugv_count, ControllerConfig config)
+UavLoop::UavLoop(std::uint32_t uav_id, int ugv_count, ControllerConfig config,
+                 mission::PlanClock plan_clock)
     : uav_id_(uav_id),
       ugv_count_(ugv_count),
       config_(std::move(config)),
+      plan_clock_(plan_clock),
       state_stamps_s_(static_cast<std::size_t>(std::max(ugv_count, 0)), 0.0) {
   config::check(ugv_count >= 1, "uav_loop.ugv_count", "must be >= 1");
   config_.validate();
@@ -57,7 +59,8 @@ TaskDecision UavLoop::give_task(const mission::Task& task) {
                        "): no task until it has landed"};
   }
   try {
-    controller_.emplace(task, ugv_count_, config_.mission, config_.planner, config_.sampc);
+    controller_.emplace(task, ugv_count_, config_.mission, config_.planner, config_.sampc,
+                        plan_clock_);
   } catch (const config::ConfigError& e) {
     return {false, e.what()};
   }

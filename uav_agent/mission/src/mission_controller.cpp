@@ -1,5 +1,6 @@
 #include "cover/mission/mission_controller.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <utility>
 
@@ -56,17 +57,19 @@ std::vector<sampc::Mode> process_modes(const Task& task, sampc::Mode configured)
 }  // namespace
 
 MissionController::MissionController(Task task, int ugv_count, MissionParams mission,
-                                     planner::PlannerParams planner, sampc::SampcParams sampc)
+                                     planner::PlannerParams planner, sampc::SampcParams sampc,
+                                     PlanClock clock, PlanWorker::PlanFunction plan)
     : params_(mission),
       ugv_count_(ugv_count),
       machine_(validated(std::move(task), ugv_count), mission),
-      planner_(std::move(planner)),
       sampc_((sampc.validate(), sampc)),
       process_modes_(process_modes(machine_.task(), sampc.mode)),
       inputs_(static_cast<std::size_t>(ugv_count)),
       observer_(static_cast<int>(std::lround(mission.observer_window_s / mission.control_period_s)),
                 mission.control_period_s, mission.observer_time_constant_s),
-      ladder_(mission) {
+      ladder_(mission),
+      plan_clock_(clock),
+      plan_worker_(plan ? std::move(plan) : stage_plan_function(std::move(planner))) {
   output_.status.stage = machine_.decision();
   idle(Failsafe::WaitingForInputs);
 }
@@ -115,8 +118,7 @@ bool MissionController::emergency_step(int reference, double now_s) {
       touchdown_since_s_ = -1.0;
       abort_time_s_ = now_s;
     } else {
-      plan_pending_ = true;
-      plan_attempts_ = 0;
+      need_plan();
     }
   }
   if (level == LadderLevel::EmergencyLanding && before != LadderLevel::EmergencyLanding) {
@@ -177,10 +179,7 @@ const ControllerOutput& MissionController::step(double now_s) {
   output_.status.stage = decision;
   output_.command.release_payload = decision.release_payload;
   use_process_method(decision.process_index);
-  if (decision.stage_started) {
-    plan_pending_ = true;
-    plan_attempts_ = 0;
-  }
+  if (decision.stage_started) need_plan();
   if (!decision.armed) {
     idle(Failsafe::Landed);
     return output_;
@@ -211,10 +210,7 @@ const ControllerOutput& MissionController::step(double now_s) {
       return output_;
     }
   }
-  if (plan_pending_ && !plan_stage(now_s) && ++plan_attempts_ >= params_.max_plan_attempts) {
-    machine_.fail(FailureReason::PlanningFailed, now_s);
-    output_.status.stage = machine_.decision();
-  }
+  advance_plan(now_s);
 
   // 4. SAMPC on the horizon reference.
   command_from_sampc(inputs_[reference], now_s);
@@ -259,6 +255,8 @@ void MissionController::hold_current_point(double now_s) {
   // Hold where the task ended, in the current frame, with the tracking weights.
   holding_ = true;
   plan_pending_ = false;
+  plan_request_id_ = 0;  // a plan still in flight is never adopted
+  coasting_ = false;
   trajectory_ = planner::Trajectory::hold(inputs_[machine_.reference_ugv()].state.position_m);
   stage_start_s_ = now_s;
 }
@@ -291,7 +289,68 @@ void MissionController::run_abort_action(const RelativeMeasurement& state, doubl
   }
 }
 
-bool MissionController::plan_stage(double now_s) {
+// A new stage (or the stage resumed after the hover) needs a plan: a request still in
+// flight was for what came before, and is never adopted.
+void MissionController::need_plan() {
+  plan_pending_ = true;
+  plan_attempts_ = 0;
+  plan_request_id_ = 0;
+  coast_on_request_ = true;
+}
+
+// Adopts the plan in flight at its step, then asks for one if the stage still has none
+// (its first request, or a retry after a plan that was not usable).
+void MissionController::advance_plan(double now_s) {
+  const double half_period_s = 0.5 * params_.control_period_s;
+  if (plan_request_id_ != 0 && now_s >= plan_adopt_at_s_ - half_period_s) adopt_plan(now_s);
+  if (plan_pending_ && plan_request_id_ == 0) {
+    request_plan(now_s);
+    // plan_adopt_steps 0: adopted in this very step.
+    if (now_s >= plan_adopt_at_s_ - half_period_s) adopt_plan(now_s);
+  }
+}
+
+void MissionController::request_plan(double now_s) {
+  plan_request_id_ = plan_worker_.request(stage_problem());
+  plan_request_s_ = now_s;
+  plan_adopt_at_s_ = now_s + params_.plan_adopt_steps * params_.control_period_s;
+  if (!coast_on_request_) return;
+  // A retry keeps flying the failed plan (a finite hold of its start); a new stage coasts.
+  coast_on_request_ = false;
+  const RelativeMeasurement& state = inputs_[machine_.reference_ugv()].state;
+  coasting_ = true;
+  coast_position_m_ = state.position_m;
+  coast_velocity_m_s_ = state.velocity_m_s;
+  stage_start_s_ = now_s;
+}
+
+void MissionController::adopt_plan(double now_s) {
+  // Lockstep: this step is the plan's, whatever the machine's speed: wait for it.
+  const bool wait = plan_clock_ == PlanClock::Lockstep;
+  const auto started = std::chrono::steady_clock::now();
+  if (!plan_worker_.take(plan_request_id_, adopted_, wait)) return;  // realtime: fly on
+  output_.status.plan_wait_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
+          .count();
+  output_.status.plan_late_steps = static_cast<int>(
+      std::lround((now_s - plan_adopt_at_s_) / params_.control_period_s));
+  plan_request_id_ = 0;
+  output_.status.planned = true;
+  output_.status.plan_status = adopted_.status;
+  output_.status.plan_ms = adopted_.solve_ms;
+  // Even a failed plan returns a finite trajectory (hold the start): fly it meanwhile. The
+  // swap hands the previous trajectory's storage to the worker (nothing freed here).
+  std::swap(trajectory_, adopted_.trajectory);
+  stage_start_s_ = plan_request_s_;
+  coasting_ = false;
+  plan_pending_ = !planner::is_usable(adopted_.status);
+  if (plan_pending_ && ++plan_attempts_ >= params_.max_plan_attempts) {
+    machine_.fail(FailureReason::PlanningFailed, now_s);
+    output_.status.stage = machine_.decision();
+  }
+}
+
+planner::StageProblem MissionController::stage_problem() const {
   const StageDecision& decision = machine_.decision();
   const UgvInputs& in = inputs_[decision.reference_ugv];
   const TransitionProcess& process = machine_.task().processes[decision.process_index];
@@ -323,22 +382,19 @@ bool MissionController::plan_stage(double now_s) {
     problem.start_position_m.head<2>() = problem.goal_position_m.head<2>();
     problem.start_velocity_m_s.head<2>().setZero();
   }
-
-  planner::PlanResult result = planner_.plan(problem);
-  output_.status.planned = true;
-  output_.status.plan_status = result.status;
-  output_.status.plan_ms = result.solve_ms;
-  // Even a failed plan returns a finite trajectory (hold the start): fly it meanwhile.
-  trajectory_ = std::move(result.trajectory);
-  stage_start_s_ = now_s;
-  plan_pending_ = !planner::is_usable(result.status);
-  return !plan_pending_;
+  return problem;
 }
 
 void MissionController::fill_reference(double t_s, sampc::HorizonReference& reference) const {
   const sampc::SampcParams& p = sampc_.params();
   for (int k = 0; k <= p.horizon_steps; ++k) {
     const double t_k = t_s + k * p.step_s;
+    if (coasting_) {
+      reference.position_m[k] = coast_position_m_ + t_k * coast_velocity_m_s_;
+      reference.velocity_m_s[k] = coast_velocity_m_s_;
+      reference.acceleration_m_s2[k].setZero();
+      continue;
+    }
     reference.position_m[k] = trajectory_.position(t_k);
     reference.velocity_m_s[k] = trajectory_.velocity(t_k);
     reference.acceleration_m_s2[k] = trajectory_.acceleration(t_k);

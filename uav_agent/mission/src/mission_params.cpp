@@ -68,6 +68,7 @@ MissionParams MissionParams::load(config::YamlReader& reader) {
   reader.optional("emergency_integral_limit_m_s2", params.emergency_integral_limit_m_s2);
   reader.optional("emergency_blind_floor_m", params.emergency_blind_floor_m);
   reader.optional("max_plan_attempts", params.max_plan_attempts);
+  reader.optional("plan_adopt_steps", params.plan_adopt_steps);
   reader.optional("integral_gain_1_s3", params.integral_gain_1_s3);
   reader.optional("integral_error_clip_m", params.integral_error_clip_m);
   reader.optional("integral_limit_m_s2", params.integral_limit_m_s2);
@@ -140,6 +141,8 @@ void MissionParams::validate() const {
                 ctx + ".emergency_blind_floor_m", "must be in [0, 10]");
   config::check(max_plan_attempts >= 1 && max_plan_attempts <= 1000, ctx + ".max_plan_attempts",
                 "must be in [1, 1000]");
+  config::check(plan_adopt_steps >= 0 && plan_adopt_steps <= 100, ctx + ".plan_adopt_steps",
+                "must be in [0, 100]");
   config::check(
       std::isfinite(integral_gain_1_s3) && integral_gain_1_s3 >= 0.0 && integral_gain_1_s3 <= 20.0,
       ctx + ".integral_gain_1_s3", "must be in [0, 20] (0 disables)");

@@ -63,7 +63,8 @@ void PlannerParams::validate() const {
   check(relative_cost_tolerance > 0.0 || relative_step_tolerance > 0.0 || max_evaluations > 0, ctx,
         "needs at least one stopping rule");
   check(max_evaluations >= 1, ctx + ".max_evaluations", "must be >= 1");
-  positive(max_solve_time_s, "max_solve_time_s");
+  check(std::isfinite(max_solve_time_s) && max_solve_time_s >= 0.0, ctx + ".max_solve_time_s",
+        "must be >= 0 (0: no wall-clock budget)");
   check(lbfgs_memory >= 1 && lbfgs_memory <= 50, ctx + ".lbfgs_memory", "must be in [1, 50]");
   check(std::isfinite(min_piece_duration_s) && min_piece_duration_s >= 0.0 &&
             min_piece_duration_s <= 1.0,

@@ -90,6 +90,12 @@ struct ClosedLoopResult {
   double mpc_p99_us = 0.0;
   double plan_median_ms = 0.0;
   double plan_max_ms = 0.0;
+  // Wall time of each whole control step (UavLoop::step: inputs, stage machine, SAMPC,
+  // and the wait for a plan due at that step; nothing excluded), and the longest such wait.
+  double step_median_us = 0.0;
+  double step_p99_us = 0.0;
+  double step_max_us = 0.0;
+  double plan_wait_max_ms = 0.0;
   int failsafe_steps = 0;  // control steps whose command was a failsafe (stale/solver)
 
   // Every control step of the run, when ClosedLoopOptions::record_step_trace.

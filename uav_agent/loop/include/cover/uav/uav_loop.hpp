@@ -24,8 +24,11 @@ struct TaskDecision {
 // Never throws after construction; without a task it commands the motors off.
 class UavLoop {
  public:
-  // Throws config::ConfigError when a parameter is invalid.
-  UavLoop(std::uint32_t uav_id, int ugv_count, ControllerConfig config);
+  // Throws config::ConfigError when a parameter is invalid. `plan_clock`: whether a step
+  // waits for a plan due at it (lockstep: simulated time, the harness and a lockstep agent)
+  // or flies on (realtime); see mission::PlanClock.
+  UavLoop(std::uint32_t uav_id, int ugv_count, ControllerConfig config,
+          mission::PlanClock plan_clock = mission::PlanClock::Lockstep);
 
   // Rejects (with the reason) a task for another UAV, an invalid one, or any task while
   // one is running.
@@ -58,6 +61,7 @@ class UavLoop {
   std::uint32_t uav_id_;
   int ugv_count_;
   ControllerConfig config_;
+  mission::PlanClock plan_clock_;
   std::optional<mission::MissionController> controller_;
   std::vector<int> task_ugvs_;          // the UGVs the task names, each once
   std::vector<double> state_stamps_s_;  // stamp of the last relative state per UGV

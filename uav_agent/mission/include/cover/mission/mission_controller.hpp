@@ -9,12 +9,12 @@
 #include "cover/mission/disturbance_observer.hpp"
 #include "cover/mission/failsafe_ladder.hpp"
 #include "cover/mission/mission_params.hpp"
+#include "cover/mission/plan_worker.hpp"
 #include "cover/mission/stage_machine.hpp"
 #include "cover/mission/task.hpp"
 #include "cover/model/relative_state.hpp"
 #include "cover/model/ugv_motion.hpp"
 #include "cover/planner/planner_params.hpp"
-#include "cover/planner/stage_planner.hpp"
 #include "cover/planner/trajectory.hpp"
 #include "cover/sampc/sampc.hpp"
 
@@ -56,9 +56,13 @@ struct ControllerStatus {
   double failsafe_input_age_s = 0.0;
   sampc::SolveStatus solve_status = sampc::SolveStatus::Ok;
   double solve_us = 0.0;  // SAMPC time of this step
-  bool planned = false;   // a stage reference was planned this step
+  bool planned = false;   // a stage reference was adopted this step (planned off-thread)
   planner::PlanStatus plan_status = planner::PlanStatus::Ok;  // of the last plan
-  double plan_ms = 0.0;                                       // of the last plan
+  double plan_ms = 0.0;                                       // of the last plan (worker)
+  // Of the last plan: how long this thread waited for it at its adoption step (lockstep; 0
+  // when it was ready), and how many steps after that step it was adopted (realtime).
+  double plan_wait_ms = 0.0;
+  int plan_late_steps = 0;
   // Reference trajectory z(s, t) now, in the reference frame (for tracking metrics).
   Eigen::Vector3d reference_position_m = Eigen::Vector3d::Zero();
   // Estimate of the unmodelled acceleration (mass, drag) fed to SAMPC, m/s^2: the
@@ -76,13 +80,21 @@ struct ControllerOutput {
 // reference at its start (eq. 23 at the transition stage, except for coni-mpc), feeds
 // SAMPC the horizon reference and returns the command with a status. Never throws after
 // construction and never outputs NaN: stale or invalid inputs give a hover command.
+// Stage plans run on a PlanWorker's thread and are flown from a fixed later step
+// (MissionParams::plan_adopt_steps, PlanClock); a step never runs the optimiser.
 // The method (a sampc::kModes name) is SAMPC's `mode`, or the process's own `method` while
 // that process is flown.
 class MissionController {
  public:
   // Throws config::ConfigError when the task or a parameter set is invalid.
+  // `clock`: what the adoption step does when its plan is not ready (wait in lockstep, fly
+  // on in realtime). `plan`: what plans (tests put a slow or gated function here; default
+  // the StagePlanner on `planner`).
   MissionController(Task task, int ugv_count, MissionParams mission, planner::PlannerParams planner,
-                    sampc::SampcParams sampc);
+                    sampc::SampcParams sampc, PlanClock clock = PlanClock::Lockstep,
+                    PlanWorker::PlanFunction plan = {});
+  MissionController(const MissionController&) = delete;
+  MissionController& operator=(const MissionController&) = delete;
 
   // Inputs for an unknown UGV index are ignored (counted in `ignored_inputs()`).
   void set_relative_state(int ugv, const RelativeMeasurement& measurement);
@@ -109,7 +121,11 @@ class MissionController {
 
   const ControllerOutput& output() const { return output_; }
   const StageMachine& stage_machine() const { return machine_; }
+  // The last adopted plan (while the reference coasts before the first, the default one).
   const planner::Trajectory& reference_trajectory() const { return trajectory_; }
+  // A plan requested and not adopted yet.
+  bool plan_in_flight() const { return plan_request_id_ != 0; }
+  PlanClock plan_clock() const { return plan_clock_; }
   // When reference_trajectory()'s t = 0 was (same clock as step's now_s).
   double reference_start_s() const { return stage_start_s_; }
   int ignored_inputs() const { return ignored_inputs_; }
@@ -128,7 +144,11 @@ class MissionController {
 
   InputHealth input_health(int ugv, double now_s) const;
   bool emergency_step(int reference, double now_s);
-  bool plan_stage(double now_s);
+  void need_plan();
+  void advance_plan(double now_s);
+  void request_plan(double now_s);
+  void adopt_plan(double now_s);
+  planner::StageProblem stage_problem() const;
   void fill_reference(double t_s, sampc::HorizonReference& reference) const;
   void command_from_sampc(const UgvInputs& inputs, double now_s);
   bool flies_radial_approach() const;
@@ -143,7 +163,6 @@ class MissionController {
   MissionParams params_;
   int ugv_count_;
   StageMachine machine_;
-  planner::StagePlanner planner_;
   sampc::Sampc sampc_;
   // The method of each process: its own, else SAMPC's configured mode.
   std::vector<sampc::Mode> process_modes_;
@@ -151,8 +170,22 @@ class MissionController {
   planner::Trajectory trajectory_;
   double stage_start_s_ = 0.0;
   int last_reference_ugv_ = -1;
-  bool plan_pending_ = false;
+  bool plan_pending_ = false;  // the stage has no usable plan yet
   int plan_attempts_ = 0;
+  // Off-thread planning: the request in flight (0: none), its time origin and the time of
+  // its adoption step; the slot its result is swapped into (no allocation here).
+  PlanClock plan_clock_;
+  std::uint64_t plan_request_id_ = 0;
+  double plan_request_s_ = 0.0;
+  double plan_adopt_at_s_ = 0.0;
+  planner::PlanResult adopted_;
+  // Until a new stage's plan is adopted the reference coasts from the state at its request
+  // (the plan's own first-order start): the previous reference ended at the previous
+  // stage's point, often in another frame.
+  bool coast_on_request_ = false;
+  bool coasting_ = false;
+  Eigen::Vector3d coast_position_m_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d coast_velocity_m_s_ = Eigen::Vector3d::Zero();
   bool holding_ = false;  // mission failed or aborted: hold the position where it ended
   double abort_time_s_ = 0.0;
   bool descending_ = false;          // the abort's landing descent is under way
@@ -169,6 +202,8 @@ class MissionController {
   FailsafeLadder ladder_;
   sampc::SampcInput sampc_input_;
   ControllerOutput output_;
+  // Last: its thread starts once everything it may be handed exists, and it is joined first.
+  PlanWorker plan_worker_;
 };
 
 }  // namespace cover::mission

@@ -68,6 +68,12 @@ struct MissionParams {
   // A stage whose reference cannot be planned after this many attempts (one per control
   // step) fails the mission (PlanningFailed).
   int max_plan_attempts = 10;
+  // Plans run off the control thread: one requested at control step k is flown from step
+  // k + plan_adopt_steps (its time origin is step k); until then the reference coasts at
+  // the UAV's velocity. A fixed step, not "when ready", so that a lockstep run does not
+  // depend on the machine's speed (PlanClock). In [0, 100]; 0 waits for the plan in the
+  // step that asks for it (the synchronous behaviour, in lockstep).
+  int plan_adopt_steps = 1;
   // Offset-free tracking: SAMPC's model knows neither the true mass nor drag, so a hover
   // sags and a moving frame drags the UAV off its point. An integral of the tracking error
   // estimates that missing acceleration d and SAMPC sees it through its UGV specific-force

@@ -27,7 +27,9 @@ struct PlannerParams {
   double relative_cost_tolerance = 1.0e-5;
   double relative_step_tolerance = 1.0e-5;
   int max_evaluations = 400;
-  double max_solve_time_s = 0.05;
+  // 0: none. A plan's work is bounded by max_evaluations: a wall-clock budget would make a
+  // plan, and so a lockstep run, depend on the machine's load.
+  double max_solve_time_s = 0.0;
   int lbfgs_memory = 8;
   // Floor added to every piece duration by the time map: keeps MINCO's matrix (powers of T
   // up to T^5) well conditioned when the optimum would collapse a piece (tiny stages).
