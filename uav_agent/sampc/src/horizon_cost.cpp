@@ -46,11 +46,17 @@ double NodeCost::evaluate(const model::UavState& x, const model::Input& u, model
   }
   if (grad_u != nullptr) *grad_u += 2.0 * input_weight.cwiseProduct(input_error);
 
-  return position_weight.dot(position_error.cwiseAbs2()) +
-         velocity_weight.dot(velocity_error.cwiseAbs2()) +
-         attitude_weight.dot(attitude_error.cwiseAbs2()) +
-         squared_distance_weight * distance_error * distance_error +
-         input_weight.dot(input_error.cwiseAbs2());
+  double value = position_weight.dot(position_error.cwiseAbs2()) +
+                 velocity_weight.dot(velocity_error.cwiseAbs2()) +
+                 attitude_weight.dot(attitude_error.cwiseAbs2()) +
+                 squared_distance_weight * distance_error * distance_error +
+                 input_weight.dot(input_error.cwiseAbs2());
+  if ((input_rate_weight.array() > 0.0).any()) {
+    const model::Input change = u - previous_input;
+    if (grad_u != nullptr) *grad_u += 2.0 * input_rate_weight.cwiseProduct(change);
+    value += input_rate_weight.dot(change.cwiseAbs2());
+  }
+  return value;
 }
 
 namespace {
@@ -326,6 +332,8 @@ void build_horizon_cost(const SampcParams& params, const SampcInput& input, doub
   terminal.attitude_weight *= params.terminal_weight_scale;
   terminal.squared_distance_weight *= params.terminal_weight_scale;
   terminal.input_weight.setZero();
+  // The input-rate term is the caller's (Sampc knows the previous command): none by default.
+  for (int k = 0; k <= params.horizon_steps; ++k) cost.nodes[k].input_rate_weight.setZero();
 }
 
 }  // namespace cover::sampc

@@ -140,6 +140,12 @@ struct Sampc::Workspace {
     return std::min(1.0, smoothing_left_s / params.switch_smoothing_s);
   }
 
+  // The command leaves the solver: the next control step's input-rate term is anchored here.
+  SampcOutput hand_out(const SampcOutput& out) {
+    if (!is_error(out.status)) last_command = out.command;
+    return out;
+  }
+
   // Node 0's input-rate weight: after a frame switch (SampcParams::switch_smoothing_s), and
   // at an xy-z-ref transition (SampcParams::transition_input_rate_weight), the larger.
   model::Input input_rate_weight() const {
@@ -148,18 +154,6 @@ struct Sampc::Workspace {
       weight = weight.cwiseMax(params.transition_input_rate_weight);
     }
     return weight;
-  }
-
-  // Node 0's input-rate term (input_rate_weight() * (u0 - previous command)^2): adds its
-  // gradient and weight, returns its cost.
-  double add_input_rate_cost(const model::Input& u0, model::Input& grad_u,
-                             model::Input& input_weight) const {
-    const model::Input weight = input_rate_weight();
-    if (!(weight.array() > 0.0).any()) return 0.0;
-    const model::Input change = u0 - last_command;
-    grad_u += 2.0 * weight.cwiseProduct(change);
-    input_weight += weight;
-    return weight.dot(change.cwiseAbs2());
   }
 
   // Gauss-Newton model of the cost and linearised dynamics at the current plan.
@@ -194,10 +188,8 @@ struct Sampc::Workspace {
             4.0 * c.squared_distance_weight * distance_residual;
       }
       if (terminal) break;
-      model::Input input_weight = c.input_weight;
-      if (k == 0) cost_value += add_input_rate_cost(uk, grad_u, input_weight);
       node.r = grad_u;
-      node.R = (2.0 * input_weight).asDiagonal();
+      node.R = (2.0 * (c.input_weight + c.input_rate_weight)).asDiagonal();
       node.S.setZero();
       node.lower = lower - u[k];
       node.upper = upper - u[k];
@@ -234,6 +226,12 @@ struct Sampc::Workspace {
     }
     build_horizon_cost(params, input, held_yaw_rad, cost, previous_yaw_track,
                        params.control_period_s, x.data(), intercept_lead_fraction());
+    // The anchor is the command handed out at the last control step, not the previous SQP
+    // iterate: anchored at the iterate, solve()'s iterations (cold start, tests) were a
+    // proximal-point method on u0 whose converged plan no longer paid for leaving the last
+    // command at all. In HorizonCost, so the reference solver sees the term too.
+    cost.nodes[0].input_rate_weight = input_rate_weight();
+    cost.nodes[0].previous_input = last_command;
     linearise();
     qp.prepare(N());
     prepared = true;
@@ -299,7 +297,6 @@ struct Sampc::Workspace {
       out.feedback_us = elapsed_us(start);
       return out;
     }
-    last_command = u[0];
     SampcOutput out;
     out.command = u[0];
     out.status = qp_result.converged ? SolveStatus::Ok : SolveStatus::QpNotConverged;
@@ -329,7 +326,7 @@ void Sampc::prepare(const SampcInput& predicted_input) {
 }
 
 SampcOutput Sampc::feedback(const SampcInput& input) {
-  return ws_->feedback(input);
+  return ws_->hand_out(ws_->feedback(input));
 }
 
 SampcOutput Sampc::solve(const SampcInput& input) {
@@ -363,7 +360,7 @@ SampcOutput Sampc::solve(const SampcInput& input) {
     out.status = SolveStatus::SqpNotConverged;
     out.reason = "SQP hit max_sqp_iterations before sqp_step_tolerance";
   }
-  return out;
+  return ws.hand_out(out);
 }
 
 void Sampc::reset() {

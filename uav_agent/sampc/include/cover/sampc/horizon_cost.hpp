@@ -37,6 +37,12 @@ struct NodeCost {
   double squared_distance_weight = 0.0;
   model::Input input_ref = model::hover_input();
   model::Input input_weight = model::Input::Zero();
+  // Node 0 only (zero elsewhere): + sum_i wr_i (u - u_prev)_i^2, what leaving the command
+  // handed out at the previous control step costs (after a frame switch, throughout an
+  // xy-z-ref transition). Part of the node's cost so that HorizonCost is the whole
+  // objective: the NLopt reference (reference_solver.hpp) solves the same problem as SAMPC.
+  model::Input input_rate_weight = model::Input::Zero();
+  model::Input previous_input = model::hover_input();
 
   // d e / d q = I - q_ref q_ref' (constant: e is linear in q).
   Eigen::Matrix4d attitude_error_jacobian() const;
