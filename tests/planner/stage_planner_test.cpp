@@ -153,7 +153,7 @@ TEST_F(StagePlannerTest, NonFiniteOrAbsurdInputIsRejectedWithAFiniteHold) {
   for (std::size_t k = 0; k < bad.size(); ++k) {
     const PlanResult result = planner.plan(bad[k]);
     EXPECT_EQ(result.status, PlanStatus::InvalidInput) << "case " << k;
-    EXPECT_FALSE(result.reason.empty()) << "case " << k;
+    EXPECT_STRNE(result.reason, "") << "case " << k;
     EXPECT_TRUE(result.trajectory.is_finite()) << "case " << k;
     EXPECT_TRUE(result.trajectory.position(0.5).allFinite()) << "case " << k;
   }
@@ -168,8 +168,8 @@ TEST(StagePlanner, OptimiserStoppedEarlyStillGivesAUsableTrajectory) {
   const auto problem = make_problem({6.0, -2.0, 1.0}, {1.0, 0.5, 0.0}, {0.0, 0.0, 1.5});
   const PlanResult result = planner.plan(problem);
   EXPECT_EQ(result.status, PlanStatus::EarlyStop) << result.reason;
-  // NLopt's L-BFGS checks the budget between iterations, so it may overshoot by a few.
-  EXPECT_LT(result.iterations, 20);
+  // The budget is checked before every evaluation.
+  EXPECT_LE(result.iterations, 3);
   ASSERT_TRUE(result.trajectory.is_finite());
   expect_boundaries_met(measure_trajectory(result.trajectory, problem));
 }

@@ -18,6 +18,7 @@ void MinimumJerkMinco::set_conditions(const Eigen::Matrix3d& head_pva,
   durations_.setOnes(pieces);
   system_.resize(6 * pieces, 6, 6);
   coefficients_.setZero(6 * pieces, 3);
+  pieces_buffer_.resize(static_cast<std::size_t>(pieces));
 }
 
 void MinimumJerkMinco::fill_matrix() {
@@ -147,6 +148,18 @@ Trajectory MinimumJerkMinco::trajectory() const {
     pieces[static_cast<std::size_t>(i)].coefficients = coefficients_.middleRows<6>(6 * i);
   }
   return Trajectory(std::move(pieces));
+}
+
+}  // namespace cover::planner
+
+namespace cover::planner {
+
+void MinimumJerkMinco::write_trajectory(Trajectory& out) {
+  for (int i = 0; i < pieces_; ++i) {
+    pieces_buffer_[static_cast<std::size_t>(i)].duration_s = durations_(i);
+    pieces_buffer_[static_cast<std::size_t>(i)].coefficients = coefficients_.middleRows<6>(6 * i);
+  }
+  out.assign(pieces_buffer_.data(), pieces_);
 }
 
 }  // namespace cover::planner

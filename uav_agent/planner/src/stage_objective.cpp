@@ -219,4 +219,10 @@ Trajectory StageObjective::trajectory(const double* x) {
   return minco_.trajectory();
 }
 
+void StageObjective::write_trajectory(const double* x, Trajectory& out) {
+  decode(x);
+  minco_.set_parameters(waypoints_, durations_);
+  minco_.write_trajectory(out);
+}
+
 }  // namespace cover::planner

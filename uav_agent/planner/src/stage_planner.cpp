@@ -1,12 +1,11 @@
 #include "cover/planner/stage_planner.hpp"
 
-#include <nlopt.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
 
+#include "cover/planner/lbfgs.hpp"
 #include "cover/planner/stage_objective.hpp"
 
 namespace cover::planner {
@@ -15,16 +14,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Restarts of L-BFGS after a line-search failure, within the same evaluation budget.
-constexpr int kMaxRestarts = 2;
-
 double elapsed_ms(Clock::time_point since) {
   return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
 }
-
-struct NloptDeleter {
-  void operator()(nlopt_opt opt) const { nlopt_destroy(opt); }
-};
 
 // Peak speed and acceleration of the rest-to-rest minimum-jerk profile over distance D in
 // time T are 1.875 D/T and 5.774 D/T^2: the shortest T that respects both is a safe guess.
@@ -50,41 +42,45 @@ double min_jerk_fraction(double u) {
 
 }  // namespace
 
+// Everything one plan needs, sized at construction: plan() allocates nothing.
 struct StagePlanner::Optimiser {
   explicit Optimiser(const PlannerParams& params)
       : objective(params),
-        opt(nlopt_create(NLOPT_LD_LBFGS, static_cast<unsigned>(objective.dimension()))),
-        x(static_cast<std::size_t>(objective.dimension()), 0.0),
-        gradient(x.size(), 0.0) {}
+        x(objective.dimension()),
+        guess(objective.dimension()),
+        gradient(objective.dimension()),
+        durations(params.pieces),
+        waypoints(3, params.pieces - 1) {
+    lbfgs.resize(objective.dimension(), params.lbfgs_memory);
+    settings.memory = params.lbfgs_memory;
+    settings.relative_cost_tolerance = params.relative_cost_tolerance;
+    settings.relative_step_tolerance = params.relative_step_tolerance;
+    settings.max_evaluations = params.max_evaluations;
+    settings.max_solve_time_s = params.max_solve_time_s;
+  }
 
-  static double callback(unsigned n, const double* x, double* gradient, void* data) {
+  static double callback(const double* x, double* gradient, void* data) {
     return static_cast<Optimiser*>(data)->objective.evaluate(x, gradient);
   }
 
   StageObjective objective;
-  std::unique_ptr<nlopt_opt_s, NloptDeleter> opt;
-  std::vector<double> x;
-  std::vector<double> gradient;
+  Lbfgs lbfgs;
+  LbfgsSettings settings;
+  Eigen::VectorXd x, guess, gradient;
+  Eigen::VectorXd durations;
+  Eigen::Matrix3Xd waypoints;
 };
 
 StagePlanner::StagePlanner(PlannerParams params) : params_(std::move(params)) {
   params_.validate();
   optimiser_ = std::make_unique<Optimiser>(params_);
-  nlopt_opt opt = optimiser_->opt.get();
-  if (opt == nullptr) throw config::ConfigError("planner: NLopt could not create LD_LBFGS");
-  nlopt_set_min_objective(opt, &Optimiser::callback, optimiser_.get());
-  nlopt_set_ftol_rel(opt, params_.relative_cost_tolerance);
-  nlopt_set_xtol_rel(opt, params_.relative_step_tolerance);
-  nlopt_set_maxeval(opt, params_.max_evaluations);
-  nlopt_set_maxtime(opt, params_.max_solve_time_s);
-  nlopt_set_vector_storage(opt, static_cast<unsigned>(params_.lbfgs_memory));
 }
 
 StagePlanner::~StagePlanner() = default;
 StagePlanner::StagePlanner(StagePlanner&&) noexcept = default;
 StagePlanner& StagePlanner::operator=(StagePlanner&&) noexcept = default;
 
-std::string StagePlanner::check_problem(const StageProblem& problem) const {
+const char* StagePlanner::problem_error(const StageProblem& problem) const {
   const auto bad_vector = [](const Eigen::Vector3d& v, double bound) {
     return !v.allFinite() || v.cwiseAbs().maxCoeff() > bound;
   };
@@ -107,40 +103,86 @@ std::string StagePlanner::check_problem(const StageProblem& problem) const {
     return "start acceleration is not finite";
   if (bad_vector(initial_velocity(problem), params_.max_abs_speed_m_s))
     return "eq. 23 initial velocity v + Omega x p exceeds max_abs_speed_m_s";
-  return {};
+  return nullptr;
+}
+
+std::string StagePlanner::check_problem(const StageProblem& problem) const {
+  const char* error = problem_error(problem);
+  return error == nullptr ? std::string() : std::string(error);
 }
 
 PlanResult StagePlanner::plan(const StageProblem& problem) noexcept {
+  PlanResult result;
+  plan(problem, result);
+  return result;
+}
+
+void StagePlanner::plan(const StageProblem& problem, PlanResult& result) noexcept {
   const auto started = Clock::now();
   try {
-    PlanResult result = plan_or_throw(problem);
-    result.solve_ms = elapsed_ms(started);
-    return result;
+    plan_or_throw(problem, result);
   } catch (...) {
-    // Only allocation failure can get here; hold the start if it is sane.
-    PlanResult result;
+    // Only allocation failure (a first trajectory into `result`) can get here; hold the
+    // start if it is sane.
     result.status = PlanStatus::Failed;
     result.reason = "internal error (allocation failure)";
     const bool start_ok = problem.start_position_m.allFinite();
-    result.trajectory =
-        Trajectory::hold(start_ok ? problem.start_position_m : Eigen::Vector3d::Zero());
-    result.solve_ms = elapsed_ms(started);
-    return result;
+    try {
+      result.trajectory.assign_hold(start_ok ? problem.start_position_m : Eigen::Vector3d::Zero());
+    } catch (...) {
+      result.trajectory = Trajectory();  // keeps its one piece: holds the origin
+    }
   }
+  result.solve_ms = elapsed_ms(started);
 }
 
-PlanResult StagePlanner::plan_or_throw(const StageProblem& problem) {
-  PlanResult result;
-  if (std::string reason = check_problem(problem); !reason.empty()) {
+namespace {
+
+// Why L-BFGS stopped, as a plan status and reason.
+void classify(LbfgsResult why, bool improved, PlanResult& result) {
+  switch (why) {
+    case LbfgsResult::CostConverged:
+    case LbfgsResult::StepConverged:
+      result.status = PlanStatus::Ok;
+      result.reason = "converged";
+      return;
+    case LbfgsResult::RoundoffLimited:
+      // No step along the search direction lowers the cost in floating point: at the
+      // optimum for all practical purposes.
+      result.status = PlanStatus::Ok;
+      result.reason = "converged to rounding precision";
+      return;
+    case LbfgsResult::MaxEvaluations:
+      result.status = PlanStatus::EarlyStop;
+      result.reason = "stopped at max_evaluations";
+      return;
+    case LbfgsResult::MaxTime:
+      result.status = PlanStatus::EarlyStop;
+      result.reason = "stopped at max_solve_time_s";
+      return;
+    case LbfgsResult::LineSearchFailed:
+      break;
+  }
+  result.status = improved ? PlanStatus::EarlyStop : PlanStatus::Failed;
+  result.reason = improved
+                      ? "L-BFGS broke down; keeping the best point it evaluated"
+                      : "L-BFGS broke down at the initial guess; flying the safe initial guess";
+}
+
+}  // namespace
+
+void StagePlanner::plan_or_throw(const StageProblem& problem, PlanResult& result) {
+  result.iterations = 0;
+  result.initial_velocity_m_s.setZero();
+  if (const char* error = problem_error(problem)) {
     result.status = PlanStatus::InvalidInput;
-    result.reason = std::move(reason);
+    result.reason = error;
     // Holding the start is the least surprising reference; with no finite start, the
     // origin of the frame (the UGV itself would be wrong to fly to, so callers must
     // treat InvalidInput as "do not follow" and keep hovering).
     const bool start_ok = problem.start_position_m.allFinite();
-    result.trajectory =
-        Trajectory::hold(start_ok ? problem.start_position_m : Eigen::Vector3d::Zero());
-    return result;
+    result.trajectory.assign_hold(start_ok ? problem.start_position_m : Eigen::Vector3d::Zero());
+    return;
   }
 
   const Eigen::Vector3d start = problem.start_position_m;
@@ -157,102 +199,63 @@ PlanResult StagePlanner::plan_or_throw(const StageProblem& problem) {
       a0.isZero()) {
     result.status = PlanStatus::Ok;
     result.reason = "already at the goal and at rest: hold";
-    result.trajectory = Trajectory::hold(start);
-    return result;
+    result.trajectory.assign_hold(start);
+    return;
   }
 
   // Initial guess (paper: uniform front-end path between p0 and p_t): the rest-to-rest
   // minimum-jerk profile with a safe duration, plus time to absorb v0, bent by v0 so the
   // first piece agrees with the start velocity. Also the fallback if L-BFGS breaks down.
+  Optimiser& optimiser = *optimiser_;
   const int pieces = params_.pieces;
   const double stop_time = 2.0 * v0.norm() / am;
   const double total_time = std::max(rest_to_rest_duration(distance, vm, am) + stop_time, 1.0e-2);
-  Eigen::VectorXd durations = Eigen::VectorXd::Constant(pieces, total_time / pieces);
-  Eigen::Matrix3Xd waypoints(3, pieces - 1);
+  optimiser.durations.setConstant(total_time / pieces);
   for (int i = 1; i < pieces; ++i) {
     const double u = static_cast<double>(i) / pieces;
     const double t = u * total_time;
-    waypoints.col(i - 1) = start + min_jerk_fraction(u) * displacement +
-                           braking_offset(v0, 0.5 * am, t) * (1.0 - u) * (1.0 - u);
+    optimiser.waypoints.col(i - 1) = start + min_jerk_fraction(u) * displacement +
+                                     braking_offset(v0, 0.5 * am, t) * (1.0 - u) * (1.0 - u);
   }
 
-  Optimiser& optimiser = *optimiser_;
   StageObjective& objective = optimiser.objective;
   objective.set_problem(start, v0, a0, goal, vm, am);
-  objective.encode(waypoints, durations, optimiser.x.data());
-  const std::vector<double> guess = optimiser.x;
-  std::vector<double>& gradient = optimiser.gradient;
-  objective.evaluate(guess.data(), gradient.data());
-  const double gradient_norm =
-      Eigen::Map<const Eigen::VectorXd>(gradient.data(), objective.dimension()).norm();
+  objective.encode(optimiser.waypoints, optimiser.durations, optimiser.guess.data());
+  // Scale the cost to a unit gradient at the guess: L-BFGS's first step is unit length.
+  const double guess_unscaled =
+      objective.evaluate(optimiser.guess.data(), optimiser.gradient.data());
+  const double gradient_norm = optimiser.gradient.norm();
   if (std::isfinite(gradient_norm) && gradient_norm > 1.0) {
     objective.set_cost_scale(1.0 / gradient_norm);
   }
-  const double guess_cost = objective.evaluate(guess.data(), nullptr);
+  const double guess_cost = guess_unscaled * objective.cost_scale();
   objective.reset_tracking();
 
-  // Luksan's line search occasionally gives up (NLOPT_FAILURE) on long, badly scaled
-  // stages; restarting from the best point (fresh curvature memory) usually finishes.
-  nlopt_result code = NLOPT_FAILURE;
-  for (int attempt = 0; attempt <= kMaxRestarts; ++attempt) {
-    const int remaining = params_.max_evaluations - objective.evaluations();
-    if (remaining <= 0) break;
-    if (attempt > 0) {
-      std::copy(objective.best_x().data(), objective.best_x().data() + objective.dimension(),
-                optimiser.x.begin());
-    }
-    nlopt_set_maxeval(optimiser.opt.get(), remaining);
-    double final_cost = 0.0;
-    code = nlopt_optimize(optimiser.opt.get(), optimiser.x.data(), &final_cost);
-    if (code != NLOPT_FAILURE) break;
-  }
-  result.iterations = objective.evaluations();
+  optimiser.x = optimiser.guess;
+  double final_cost = 0.0;
+  int evaluations = 0;
+  const LbfgsResult why =
+      optimiser.lbfgs.minimize(&Optimiser::callback, &optimiser, optimiser.settings,
+                               optimiser.x.data(), final_cost, evaluations);
+  result.iterations = evaluations;
 
-  // L-BFGS may stop on a worse trial point; the best point it evaluated is what we keep.
+  // The last accepted iterate is the best point L-BFGS evaluated (every accepted step
+  // lowers the cost), but the objective tracks the best anyway.
   const bool have_best = StageObjective::is_usable_cost(objective.best_cost());
-  const double* best = have_best ? objective.best_x().data() : guess.data();
-  switch (code) {
-    case NLOPT_SUCCESS:
-    case NLOPT_STOPVAL_REACHED:
-    case NLOPT_FTOL_REACHED:
-    case NLOPT_XTOL_REACHED:
-      result.status = PlanStatus::Ok;
-      result.reason = "converged";
-      break;
-    case NLOPT_ROUNDOFF_LIMITED:
-      // Luksan's L-BFGS reports this when the line search cannot improve in floating
-      // point: at the optimum for all practical purposes.
-      result.status = PlanStatus::Ok;
-      result.reason = "converged to rounding precision";
-      break;
-    case NLOPT_MAXEVAL_REACHED:
-    case NLOPT_MAXTIME_REACHED:
-      result.status = PlanStatus::EarlyStop;
-      result.reason = code == NLOPT_MAXEVAL_REACHED ? "stopped at max_evaluations"
-                                                    : "stopped at max_solve_time_s";
-      break;
-    default:
-      result.status = have_best && objective.best_cost() < guess_cost ? PlanStatus::EarlyStop
-                                                                      : PlanStatus::Failed;
-      // Typically NLOPT_FAILURE: the line search gave up on a badly scaled (long) stage.
-      result.reason = std::string("L-BFGS gave up (NLopt ") + nlopt_result_to_string(code) +
-                      "); keeping the best point it evaluated";
-      break;
-  }
+  const double* best = have_best ? objective.best_x().data() : optimiser.guess.data();
+  classify(why, have_best && objective.best_cost() < guess_cost, result);
 
   if (result.status != PlanStatus::Failed) {
-    result.trajectory = objective.trajectory(best);
-    if (result.trajectory.is_finite()) return result;
+    objective.write_trajectory(best, result.trajectory);
+    if (result.trajectory.is_finite()) return;
     result.status = PlanStatus::Failed;
-    result.reason = "optimised trajectory was not finite";
+    result.reason = "optimised trajectory was not finite; flying the safe initial guess";
   }
-  result.reason += "; flying the safe initial guess";
-  result.trajectory = objective.trajectory(guess.data());
+  objective.write_trajectory(optimiser.guess.data(), result.trajectory);
   if (!result.trajectory.is_finite()) {
     result.reason = "initial guess was not finite; holding the start";
-    result.trajectory = Trajectory::hold(start);
+    result.trajectory.assign_hold(start);
   }
-  return result;
 }
 
 }  // namespace cover::planner

@@ -38,6 +38,23 @@ Trajectory Trajectory::hold(const Eigen::Vector3d& point_m) {
   return Trajectory(std::vector<TrajectoryPiece>{piece});
 }
 
+void Trajectory::assign(const TrajectoryPiece* pieces, int count) {
+  pieces_.assign(pieces, pieces + std::max(count, 0));
+  if (pieces_.empty()) pieces_.push_back(TrajectoryPiece{});
+  piece_start_s_.clear();
+  duration_s_ = 0.0;
+  for (const auto& piece : pieces_) {
+    piece_start_s_.push_back(duration_s_);
+    duration_s_ += piece.duration_s;
+  }
+}
+
+void Trajectory::assign_hold(const Eigen::Vector3d& point_m) {
+  TrajectoryPiece piece;
+  piece.coefficients.row(0) = point_m.transpose();
+  assign(&piece, 1);
+}
+
 Eigen::Vector3d Trajectory::derivative(double t_s, int order) const {
   if (order < 0 || order > 5) return Eigen::Vector3d::Zero();
   const double t = std::isnan(t_s) ? 0.0 : std::clamp(t_s, 0.0, duration_s_);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "cover/planner/banded_system.hpp"
 #include "cover/planner/trajectory.hpp"
@@ -39,6 +40,8 @@ class MinimumJerkMinco {
                           Eigen::VectorXd& gradient_by_durations) const;
 
   Trajectory trajectory() const;
+  // The same into `out`, reusing its storage (no allocation once it held M pieces).
+  void write_trajectory(Trajectory& out);
 
  private:
   void fill_matrix();
@@ -49,6 +52,7 @@ class MinimumJerkMinco {
   Eigen::VectorXd durations_;
   BandedSystem system_;
   Coefficients coefficients_;
+  std::vector<TrajectoryPiece> pieces_buffer_;  // M pieces, for write_trajectory
 };
 
 }  // namespace cover::planner

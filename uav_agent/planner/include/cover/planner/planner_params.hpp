@@ -23,7 +23,8 @@ struct PlannerParams {
   // Initial speed above vm (unavoidable at t = 0): the speed limit starts at |v0| and
   // comes down to vm at this fraction of am, so the reference must slow down, not jump.
   double overspeed_decel_fraction = 0.5;
-  // NLopt LD_LBFGS stopping rules.
+  // L-BFGS stopping rules (lbfgs.hpp): relative cost decrease, relative step per variable,
+  // evaluation and wall-clock budgets, curvature pairs kept.
   double relative_cost_tolerance = 1.0e-5;
   double relative_step_tolerance = 1.0e-5;
   int max_evaluations = 400;

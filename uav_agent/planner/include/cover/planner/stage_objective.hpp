@@ -34,17 +34,19 @@ class StageObjective {
   int pieces() const { return pieces_; }
   void encode(const Eigen::Matrix3Xd& waypoints, const Eigen::VectorXd& durations, double* x) const;
 
-  // Multiplies cost and gradient. NLopt's L-BFGS takes a first step of length |gradient|
-  // and backtracks only a few times, so the planner scales the cost to a unit gradient at
-  // the initial guess; the minimiser is unchanged.
+  // Multiplies cost and gradient. The planner scales the cost to a unit gradient at the
+  // initial guess, so that the tolerances are relative to the guess and L-BFGS's first
+  // (unit-length) step is well sized; the minimiser is unchanged.
   void set_cost_scale(double scale) { cost_scale_ = scale; }
   double cost_scale() const { return cost_scale_; }
 
   // Cost at x (times the cost scale); writes the gradient when `gradient` is not null. Tracks the
   // best x seen.
   double evaluate(const double* x, double* gradient);
-  // The trajectory at x (allocates: call once per plan, not in the loop).
+  // The trajectory at x (allocates: for tests and tools).
   Trajectory trajectory(const double* x);
+  // The trajectory at x into `out`, reusing its storage.
+  void write_trajectory(const double* x, Trajectory& out);
 
   int evaluations() const { return evaluations_; }
   double best_cost() const { return best_cost_; }

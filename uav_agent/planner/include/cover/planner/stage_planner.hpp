@@ -13,20 +13,22 @@ namespace cover::planner {
 
 struct PlanResult {
   PlanStatus status = PlanStatus::Failed;
-  std::string reason;
+  const char* reason = "";  // static string: why this status
   // Always finite and usable as a reference, whatever the status (see PlanStatus).
   Trajectory trajectory;
   // The v0(s) actually used (after eq. 23 at the transition stage).
   Eigen::Vector3d initial_velocity_m_s = Eigen::Vector3d::Zero();
-  // Cost evaluations (value + gradient) spent by L-BFGS; NLopt reports no iteration count.
+  // Cost evaluations (value + gradient) spent by L-BFGS, the initial guess's included.
   int iterations = 0;
   double solve_ms = 0.0;
 };
 
 // Plans one stage (paper sec. 4.2): MINCO minimum jerk with free waypoints and durations,
-// cost integral ||jerk||^2 + rho T + velocity/acceleration penalties, L-BFGS (NLopt).
-// Start (p0, v0, 0), end (p_t, 0, 0). plan() never throws and never returns NaN.
-// One planner owns one optimiser instance: not thread-safe, reuse it across stages.
+// cost integral ||jerk||^2 + rho T + velocity/acceleration penalties, L-BFGS (lbfgs.hpp).
+// Start (p0, v0, a0), end (p_t, 0, 0). plan() never throws and never returns NaN.
+// One planner owns one workspace, sized at construction: not thread-safe, reuse it across
+// stages. plan(problem, result) allocates nothing once `result` has held a plan (its
+// trajectory's storage is reused); plan(problem) returns a fresh result.
 class StagePlanner {
  public:
   // Throws config::ConfigError when params are invalid (at construction, not in the loop).
@@ -38,14 +40,17 @@ class StagePlanner {
   StagePlanner& operator=(const StagePlanner&) = delete;
 
   PlanResult plan(const StageProblem& problem) noexcept;
+  void plan(const StageProblem& problem, PlanResult& result) noexcept;
   const PlannerParams& params() const { return params_; }
 
   // Empty when the problem is acceptable, else the reason it is not.
   std::string check_problem(const StageProblem& problem) const;
+  // The same as a static string, nullptr when acceptable.
+  const char* problem_error(const StageProblem& problem) const;
 
  private:
   struct Optimiser;
-  PlanResult plan_or_throw(const StageProblem& problem);
+  void plan_or_throw(const StageProblem& problem, PlanResult& result);
 
   PlannerParams params_;
   std::unique_ptr<Optimiser> optimiser_;

@@ -20,6 +20,12 @@ class Trajectory {
   explicit Trajectory(std::vector<TrajectoryPiece> pieces);
   static Trajectory hold(const Eigen::Vector3d& point_m);
 
+  // Replace the pieces in place (count >= 1), or hold a point: the storage is reused, so a
+  // planner refilling the same trajectory every stage allocates nothing once it has held
+  // as many pieces.
+  void assign(const TrajectoryPiece* pieces, int count);
+  void assign_hold(const Eigen::Vector3d& point_m);
+
   double duration_s() const { return duration_s_; }
   int piece_count() const { return static_cast<int>(pieces_.size()); }
   const std::vector<TrajectoryPiece>& pieces() const { return pieces_; }
