@@ -36,6 +36,8 @@ nlohmann::json summary_json(const ClosedLoopResult& r) {
                                              : std::nan(""))},
           {"mpc_median_us", r.mpc_median_us},
           {"mpc_p99_us", r.mpc_p99_us},
+          {"mpc_cpu_median_us", r.mpc_cpu_median_us},
+          {"mpc_cpu_p99_us", r.mpc_cpu_p99_us},
           {"plan_median_ms", r.plan_median_ms},
           {"plan_max_ms", r.plan_max_ms},
           {"step_median_us", r.step_median_us},
@@ -73,8 +75,9 @@ std::string readable_summary(const ClosedLoopResult& r) {
                                     : std::nan(""));
   add("  task duration     %.1f s simulated, %.2f s wall, %.0fx real time\n", r.duration_s,
       r.wall_time_s, r.realtime_factor);
-  add("  MPC step          median %.0f us, p99 %.0f us; stage plan median %.1f ms\n",
-      r.mpc_median_us, r.mpc_p99_us, r.plan_median_ms);
+  add("  MPC step          median %.0f us, p99 %.0f us (thread CPU %.0f / %.0f us); stage plan "
+      "median %.1f ms\n",
+      r.mpc_median_us, r.mpc_p99_us, r.mpc_cpu_median_us, r.mpc_cpu_p99_us, r.plan_median_ms);
   add("  control step      median %.0f us, p99 %.0f us, max %.0f us (wall, whole step); "
       "longest wait for a plan %.2f ms\n",
       r.step_median_us, r.step_p99_us, r.step_max_us, r.plan_wait_max_ms);

@@ -22,6 +22,7 @@ RunRecorder::RunRecorder(const Scenario& scenario, const mission::Task& task,
     : scenario_(scenario), task_(task), mission_(mission), options_(options) {
   result_.ugv_paths.resize(scenario.world.ugvs.size());
   mpc_us_.reserve(static_cast<std::size_t>(scenario.max_duration_s * options.control_rate_hz) + 1);
+  mpc_cpu_us_.reserve(mpc_us_.capacity());
 }
 
 void RunRecorder::record(const mission::ControllerStatus& status,
@@ -29,7 +30,10 @@ void RunRecorder::record(const mission::ControllerStatus& status,
   const WorldState& ws = world.state();
   track_transitions(status, command, ws);
   record_tracking(status, world);
-  if (status.solve_us > 0.0) mpc_us_.push_back(status.solve_us);
+  if (status.solve_us > 0.0) {
+    mpc_us_.push_back(status.solve_us);
+    mpc_cpu_us_.push_back(status.solve_cpu_us);
+  }
   if (status.planned) plan_ms_.push_back(status.plan_ms);
   if (status.failsafe == mission::Failsafe::EmergencyHover ||
       status.failsafe == mission::Failsafe::EmergencyLanding ||
@@ -248,6 +252,8 @@ ClosedLoopResult RunRecorder::finish(const World& world,
   result_.success = task_succeeded(world);
   result_.mpc_median_us = percentile(mpc_us_, 0.5);
   result_.mpc_p99_us = percentile(mpc_us_, 0.99);
+  result_.mpc_cpu_median_us = percentile(mpc_cpu_us_, 0.5);
+  result_.mpc_cpu_p99_us = percentile(mpc_cpu_us_, 0.99);
   result_.plan_median_ms = percentile(plan_ms_, 0.5);
   result_.plan_max_ms =
       plan_ms_.empty() ? 0.0 : *std::max_element(plan_ms_.begin(), plan_ms_.end());

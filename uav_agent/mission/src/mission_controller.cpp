@@ -1,5 +1,7 @@
 #include "cover/mission/mission_controller.hpp"
 
+#include <time.h>
+
 #include <chrono>
 #include <cmath>
 #include <utility>
@@ -52,6 +54,13 @@ std::vector<sampc::Mode> process_modes(const Task& task, sampc::Mode configured)
     modes.push_back(sampc::parse_mode(process.method).value_or(configured));
   }
   return modes;
+}
+
+// CPU time of the calling thread: SAMPC's own cost, apart from preemption.
+double thread_cpu_us() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e6 * static_cast<double>(ts.tv_sec) + 1e-3 * static_cast<double>(ts.tv_nsec);
 }
 
 }  // namespace
@@ -146,6 +155,7 @@ const ControllerOutput& MissionController::step(double now_s) {
   output_.command.release_payload = false;
   output_.status.planned = false;
   output_.status.solve_us = 0.0;
+  output_.status.solve_cpu_us = 0.0;
   if (yielded_) {
     output_.command.thrust_m_s2 = ladder_.hover_thrust_m_s2();
     output_.command.body_rate_rad_s.setZero();
@@ -445,7 +455,9 @@ void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s
   sampc_input_.ugv.specific_force_m_s2 -= disturbance;
   output_.status.disturbance_m_s2 = disturbance;
 
+  const double cpu_before_us = thread_cpu_us();
   const sampc::SampcOutput out = sampc_.solve(sampc_input_);
+  output_.status.solve_cpu_us = thread_cpu_us() - cpu_before_us;
   output_.status.solve_status = out.status;
   output_.status.solve_us = out.prepare_us + out.feedback_us;
   output_.command.thrust_m_s2 = out.command(model::input_idx::kThrust);

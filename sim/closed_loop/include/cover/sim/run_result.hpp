@@ -88,6 +88,10 @@ struct ClosedLoopResult {
   // Controller timing (medians / p99 over the run).
   double mpc_median_us = 0.0;
   double mpc_p99_us = 0.0;
+  // The same in the control thread's CPU time: what SAMPC costs without preemption by
+  // other processes (which dominates the wall-clock p99 on a loaded machine).
+  double mpc_cpu_median_us = 0.0;
+  double mpc_cpu_p99_us = 0.0;
   double plan_median_ms = 0.0;
   double plan_max_ms = 0.0;
   // Wall time of each whole control step (UavLoop::step: inputs, stage machine, SAMPC,

@@ -55,7 +55,8 @@ struct ControllerStatus {
   FailsafeCause failsafe_cause = FailsafeCause::None;
   double failsafe_input_age_s = 0.0;
   sampc::SolveStatus solve_status = sampc::SolveStatus::Ok;
-  double solve_us = 0.0;  // SAMPC time of this step
+  double solve_us = 0.0;      // SAMPC time of this step (wall clock)
+  double solve_cpu_us = 0.0;  // the same in this thread's CPU time (preemption excluded)
   bool planned = false;   // a stage reference was adopted this step (planned off-thread)
   planner::PlanStatus plan_status = planner::PlanStatus::Ok;  // of the last plan
   double plan_ms = 0.0;                                       // of the last plan (worker)
