@@ -3,14 +3,15 @@
 #include <cstdint>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include "cover/dds/topics.hpp"
 
 namespace cover::cli {
 
-// The vehicles whose topics a recorder or player binds: UAV ids 0..uavs-1, UGV ids
-// 0..ugvs-1.
+// The vehicles whose topics a recorder, player or `cover fleet` binds: UAV ids 0..uavs-1,
+// UGV ids 0..ugvs-1.
 struct FleetSize {
   std::uint32_t uavs = 4;
   std::uint32_t ugvs = 8;
@@ -52,6 +53,18 @@ template <typename F>
 void for_each_fleet_topic(const FleetSize& fleet, F&& f) {
   std::apply([&](const auto&... rows) { (detail::bind_each(rows, fleet, f), ...); },
              dds::topics::kCatalog);
+}
+
+// Calls f(dds::Topic<T>) for every concrete topic of message type T's row in a fleet of
+// `fleet`'s size (cover/uav/<u>/status for every u), in id order.
+template <typename T, typename F>
+void for_each_fleet_topic_of(const FleetSize& fleet, F&& f) {
+  const auto visit = [&](const auto& row) {
+    if constexpr (std::is_same_v<typename std::decay_t<decltype(row)>::Message, T>) {
+      detail::bind_each(row, fleet, f);
+    }
+  };
+  std::apply([&](const auto&... rows) { (visit(rows), ...); }, dds::topics::kCatalog);
 }
 
 }  // namespace cover::cli

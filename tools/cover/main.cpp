@@ -8,6 +8,7 @@
 #include "cover/logging/log.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "fc_commands.hpp"
+#include "fleet_commands.hpp"
 #include "record_commands.hpp"
 #include "security_commands.hpp"
 #include "task_commands.hpp"
@@ -89,6 +90,7 @@ int main(int argc, char** argv) {
   abort->add_option("--reason", abort_reason, "recorded with the abort");
   add_task_flags(abort);
   cover::cli::FcCommands fc_commands(app);
+  cover::cli::FleetCommand fleet_command(app);
   cover::cli::RecordCommands record_commands(app);
   // DDS-Security fleet directories (docs/security.md).
   auto* security = app.add_subcommand("security", "Make and check DDS-Security fleet directories");
@@ -138,6 +140,7 @@ int main(int argc, char** argv) {
                                                        : TopicsFormat::Table);
     }
     if (fc_commands.chosen()) return fc_commands.run();
+    if (fleet_command.chosen()) return fleet_command.run();
     if (record_commands.chosen()) return record_commands.run();
     if (*security_init) return cover::cli::security_init(init_request);
     if (*security_check) {
