@@ -125,6 +125,17 @@ TEST(FleetView, OneIdClaimedByTwoHostsListsBothAndUnknownNamesAreProcesses) {
   EXPECT_EQ(processes, 3u);
 }
 
+TEST(FleetView, TheNewestRowsFirstMessageExtendsAListing) {
+  FleetView view;
+  EXPECT_EQ(view.newest_first_heard_ns(), -1);
+  view.heard_peer("a/cover-sim", 2 * kS);
+  view.heard_peer("a/cover-sim", 3 * kS);  // the same row again: not new
+  EXPECT_EQ(view.newest_first_heard_ns(), 2 * kS);
+  msg::UgvStatus ugv;
+  view.heard(ugv, {}, 5 * kS);
+  EXPECT_EQ(view.newest_first_heard_ns(), 5 * kS);
+}
+
 TEST(FleetView, TableAndJsonCarryEveryRow) {
   FleetView view;
   msg::UgvStatus ugv;
