@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "cover/config/format_number.hpp"
 #include "cover/sim/world_uav_io.hpp"
 
 namespace cover::sim {
@@ -12,6 +13,10 @@ Fleet::Fleet(const Scenario& scenario, const SimProcessParams& params,
       physics_per_control_(
           static_cast<int>(std::lround(scenario.world.physics_rate_hz / params.control_rate_hz))),
       autopilots_(autopilots) {
+  // One tick is one step of every agent: their control period (mission.yaml's).
+  mission::check_control_period(mission, 1.0 / params.control_rate_hz,
+                                "sim/sim_process.yaml: sim_process.control_rate_hz " +
+                                    config::format_number(params.control_rate_hz) + " Hz");
   options_.control_rate_hz = params.control_rate_hz;
   for (int u = 0; u < scenario.uav_count(); ++u) {
     Uav uav{std::make_unique<World>(scenario.world_of(u)), nullptr,

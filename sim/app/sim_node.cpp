@@ -11,6 +11,7 @@
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/enums.hpp"
 #include "cover/wire/sensors.hpp"
+#include "cover/wire/ugv_imu_measurement.hpp"
 
 namespace cover::sim {
 namespace {

@@ -9,6 +9,7 @@
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/dds_error.hpp"
+#include "cover/fleet/fleet_size.hpp"
 #include "cover/logging/log.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/task_manager/store_error.hpp"
@@ -35,7 +36,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--config", config_path, "limits and timeouts")->capture_default_str();
   app.add_option("--max-uavs", options.max_uavs, "UAV ids 0..N-1 are served")
-      ->check(CLI::Range(1, 16))
+      ->check(CLI::Range(1, cover::fleet::kMaxUavs))
       ->capture_default_str();
   dds.add_to(app);
   CLI11_PARSE(app, argc, argv);

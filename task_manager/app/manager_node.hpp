@@ -9,6 +9,7 @@
 
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
+#include "cover/fleet/fleet_size.hpp"
 #include "cover/task_manager/dispatcher.hpp"
 #include "cover/task_manager/task_store.hpp"
 #include "fleet_watch.hpp"
@@ -16,8 +17,8 @@
 namespace cover::task_manager {
 
 struct ManagerOptions {
-  int max_uavs = 4;
-  int max_ugvs = 8;
+  int max_uavs = fleet::kMaxUavs;
+  int max_ugvs = fleet::kMaxUgvs;
   double step_period_s = 0.1;  // the dispatcher's pace when no request arrives
 };
 

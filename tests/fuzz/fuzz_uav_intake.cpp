@@ -15,6 +15,7 @@
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/intake.hpp"
 #include "cover/wire/sensors.hpp"
+#include "cover/wire/ugv_imu_measurement.hpp"
 #include "fuzz_input.hpp"
 
 namespace {

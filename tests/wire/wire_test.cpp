@@ -10,7 +10,10 @@
 #include "cover/wire/fc_state.hpp"
 #include "cover/wire/reference.hpp"
 #include "cover/wire/sensors.hpp"
+#include "cover/wire/solve_status.hpp"
 #include "cover/wire/task.hpp"
+#include "cover/wire/task_status.hpp"
+#include "cover/wire/ugv_imu_measurement.hpp"
 
 namespace {
 

@@ -10,6 +10,7 @@
 #include "cover/clock/clock.hpp"
 #include "cover/config/config_error.hpp"
 #include "cover/dds/json_codec.hpp"
+#include "cover/fleet/fleet_size.hpp"
 #include "cover/mission/task.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/wire/task.hpp"
@@ -20,7 +21,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-constexpr int kMaxUgvIds = 8;  // UGV ids a task file may name (0..7); the manager checks liveness
 
 bool is_final(msg::ManagedTaskState s) {
   using S = msg::ManagedTaskState;
@@ -132,7 +132,8 @@ int submit(const dds::ParticipantOptions& dds, const TaskCommandOptions& options
            const SubmitRequest& request) {
   mission::Task task;
   try {
-    task = mission::load_task_file(request.file, kMaxUgvIds);
+    // Any UGV of the fleet may be named; the manager checks that it is up.
+    task = mission::load_task_file(request.file, fleet::kMaxUgvs);
     if (request.uav >= 0) task.uav_id = request.uav;
   } catch (const config::ConfigError& e) {
     std::cerr << "cover submit: " << e.what() << "\n";

@@ -5,6 +5,7 @@
 #include "cover/clock/clock.hpp"
 #include "cover/wire/control.hpp"
 #include "cover/wire/sensors.hpp"
+#include "cover/wire/ugv_imu_measurement.hpp"
 
 namespace cover::uav_agent {
 

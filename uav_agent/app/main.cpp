@@ -9,6 +9,7 @@
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/dds_error.hpp"
+#include "cover/fleet/fleet_size.hpp"
 #include "cover/logging/log.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/sampc/sampc_params.hpp"
@@ -26,7 +27,7 @@ struct CommandLine {
   std::string clock = "lockstep";
   std::string config_dir = cover::config::default_config_dir();
   std::string method;
-  int ugv_count = 8;
+  int ugv_count = cover::fleet::kMaxUgvs;
   bool fc_bridge = false;
   cover::dds::DdsCliOptions dds;
 };
@@ -49,7 +50,7 @@ void add_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--method", cli.method,
                  "override sampc.yaml's mode: " + cover::sampc::mode_names(" | "));
   app.add_option("--ugv-count", cli.ugv_count, "UGV ids accepted in tasks are 0..N-1")
-      ->check(CLI::Range(1, 8))
+      ->check(CLI::Range(1, cover::fleet::kMaxUgvs))
       ->capture_default_str();
   app.add_flag("--fc-bridge", cli.fc_bridge,
                "a flight-controller bridge (cover-fc-bridge) flies this UAV: a task starts only "

@@ -13,6 +13,7 @@
 #include "cover/wire/enums.hpp"
 #include "cover/wire/reference.hpp"
 #include "cover/wire/task.hpp"
+#include "cover/wire/task_status.hpp"
 
 namespace cover::uav_agent {
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cover/dds/participant.hpp"
+#include "cover/fleet/fleet_size.hpp"
 #include "cover/sim_clock/agent_clock.hpp"
 #include "cover/time_sync/clock_responder.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
@@ -19,7 +20,7 @@ namespace cover::uav_agent {
 
 struct AgentOptions {
   std::uint32_t uav_id = 0;
-  int ugv_count = 8;
+  int ugv_count = fleet::kMaxUgvs;
   sim_clock::ClockMode clock = sim_clock::ClockMode::Lockstep;
   std::optional<mission::Task> task;  // from --task FILE; otherwise from cover/task/request
   double status_period_s = 0.1;       // cover/uav/<u>/status at 10 Hz

@@ -13,11 +13,11 @@
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/participant.hpp"
+#include "cover/fleet/fleet_size.hpp"
 #include "cover/logging/log.hpp"
 #include "cover/mavlink/connection_url.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/shm/segment_name.hpp"
-#include "cover/sim/world_state.hpp"
 #include "cover/time_sync/clock_responder.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
 #include "imu_publisher.hpp"
@@ -38,7 +38,7 @@ void add_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--id", cli.source.ugv_id,
                  "UGV index k: reads UGV k's IMU, publishes cover/ugv/k/*")
       ->required()
-      ->check(CLI::Range(0, cover::sim::kMaxUgvs - 1));
+      ->check(CLI::Range(0, cover::fleet::kMaxUgvs - 1));
   app.add_option("--source", cli.source.kind,
                  "Where the raw IMU comes from: sim (the simulator's shared memory), csv "
                  "(replay --csv FILE) or mavlink (the UGV's autopilot at --url)")

@@ -6,6 +6,7 @@
 
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/enums.hpp"
+#include "cover/wire/solve_status.hpp"
 
 namespace cover::wire {
 

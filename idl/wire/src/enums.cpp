@@ -3,30 +3,16 @@
 #include <array>
 #include <utility>
 
+#include "enum_table.hpp"
+
 namespace cover::wire {
 namespace {
 
-// Each mapping is one table of (library, wire) pairs, read in both directions.
-template <typename Lib, typename Wire, std::size_t N>
-Wire lib_to_wire(const std::array<std::pair<Lib, Wire>, N>& table, Lib value, Wire fallback) {
-  for (const auto& [lib, wire] : table) {
-    if (lib == value) return wire;
-  }
-  return fallback;
-}
-
-template <typename Lib, typename Wire, std::size_t N>
-std::optional<Lib> wire_to_lib(const std::array<std::pair<Lib, Wire>, N>& table, Wire value) {
-  for (const auto& [lib, wire] : table) {
-    if (wire == value) return lib;
-  }
-  return std::nullopt;
-}
-
+using detail::lib_to_wire;
+using detail::wire_to_lib;
 using mission::Failsafe;
 using mission::MissionState;
 using model::Stage;
-using sampc::SolveStatus;
 
 constexpr std::array<std::pair<Stage, msg::Stage>, 3> kStages{{
     {Stage::Initial, msg::Stage::STAGE_INITIAL},
@@ -54,14 +40,6 @@ constexpr std::array<std::pair<Failsafe, msg::FailsafeState>, 11> kFailsafes{{
     {Failsafe::EmergencyLanding, msg::FailsafeState::FAILSAFE_EMERGENCY_LANDING},
     {Failsafe::EmergencyLanded, msg::FailsafeState::FAILSAFE_EMERGENCY_LANDED},
     {Failsafe::AutopilotControl, msg::FailsafeState::FAILSAFE_AUTOPILOT_CONTROL},
-}};
-
-constexpr std::array<std::pair<SolveStatus, msg::SolverStatus>, 5> kSolveStatuses{{
-    {SolveStatus::Ok, msg::SolverStatus::SOLVER_OK},
-    {SolveStatus::SqpNotConverged, msg::SolverStatus::SOLVER_SQP_NOT_CONVERGED},
-    {SolveStatus::QpNotConverged, msg::SolverStatus::SOLVER_QP_NOT_CONVERGED},
-    {SolveStatus::InvalidInput, msg::SolverStatus::SOLVER_INVALID_INPUT},
-    {SolveStatus::NonFiniteSolution, msg::SolverStatus::SOLVER_NON_FINITE},
 }};
 
 constexpr std::array<std::pair<mission::FinalAction, msg::FinalAction>, 3> kFinalActions{{
@@ -98,13 +76,6 @@ msg::FailsafeState to_msg(Failsafe failsafe) {
 }
 std::optional<Failsafe> from_msg(msg::FailsafeState failsafe) {
   return wire_to_lib(kFailsafes, failsafe);
-}
-
-msg::SolverStatus to_msg(SolveStatus status) {
-  return lib_to_wire(kSolveStatuses, status, msg::SolverStatus::SOLVER_NON_FINITE);
-}
-std::optional<SolveStatus> from_msg(msg::SolverStatus status) {
-  return wire_to_lib(kSolveStatuses, status);
 }
 
 msg::FinalAction to_msg(mission::FinalAction action) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "cover/config/format_number.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sim/percentile.hpp"
 #include "cover/sim/run_recorder.hpp"
@@ -22,6 +23,9 @@ ClosedLoop::ClosedLoop(Scenario scenario, uav::ControllerConfig config, ClosedLo
   const double ratio = scenario_.world.physics_rate_hz / options_.control_rate_hz;
   config::check(options_.control_rate_hz > 0.0 && std::abs(ratio - std::round(ratio)) < 1e-9,
                 "closed_loop.control_rate_hz", "must divide the physics rate");
+  mission::check_control_period(config_.mission, 1.0 / options_.control_rate_hz,
+                                "closed_loop.control_rate_hz " +
+                                    config::format_number(options_.control_rate_hz) + " Hz");
   config::check(options_.record_every_control_steps >= 1, "closed_loop.record_every_control_steps",
                 "must be >= 1");
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "cover/fleet/fleet_size.hpp"
 #include "cover/sim/seeding.hpp"
 
 namespace cover::sim {
@@ -71,7 +72,9 @@ WorldParams Scenario::world_of(int uav) const {
 void Scenario::validate() const {
   world.validate("scenario '" + name + "'.sim");
   task.validate(static_cast<int>(world.ugvs.size()));
-  config::check(uav_count() <= 4, "scenario '" + name + "'.extra_uavs", "at most 3 (4 UAVs)");
+  config::check(uav_count() <= fleet::kMaxUavs, "scenario '" + name + "'.extra_uavs",
+                "at most " + std::to_string(fleet::kMaxUavs - 1) + " (" +
+                    std::to_string(fleet::kMaxUavs) + " UAVs)");
   for (int u = 1; u < uav_count(); ++u) {
     task_of(u).validate(static_cast<int>(world.ugvs.size()));
     config::check(

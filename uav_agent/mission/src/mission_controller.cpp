@@ -13,34 +13,6 @@ namespace cover::mission {
 
 using model::Stage;
 
-const char* to_string(Failsafe failsafe) {
-  switch (failsafe) {
-    case Failsafe::None:
-      return "none";
-    case Failsafe::WaitingForInputs:
-      return "waiting-for-inputs";
-    case Failsafe::EmergencyHover:
-      return "emergency-hover";
-    case Failsafe::SolverError:
-      return "solver-error";
-    case Failsafe::MissionFailed:
-      return "mission-failed";
-    case Failsafe::Landed:
-      return "landed";
-    case Failsafe::Aborted:
-      return "aborted";
-    case Failsafe::ImuHold:
-      return "imu-hold";
-    case Failsafe::EmergencyLanding:
-      return "emergency-landing";
-    case Failsafe::EmergencyLanded:
-      return "emergency-landed";
-    case Failsafe::AutopilotControl:
-      return "autopilot-control";
-  }
-  return "unknown";
-}
-
 namespace {
 
 Task validated(Task task, int ugv_count) {

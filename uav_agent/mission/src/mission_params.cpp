@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "cover/config/format_number.hpp"
+
 namespace cover::mission {
 namespace {
 bool positive(double value) {
@@ -173,6 +175,16 @@ void MissionParams::validate() const {
                 ctx + ".final_start_acceleration_fraction", "must be in [0, 1]");
   config::check(positive(control_period_s) && control_period_s <= 0.1, ctx + ".control_period_s",
                 "must be in (0, 0.1]");
+}
+
+void check_control_period(const MissionParams& mission, double other_period_s,
+                          const std::string& other) {
+  // Equal to a nanosecond: both are written as decimals of the same period (0.01 s, 100 Hz).
+  if (std::abs(other_period_s - mission.control_period_s) <= 1e-9) return;
+  throw config::ConfigError(other + " (" + config::format_number(other_period_s) +
+                            " s) disagrees with " + kMissionControlPeriodKey + " (" +
+                            config::format_number(mission.control_period_s) +
+                            " s): the control period is one; set them equal");
 }
 
 }  // namespace cover::mission

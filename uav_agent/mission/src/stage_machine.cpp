@@ -8,22 +8,6 @@ namespace cover::mission {
 
 using model::Stage;
 
-const char* to_string(MissionState state) {
-  switch (state) {
-    case MissionState::NotStarted:
-      return "not-started";
-    case MissionState::Running:
-      return "running";
-    case MissionState::Complete:
-      return "complete";
-    case MissionState::Failed:
-      return "failed";
-    case MissionState::Aborted:
-      return "aborted";
-  }
-  return "unknown";
-}
-
 const char* to_string(FailureReason reason) {
   switch (reason) {
     case FailureReason::None:

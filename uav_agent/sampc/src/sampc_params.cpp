@@ -42,36 +42,6 @@ void validate_weights(const WeightSet& set, const std::string& context) {
 
 }  // namespace
 
-std::optional<Mode> parse_mode(std::string_view name) {
-  for (const Mode mode : kModes) {
-    if (name == to_string(mode)) return mode;
-  }
-  return std::nullopt;
-}
-
-std::string mode_names(std::string_view separator) {
-  std::string text;
-  for (const Mode mode : kModes) {
-    if (!text.empty()) text += separator;
-    text += to_string(mode);
-  }
-  return text;
-}
-
-const char* to_string(Mode mode) {
-  switch (mode) {
-    case Mode::Cover:
-      return "cover";
-    case Mode::NoRefVxy:
-      return "no-ref-vxy";
-    case Mode::ConiMpc:
-      return "coni-mpc";
-    case Mode::Intercept:
-      return "intercept";
-  }
-  return "unknown";
-}
-
 Eigen::Vector4d SampcParams::input_lower_bound() const {
   return {thrust_min_m_s2, -roll_pitch_rate_max_rad_s, -roll_pitch_rate_max_rad_s,
           -yaw_rate_max_rad_s};

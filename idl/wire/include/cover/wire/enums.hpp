@@ -2,13 +2,12 @@
 
 #include <optional>
 
-#include "cover/mission/mission_controller.hpp"
-#include "cover/mission/stage_machine.hpp"
-#include "cover/mission/task.hpp"
+#include "cover/mission/failsafe.hpp"
+#include "cover/mission/final_action.hpp"
+#include "cover/mission/mission_state.hpp"
 #include "cover/model/stage.hpp"
 #include "cover/model/ugv_motion.hpp"
 #include "cover/msg/types.hpp"
-#include "cover/sampc/solve_status.hpp"
 
 namespace cover::wire {
 
@@ -23,9 +22,6 @@ std::optional<mission::MissionState> from_msg(msg::TaskState state);
 
 msg::FailsafeState to_msg(mission::Failsafe failsafe);
 std::optional<mission::Failsafe> from_msg(msg::FailsafeState failsafe);
-
-msg::SolverStatus to_msg(sampc::SolveStatus status);
-std::optional<sampc::SolveStatus> from_msg(msg::SolverStatus status);
 
 msg::FinalAction to_msg(mission::FinalAction action);
 std::optional<mission::FinalAction> from_msg(msg::FinalAction action);

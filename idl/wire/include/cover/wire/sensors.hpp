@@ -3,7 +3,6 @@
 #include <cstdint>
 #include <optional>
 
-#include "cover/mission/mission_controller.hpp"
 #include "cover/model/relative_state.hpp"
 #include "cover/msg/types.hpp"
 #include "cover/ugv/imu_filter.hpp"
@@ -20,8 +19,6 @@ std::optional<model::RelativeState> from_msg(const msg::RelativeState& state);
 // The UGV agent's filtered IMU (a, Omega, beta in G_k) and its forward speed estimate.
 msg::UgvImu to_msg(const ugv::FilteredImu& imu, const ugv::SpeedEstimate& speed,
                    std::uint32_t ugv_id, std::uint32_t seq);
-// A speed source the library does not know, or a non-finite speed, reads as no estimate
-// (SpeedSource::None, speed 0): the controller then falls back to what needs no speed.
-mission::UgvImuMeasurement from_msg(const msg::UgvImu& imu);
+// The UAV side's reading of it: wire/ugv_imu_measurement.hpp.
 
 }  // namespace cover::wire

@@ -3,7 +3,6 @@
 #include <cstdint>
 #include <string>
 
-#include "cover/mission/stage_machine.hpp"
 #include "cover/mission/task.hpp"
 #include "cover/msg/types.hpp"
 
@@ -13,15 +12,5 @@ msg::TransitionTask to_msg(const mission::Task& task, double stamp_s);
 // Field by field, not validated (UavLoop::give_task validates and rejects with the reason).
 // An unknown final action reads as a NaN final point, which validation then rejects.
 mission::Task from_msg(const msg::TransitionTask& task);
-
-// Progress over the whole task in [0, 1]: finished processes plus the stage fraction.
-double task_progress(const mission::StageDecision& decision, std::size_t process_count);
-
-msg::TaskStatus to_task_status(const std::string& task_id, std::uint32_t uav_id, double stamp_s,
-                               const mission::StageDecision& decision, std::size_t process_count,
-                               const std::string& message);
-// A task the UAV refused (TASK_REJECTED with the reason).
-msg::TaskStatus rejected_task_status(const msg::TransitionTask& task, std::uint32_t uav_id,
-                                     double stamp_s, const std::string& reason);
 
 }  // namespace cover::wire

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "cover/mission/motion_limits.hpp"
 #include "cover/sim/ugv_motion_pattern.hpp"
 
 namespace cover::sim {
@@ -50,8 +51,8 @@ namespace cover::sim {
 // shorter" compares like with like. A longer budget would let the bound wait for the target
 // to come round, which a method that flies the stage as soon as it starts never does.
 struct TransitionBoundParams {
-  double vmax_m_s = 1.0;               // speed limit relative to the target UGV
-  double amax_m_s2 = 2.0;              // acceleration limit
+  double vmax_m_s = mission::kDefaultVmax_m_s;   // speed limit relative to the target UGV
+  double amax_m_s2 = mission::kDefaultAmax_m_s2;  // acceleration limit
   double reach_tolerance_m = 0.3;      // MissionParams::transition_reach_tolerance_m
   double speed_threshold_m_s = 0.3;    // MissionParams::speed_threshold_m_s
   double time_step_s = 0.1;            // polyline segment (nominal)

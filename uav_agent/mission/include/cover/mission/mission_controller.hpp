@@ -7,6 +7,7 @@
 
 #include "cover/mission/control_command.hpp"
 #include "cover/mission/disturbance_observer.hpp"
+#include "cover/mission/failsafe.hpp"
 #include "cover/mission/failsafe_ladder.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/mission/plan_worker.hpp"
@@ -29,24 +30,6 @@ struct UgvImuMeasurement {
   double stamp_s = 0.0;
   model::UgvMotion motion;
 };
-
-// Why the command is not the optimised one.
-enum class Failsafe : std::uint8_t {
-  None = 0,
-  WaitingForInputs = 1,   // no valid state/IMU of the start UGV yet: stay idle, disarmed
-  EmergencyHover = 2,     // reference UGV's state or IMU lost or non-finite: level, hover thrust
-  SolverError = 3,        // SAMPC returned its hover fallback
-  MissionFailed = 4,      // the stage machine failed: hold position in the frame
-  Landed = 5,             // disarmed on the landing point: motors idle
-  Aborted = 6,            // the task was aborted: holding its point, then the safe action
-  ImuHold = 7,            // reference UGV's IMU stale: SAMPC flies on its last sample
-  EmergencyLanding = 8,   // inputs not back after the emergency hover: controlled descent
-  EmergencyLanded = 9,    // disarmed on contact after an emergency landing
-  AutopilotControl = 10,  // the flight controller does not fly COVER's setpoints: level hover
-                          // command, nothing planned or integrated until it hands back
-};
-
-const char* to_string(Failsafe failsafe);
 
 struct ControllerStatus {
   StageDecision stage;  // stage, process, reference UGV, mission state, failure reason

@@ -113,7 +113,9 @@ struct MissionParams {
   // plan starts with this fraction of the acceleration SAMPC had planned over its first
   // node (0: from zero acceleration). In [0, 1].
   double final_start_acceleration_fraction = 0.3;
-  // Control period (the controller runs at 100 Hz).
+  // Control period (the controller runs at 100 Hz). The one definition: every other copy
+  // (sampc.yaml's warm-start shift, cover-sim's tick rate, the harness's control rate) is
+  // checked against it at load (check_control_period).
   double control_period_s = 0.01;
 
   static MissionParams load(config::YamlReader& reader);
@@ -122,5 +124,15 @@ struct MissionParams {
   static MissionParams from_yaml(const YAML::Node& document, const std::string& source);
   void validate() const;
 };
+
+// Where MissionParams come from, as the errors name them.
+inline constexpr const char* kMissionControlPeriodKey = "mission.yaml: mission.control_period_s";
+
+// Throws config::ConfigError naming both when `other_period_s` (described by `other`, e.g.
+// "sampc.yaml: sampc.control_period_s") is not the mission's control period: the control
+// period is one, and a copy that disagrees shifts SAMPC's warm start by the wrong time or
+// ticks the simulator at another rate than the agents step.
+void check_control_period(const MissionParams& mission, double other_period_s,
+                          const std::string& other);
 
 }  // namespace cover::mission

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 
+#include "cover/mission/motion_limits.hpp"
 #include "cover/sampc/horizon_reference.hpp"
 
 namespace cover::mission {
@@ -17,8 +18,8 @@ namespace cover::mission {
 // min(vmax, sqrt(2 a_brake r)), reached from the current closing speed at most amax faster
 // per second, and is re-derived every control step from the measured distance.
 struct RadialApproachLimits {
-  double vmax_m_s = 1.0;    // the process's speed limit relative to the UGV
-  double amax_m_s2 = 2.0;   // the process's acceleration limit, for speeding up
+  double vmax_m_s = kDefaultVmax_m_s;   // the process's speed limit relative to the UGV
+  double amax_m_s2 = kDefaultAmax_m_s2;  // the process's acceleration limit, for speeding up
   double brake_m_s2 = 1.0;  // the deceleration the approach plans to stop with
   // The speed-up's acceleration builds from 0 to amax over this long after the stage starts
   // (s; 0: amax at once). A step to amax at the frame switch is a step in the tilt the

@@ -6,24 +6,11 @@
 #include <string>
 
 #include "cover/mission/mission_params.hpp"
+#include "cover/mission/mission_state.hpp"
 #include "cover/mission/task.hpp"
 #include "cover/model/stage.hpp"
 
 namespace cover::mission {
-
-enum class MissionState : std::uint8_t {
-  NotStarted = 0,
-  Running = 1,
-  Complete = 2,
-  Failed = 3,
-  Aborted = 4,  // ended by the operator (StageMachine::abort)
-};
-
-// True once the task can no longer change state (complete, failed or aborted).
-inline bool is_terminal(MissionState state) {
-  return state == MissionState::Complete || state == MissionState::Failed ||
-         state == MissionState::Aborted;
-}
 
 enum class FailureReason : std::uint8_t {
   None = 0,
@@ -35,7 +22,6 @@ enum class FailureReason : std::uint8_t {
                          // own failsafe) or its link was lost
 };
 
-const char* to_string(MissionState state);
 const char* to_string(FailureReason reason);
 
 // What the stage machine decided at one control step. Everything the controller needs to

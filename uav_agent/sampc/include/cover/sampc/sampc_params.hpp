@@ -8,27 +8,12 @@
 
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sampc/intercept_velocity.hpp"
+#include "cover/sampc/mode.hpp"
 
 namespace cover::sampc {
 
 // Longest horizon the fixed-size workspaces hold; `horizon_steps` may be anything up to it.
 inline constexpr int kMaxHorizon = 40;
-
-// The paper's comparisons (docs/model.md, "Baselines"):
-//  - Cover:    stage-adaptive: xy-z-ref at the transition stage, x-y-z-ref otherwise.
-//  - NoRefVxy: as Cover with Q0v_x = Q0v_y = 0 ("w.o. Ref. Vxy").
-//  - ConiMpc:  x-y-z-ref at every stage (the prior method).
-// Beyond the paper:
-//  - Intercept: as Cover, but the transition stage's velocity reference aims at where the
-//    target UGV will be (intercept_velocity.hpp), eq. 30 when that is not predictable.
-enum class Mode { Cover, NoRefVxy, ConiMpc, Intercept };
-
-const char* to_string(Mode mode);
-// "cover" | "no-ref-vxy" | "coni-mpc" | "intercept" (to_string's names); nullopt otherwise.
-std::optional<Mode> parse_mode(std::string_view name);
-inline constexpr Mode kModes[] = {Mode::Cover, Mode::NoRefVxy, Mode::ConiMpc, Mode::Intercept};
-// kModes' names joined by `separator` ("cover | no-ref-vxy | ..."): for errors and help.
-std::string mode_names(std::string_view separator);
 
 // Whether the transition stage's planned start velocity drops the frame-rotation part
 // (eq. 23, v0 = v + Omega x p): COVER and its ablation do, the CoNi-MPC baseline does not.

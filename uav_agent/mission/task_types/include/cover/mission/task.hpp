@@ -8,13 +8,10 @@
 #include <vector>
 
 #include "cover/config/yaml_reader.hpp"
+#include "cover/mission/final_action.hpp"
+#include "cover/mission/motion_limits.hpp"
 
 namespace cover::mission {
-
-// What the UAV does once it reaches a process's final point (paper sec. 3.2, scenarios 2-4).
-enum class FinalAction : std::uint8_t { None = 0, Land = 1, Deliver = 2 };
-
-const char* to_string(FinalAction action);
 
 // One transition process Gi -> Gj with its three stage transition points. The field names
 // mirror the DDS type `TransitionTask`, so the YAML and the wire format stay one format.
@@ -25,8 +22,8 @@ struct TransitionProcess {
   Eigen::Vector3d transition_point_m{0.0, 0.0, 1.0};  // in Gj, end of the transition stage
   Eigen::Vector3d final_point_m{0.0, 0.0, 0.3};       // in Gj, end of the final stage
   FinalAction final_action = FinalAction::None;
-  double vmax_m_s = 1.0;   // UAV speed limit relative to the reference frame
-  double amax_m_s2 = 2.0;  // UAV acceleration limit relative to the reference frame
+  double vmax_m_s = kDefaultVmax_m_s;   // UAV speed limit relative to the reference frame
+  double amax_m_s2 = kDefaultAmax_m_s2;  // UAV acceleration limit relative to the reference frame
   // The method flying this process (a sampc::kModes name: cover, no-ref-vxy, intercept, ...);
   // empty: the UAV's configured one (sampc.yaml's mode, or its --method).
   std::string method;

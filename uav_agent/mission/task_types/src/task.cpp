@@ -4,7 +4,8 @@
 #include <cctype>
 #include <cmath>
 
-#include "cover/sampc/sampc_params.hpp"
+#include "cover/config/format_number.hpp"
+#include "cover/sampc/mode.hpp"
 
 namespace cover::mission {
 namespace {
@@ -12,8 +13,6 @@ namespace {
 // Points farther than this from the reference UGV are almost certainly a unit or sign
 // mistake in the task (the UAV flies within a few metres of its UGVs).
 constexpr double kMaxPointDistance_m = 100.0;
-constexpr double kMaxSpeed_m_s = 20.0;
-constexpr double kMaxAcceleration_m_s2 = 30.0;
 
 FinalAction parse_final_action(const std::string& text, const std::string& context) {
   if (text == "none") return FinalAction::None;
@@ -65,18 +64,6 @@ void check_finite_at(const config::YamlReader& reader, const std::string& key, b
 }
 
 }  // namespace
-
-const char* to_string(FinalAction action) {
-  switch (action) {
-    case FinalAction::None:
-      return "none";
-    case FinalAction::Land:
-      return "land";
-    case FinalAction::Deliver:
-      return "deliver";
-  }
-  return "unknown";
-}
 
 TransitionProcess TransitionProcess::load(config::YamlReader& reader,
                                           const std::string& default_method) {
@@ -154,11 +141,12 @@ void Task::validate(int ugv_count) const {
     check_point(p.initial_point_m, pctx + ".initial_point_m");
     check_point(p.transition_point_m, pctx + ".transition_point_m");
     check_point(p.final_point_m, pctx + ".final_point_m");
-    config::check(std::isfinite(p.vmax_m_s) && p.vmax_m_s > 0.0 && p.vmax_m_s <= kMaxSpeed_m_s,
-                  pctx + ".vmax_m_s", "must be in (0, 20]");
     config::check(
-        std::isfinite(p.amax_m_s2) && p.amax_m_s2 > 0.0 && p.amax_m_s2 <= kMaxAcceleration_m_s2,
-        pctx + ".amax_m_s2", "must be in (0, 30]");
+        std::isfinite(p.vmax_m_s) && p.vmax_m_s > 0.0 && p.vmax_m_s <= kPlausibleVmax_m_s,
+        pctx + ".vmax_m_s", "must be in (0, " + config::format_number(kPlausibleVmax_m_s) + "]");
+    config::check(
+        std::isfinite(p.amax_m_s2) && p.amax_m_s2 > 0.0 && p.amax_m_s2 <= kPlausibleAmax_m_s2,
+        pctx + ".amax_m_s2", "must be in (0, " + config::format_number(kPlausibleAmax_m_s2) + "]");
     config::check(is_known_method(p.method), pctx + ".method", unknown_method_message(p.method));
     config::check(p.final_action != FinalAction::Land || i + 1 == processes.size(),
                   pctx + ".final_action", "land must be the last process (the UAV disarms)");

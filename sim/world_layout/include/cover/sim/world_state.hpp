@@ -4,14 +4,15 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "cover/fleet/fleet_size.hpp"
 #include "cover/sim/pod_types.hpp"
-#include "cover/sim/quadrotor.hpp"
+#include "cover/sim/quadrotor_state.hpp"
 
 namespace cover::sim {
 
-// The world is a fixed-capacity plain struct (no pointers, no heap) so that a later
-// issue can copy it into a shared-memory segment as is.
-inline constexpr int kMaxUgvs = 8;
+// The world is a fixed-capacity plain struct (no pointers, no heap), sized by the fleet's
+// limits, so that it copies into a shared-memory segment as is.
+using fleet::kMaxUgvs;
 
 // A planar UGV in the world frame. Its body frame G_k has its origin at the deck centre
 // (height `position_m.z`), x forward, z up, yaw only.

@@ -1,0 +1,13 @@
+#pragma once
+
+#include "cover/mission/mission_controller.hpp"
+#include "cover/msg/types.hpp"
+
+namespace cover::wire {
+
+// A UGV agent's IMU as the UAV's controller takes it. A speed source the library does not
+// know, or a non-finite speed, reads as no estimate (SpeedSource::None, speed 0): the
+// controller then falls back to what needs no speed.
+mission::UgvImuMeasurement from_msg(const msg::UgvImu& imu);
+
+}  // namespace cover::wire

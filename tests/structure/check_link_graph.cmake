@@ -1,0 +1,88 @@
+# link_graph_check: fails naming the target and the library when a link closure (written
+# by tests/structure/CMakeLists.txt at configure time) breaks a rule below.
+#   cmake -DCLOSURE_DIR=<build>/tests/structure/link_closure -P check_link_graph.cmake
+
+# The flight software: mission layer, planner, SAMPC (and its NLopt reference solver).
+set(flight cover_mission cover_planner cover_sampc cover_uav_loop cover_wire_mission nlopt)
+# The simulator and what is built on it.
+set(simulator cover_sim cover_closed_loop cover_sim_fc cover_sim_mocap)
+
+# target -> what it must not link
+set(forbid_cover_task_types ${flight} ${simulator})
+set(forbid_cover_task_store ${flight} ${simulator})
+set(forbid_cover_task_dispatch ${flight} ${simulator})
+set(forbid_cover-task-manager ${flight} ${simulator})
+set(forbid_cover_wire ${flight} ${simulator})
+set(forbid_cover_sim_world_layout ${flight} ${simulator})
+set(forbid_cover_ugv_imu_source ${flight} ${simulator})
+set(forbid_cover-ugv-agent ${flight} ${simulator})
+# target -> what it must link: the walk sees transitive and private (LINK_ONLY) libraries,
+# so an empty closure cannot pass the rules above.
+set(require_cover-uav-agent cover_mission cover_sampc nlopt)
+set(require_cover-sim cover_sim cover_sim_world_layout)
+set(require_cover-ugv-agent cover_ugv_imu_source cover_sim_world_layout)
+set(require_cover-task-manager cover_task_store cover_task_types)
+
+set(targets cover_task_types cover_task_store cover_task_dispatch cover-task-manager cover_wire
+            cover_sim_world_layout cover_ugv_imu_source cover-ugv-agent cover-uav-agent cover-sim)
+
+# Whether `library` (a target name, or nlopt in any spelling: NLopt::nlopt, libnlopt.so)
+# is among `items`.
+function(has_library items library out)
+  set(found FALSE)
+  foreach(item IN LISTS items)
+    if(library STREQUAL "nlopt")
+      string(TOLOWER "${item}" lower)
+      if(lower MATCHES "nlopt")
+        set(found TRUE)
+      endif()
+    elseif(item STREQUAL library OR item MATCHES "(^|[/ ])lib${library}\\.(a|so)")
+      set(found TRUE)
+    endif()
+  endforeach()
+  set(${out} ${found} PARENT_SCOPE)
+endfunction()
+
+set(errors "")
+foreach(target IN LISTS targets)
+  set(file ${CLOSURE_DIR}/${target}.txt)
+  if(NOT EXISTS ${file})
+    string(APPEND errors "  ${target}: no link closure at ${file} (re-run cmake)\n")
+    continue()
+  endif()
+  file(STRINGS ${file} closure)
+  # The real link line too, where the generator writes one (Makefiles: link.txt).
+  set(link_line "")
+  if(EXISTS ${CLOSURE_DIR}/${target}.link_txt_path)
+    file(READ ${CLOSURE_DIR}/${target}.link_txt_path link_txt)
+    if(EXISTS "${link_txt}")
+      file(READ "${link_txt}" link_line)
+      string(REPLACE " " ";" link_line "${link_line}")
+    endif()
+  endif()
+  foreach(library IN LISTS forbid_${target})
+    has_library("${closure}" ${library} in_closure)
+    has_library("${link_line}" ${library} in_line)
+    if(in_closure OR in_line)
+      string(APPEND errors "  ${target} links ${library}\n")
+    endif()
+  endforeach()
+  foreach(library IN LISTS require_${target})
+    has_library("${closure}" ${library} in_closure)
+    if(NOT in_closure)
+      string(APPEND errors "  ${target} does not link ${library}: the closure walk is broken\n")
+    endif()
+    if(link_line)
+      has_library("${link_line}" ${library} in_line)
+      if(NOT in_line)
+        string(APPEND errors "  ${target}'s link.txt does not name ${library}\n")
+      endif()
+    endif()
+  endforeach()
+endforeach()
+
+if(errors)
+  message(FATAL_ERROR "link graph rules broken:\n${errors}")
+endif()
+list(LENGTH targets count)
+message(STATUS "link graph: ${count} targets follow the rules")
