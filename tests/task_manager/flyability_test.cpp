@@ -6,6 +6,7 @@
 
 #include "cover/config/config_error.hpp"
 #include "cover/config/yaml_reader.hpp"
+#include "cover/test/shipped_params.hpp"
 #include "test_support.hpp"
 
 namespace cover::task_manager {
@@ -162,16 +163,10 @@ TEST(TaskManagerFlyability, TheFirstUnheardVehicleIsNamedAsAPersonWould) {
 }
 
 TEST(TaskManagerLimits, ShippedFileHoldsTheDefaultsAndBadKeysAreNamed) {
-  const TaskLimits shipped =
-      TaskLimits::load_file(config::default_config_dir() + "/task_manager.yaml");
-  const TaskLimits defaults;
-  EXPECT_EQ(shipped.max_horizontal_m, defaults.max_horizontal_m);
-  EXPECT_EQ(shipped.min_z_m, defaults.min_z_m);
-  EXPECT_EQ(shipped.max_z_m, defaults.max_z_m);
-  EXPECT_EQ(shipped.max_vmax_m_s, defaults.max_vmax_m_s);
-  EXPECT_EQ(shipped.max_amax_m_s2, defaults.max_amax_m_s2);
-  EXPECT_EQ(shipped.heartbeat_timeout_s, defaults.heartbeat_timeout_s);
-  EXPECT_EQ(shipped.dispatch_timeout_s, defaults.dispatch_timeout_s);
+  // Every field (TaskLimits::fields), shipped with its default value.
+  const std::string path = config::default_config_dir() + "/task_manager.yaml";
+  cover::test::expect_shipped_file_holds_defaults(TaskLimits::load_file(path), path,
+                                                  "task_manager");
 
   const auto error_of = [](const std::string& yaml) {
     try {
@@ -187,6 +182,13 @@ TEST(TaskManagerLimits, ShippedFileHoldsTheDefaultsAndBadKeysAreNamed) {
             std::string::npos);
   EXPECT_NE(error_of("max_z_m: -1").find("task_manager.max_z_m"), std::string::npos);
   EXPECT_EQ(error_of("max_vmax_m_s: 2.5"), "accepted");
+  // The vehicle's limits within what any task may have (mission/motion_limits.hpp).
+  EXPECT_NE(error_of("max_vmax_m_s: 25").find("task_manager.max_vmax_m_s: must be in (0, 20]"),
+            std::string::npos)
+      << error_of("max_vmax_m_s: 25");
+  EXPECT_NE(error_of("restart_grace_s: .nan").find("task_manager.restart_grace_s"),
+            std::string::npos);
+  EXPECT_NE(error_of("max_amax_m_s2: 31").find("task_manager.max_amax_m_s2"), std::string::npos);
 }
 
 }  // namespace

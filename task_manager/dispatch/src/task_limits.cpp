@@ -1,25 +1,10 @@
 #include "cover/task_manager/task_limits.hpp"
 
-#include <cmath>
-
 namespace cover::task_manager {
-namespace {
-bool positive(double value) {
-  return std::isfinite(value) && value > 0.0;
-}
-}  // namespace
 
 TaskLimits TaskLimits::load(config::YamlReader& reader) {
   TaskLimits limits;
-  reader.optional("max_horizontal_m", limits.max_horizontal_m);
-  reader.optional("min_z_m", limits.min_z_m);
-  reader.optional("max_z_m", limits.max_z_m);
-  reader.optional("max_vmax_m_s", limits.max_vmax_m_s);
-  reader.optional("max_amax_m_s2", limits.max_amax_m_s2);
-  reader.optional("heartbeat_timeout_s", limits.heartbeat_timeout_s);
-  reader.optional("restart_grace_s", limits.restart_grace_s);
-  reader.optional("dispatch_timeout_s", limits.dispatch_timeout_s);
-  reader.reject_unknown_keys();
+  config::load_fields(limits, reader);
   limits.validate();
   return limits;
 }
@@ -36,16 +21,12 @@ TaskLimits TaskLimits::from_yaml(const YAML::Node& document, const std::string& 
 
 void TaskLimits::validate() const {
   const std::string ctx = "task_manager";
-  config::check(positive(max_horizontal_m), ctx + ".max_horizontal_m", "must be > 0");
-  config::check(std::isfinite(min_z_m), ctx + ".min_z_m", "must be a finite number");
-  config::check(std::isfinite(max_z_m) && max_z_m > min_z_m, ctx + ".max_z_m",
-                "must be a finite number above min_z_m");
-  config::check(positive(max_vmax_m_s), ctx + ".max_vmax_m_s", "must be > 0");
-  config::check(positive(max_amax_m_s2), ctx + ".max_amax_m_s2", "must be > 0");
-  config::check(positive(heartbeat_timeout_s), ctx + ".heartbeat_timeout_s", "must be > 0");
-  config::check(std::isfinite(restart_grace_s) && restart_grace_s >= heartbeat_timeout_s,
-                ctx + ".restart_grace_s", "must be >= heartbeat_timeout_s");
-  config::check(positive(dispatch_timeout_s), ctx + ".dispatch_timeout_s", "must be > 0");
+  // Each field's bounds, among them the vehicle's limits within what any task may have
+  // (mission/motion_limits.hpp): above, the manager would promise tasks every UAV rejects.
+  config::check_fields(*this, ctx);
+  config::check(max_z_m > min_z_m, ctx + ".max_z_m", "must be above min_z_m");
+  config::check(restart_grace_s >= heartbeat_timeout_s, ctx + ".restart_grace_s",
+                "must be >= heartbeat_timeout_s");
 }
 
 }  // namespace cover::task_manager

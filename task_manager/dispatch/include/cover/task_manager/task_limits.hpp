@@ -2,7 +2,9 @@
 
 #include <string>
 
+#include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
+#include "cover/mission/motion_limits.hpp"
 
 namespace cover::task_manager {
 
@@ -21,6 +23,32 @@ struct TaskLimits {
   // submission naming a vehicle not heard yet waits as long at most before it is judged.
   double restart_grace_s = 10.0;
   double dispatch_timeout_s = 5.0;  // a dispatched task the agent has not taken by then fails
+
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("max_horizontal_m", self.max_horizontal_m,
+          Field("m", "|x|, |y| of every point in its UGV frame").above(0.0));
+    visit("min_z_m", self.min_z_m, Field("m", "lowest z of every point"));
+    visit("max_z_m", self.max_z_m, Field("m", "highest z of every point, above min_z_m"));
+    visit("max_vmax_m_s", self.max_vmax_m_s,
+          Field("m/s", "the vehicle's speed limit")
+              .above(0.0)
+              .at_most(mission::kPlausibleVmax_m_s));
+    visit("max_amax_m_s2", self.max_amax_m_s2,
+          Field("m/s^2", "the vehicle's acceleration limit")
+              .above(0.0)
+              .at_most(mission::kPlausibleAmax_m_s2));
+    visit("heartbeat_timeout_s", self.heartbeat_timeout_s,
+          Field("s", "an agent or UGV IMU not heard for this long is not up").above(0.0));
+    visit("restart_grace_s", self.restart_grace_s,
+          Field("s", "after a (re)start, how long an unheard vehicle is waited for; "
+                     ">= heartbeat_timeout_s"));
+    visit("dispatch_timeout_s", self.dispatch_timeout_s,
+          Field("s", "a dispatched task the agent has not taken by then fails").above(0.0));
+  }
 
   static TaskLimits load(config::YamlReader& reader);
   static TaskLimits load_file(const std::string& path);
