@@ -57,7 +57,8 @@ TEST(ParamFields, LoadsChecksAndNamesTheKey) {
 }
 
 TEST(ParamFields, KeysValuesAndTableFollowTheOneList) {
-  EXPECT_EQ(field_keys<Example>(), (std::vector<std::string>{"period_s", "count", "gains", "name"}));
+  EXPECT_EQ(field_keys<Example>(),
+            (std::vector<std::string>{"period_s", "count", "gains", "name"}));
   Example changed;
   changed.gains.z() = 4.0;
   const auto defaults = field_values(Example{});

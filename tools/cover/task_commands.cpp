@@ -21,7 +21,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-
 bool is_final(msg::ManagedTaskState s) {
   using S = msg::ManagedTaskState;
   return s == S::MANAGED_SUCCEEDED || s == S::MANAGED_FAILED || s == S::MANAGED_ABORTED ||

@@ -23,9 +23,9 @@ ClosedLoop::ClosedLoop(Scenario scenario, uav::ControllerConfig config, ClosedLo
   const double ratio = scenario_.world.physics_rate_hz / options_.control_rate_hz;
   config::check(options_.control_rate_hz > 0.0 && std::abs(ratio - std::round(ratio)) < 1e-9,
                 "closed_loop.control_rate_hz", "must divide the physics rate");
-  mission::check_control_period(config_.mission, 1.0 / options_.control_rate_hz,
-                                "closed_loop.control_rate_hz " +
-                                    config::format_number(options_.control_rate_hz) + " Hz");
+  mission::check_control_period(
+      config_.mission, 1.0 / options_.control_rate_hz,
+      "closed_loop.control_rate_hz " + config::format_number(options_.control_rate_hz) + " Hz");
   config::check(options_.record_every_control_steps >= 1, "closed_loop.record_every_control_steps",
                 "must be >= 1");
 }
@@ -49,9 +49,9 @@ ClosedLoopResult ClosedLoop::run() const {
   while (!recorder.finished(world.state().time_s)) {
     const auto step_start = std::chrono::steady_clock::now();
     const mission::ControllerOutput& out = loop.step(world.state().time_s, inputs, plant);
-    step_us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() -
-                                                                step_start)
-                          .count());
+    step_us.push_back(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - step_start)
+            .count());
     if (out.status.planned) plan_wait_max_ms = std::max(plan_wait_max_ms, out.status.plan_wait_ms);
     if (out.command.release_payload && world.release_payload()) recorder.record_release(world);
     recorder.record(out.status, out.command, world);

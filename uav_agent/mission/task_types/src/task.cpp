@@ -141,9 +141,9 @@ void Task::validate(int ugv_count) const {
     check_point(p.initial_point_m, pctx + ".initial_point_m");
     check_point(p.transition_point_m, pctx + ".transition_point_m");
     check_point(p.final_point_m, pctx + ".final_point_m");
-    config::check(
-        std::isfinite(p.vmax_m_s) && p.vmax_m_s > 0.0 && p.vmax_m_s <= kPlausibleVmax_m_s,
-        pctx + ".vmax_m_s", "must be in (0, " + config::format_number(kPlausibleVmax_m_s) + "]");
+    config::check(std::isfinite(p.vmax_m_s) && p.vmax_m_s > 0.0 && p.vmax_m_s <= kPlausibleVmax_m_s,
+                  pctx + ".vmax_m_s",
+                  "must be in (0, " + config::format_number(kPlausibleVmax_m_s) + "]");
     config::check(
         std::isfinite(p.amax_m_s2) && p.amax_m_s2 > 0.0 && p.amax_m_s2 <= kPlausibleAmax_m_s2,
         pctx + ".amax_m_s2", "must be in (0, " + config::format_number(kPlausibleAmax_m_s2) + "]");

@@ -15,13 +15,13 @@ namespace cover::sim {
 // can reach at best with eq. 30, given the same start. The benchmark prints it next to the
 // closed-loop ratio, so a reader can tell the controller's losses from the law's.
 struct ApproachLawParams {
-  double vmax_m_s = mission::kDefaultVmax_m_s;   // approach speed limit relative to the UGV
+  double vmax_m_s = mission::kDefaultVmax_m_s;    // approach speed limit relative to the UGV
   double amax_m_s2 = mission::kDefaultAmax_m_s2;  // acceleration limit (world frame)
-  double response_time_s = 0.1;      // first-order lag of the velocity toward the law
-  double reach_tolerance_m = 0.3;    // the stage ends this close to the UGV ...
-  double speed_threshold_m_s = 0.3;  // ... and this slow relative to it
-  double step_s = 0.01;              // Euler step
-  double max_duration_s = 60.0;      // gives up (reached = false) after this
+  double response_time_s = 0.1;                   // first-order lag of the velocity toward the law
+  double reach_tolerance_m = 0.3;                 // the stage ends this close to the UGV ...
+  double speed_threshold_m_s = 0.3;               // ... and this slow relative to it
+  double step_s = 0.01;                           // Euler step
+  double max_duration_s = 60.0;                   // gives up (reached = false) after this
 };
 
 struct ApproachLawResult {

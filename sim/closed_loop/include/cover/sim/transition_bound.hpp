@@ -51,14 +51,14 @@ namespace cover::sim {
 // shorter" compares like with like. A longer budget would let the bound wait for the target
 // to come round, which a method that flies the stage as soon as it starts never does.
 struct TransitionBoundParams {
-  double vmax_m_s = mission::kDefaultVmax_m_s;   // speed limit relative to the target UGV
+  double vmax_m_s = mission::kDefaultVmax_m_s;    // speed limit relative to the target UGV
   double amax_m_s2 = mission::kDefaultAmax_m_s2;  // acceleration limit
-  double reach_tolerance_m = 0.3;      // MissionParams::transition_reach_tolerance_m
-  double speed_threshold_m_s = 0.3;    // MissionParams::speed_threshold_m_s
-  double time_step_s = 0.1;            // polyline segment (nominal)
-  double coarse_arrival_step_s = 0.5;  // arrival-time grid before the refinement
-  double arrival_resolution_s = 0.05;  // refinement stops at this bracket width
-  double gap_tolerance_m = 1e-4;       // duality gap of each convex solve
+  double reach_tolerance_m = 0.3;                 // MissionParams::transition_reach_tolerance_m
+  double speed_threshold_m_s = 0.3;               // MissionParams::speed_threshold_m_s
+  double time_step_s = 0.1;                       // polyline segment (nominal)
+  double coarse_arrival_step_s = 0.5;             // arrival-time grid before the refinement
+  double arrival_resolution_s = 0.05;             // refinement stops at this bracket width
+  double gap_tolerance_m = 1e-4;                  // duality gap of each convex solve
 };
 
 struct TransitionBoundResult {

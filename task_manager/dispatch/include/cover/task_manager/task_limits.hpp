@@ -33,10 +33,9 @@ struct TaskLimits {
           Field("m", "|x|, |y| of every point in its UGV frame").above(0.0));
     visit("min_z_m", self.min_z_m, Field("m", "lowest z of every point"));
     visit("max_z_m", self.max_z_m, Field("m", "highest z of every point, above min_z_m"));
-    visit("max_vmax_m_s", self.max_vmax_m_s,
-          Field("m/s", "the vehicle's speed limit")
-              .above(0.0)
-              .at_most(mission::kPlausibleVmax_m_s));
+    visit(
+        "max_vmax_m_s", self.max_vmax_m_s,
+        Field("m/s", "the vehicle's speed limit").above(0.0).at_most(mission::kPlausibleVmax_m_s));
     visit("max_amax_m_s2", self.max_amax_m_s2,
           Field("m/s^2", "the vehicle's acceleration limit")
               .above(0.0)
@@ -44,8 +43,9 @@ struct TaskLimits {
     visit("heartbeat_timeout_s", self.heartbeat_timeout_s,
           Field("s", "an agent or UGV IMU not heard for this long is not up").above(0.0));
     visit("restart_grace_s", self.restart_grace_s,
-          Field("s", "after a (re)start, how long an unheard vehicle is waited for; "
-                     ">= heartbeat_timeout_s"));
+          Field("s",
+                "after a (re)start, how long an unheard vehicle is waited for; "
+                ">= heartbeat_timeout_s"));
     visit("dispatch_timeout_s", self.dispatch_timeout_s,
           Field("s", "a dispatched task the agent has not taken by then fails").above(0.0));
   }

@@ -18,9 +18,9 @@ namespace cover::mission {
 // min(vmax, sqrt(2 a_brake r)), reached from the current closing speed at most amax faster
 // per second, and is re-derived every control step from the measured distance.
 struct RadialApproachLimits {
-  double vmax_m_s = kDefaultVmax_m_s;   // the process's speed limit relative to the UGV
+  double vmax_m_s = kDefaultVmax_m_s;    // the process's speed limit relative to the UGV
   double amax_m_s2 = kDefaultAmax_m_s2;  // the process's acceleration limit, for speeding up
-  double brake_m_s2 = 1.0;  // the deceleration the approach plans to stop with
+  double brake_m_s2 = 1.0;               // the deceleration the approach plans to stop with
   // The speed-up's acceleration builds from 0 to amax over this long after the stage starts
   // (s; 0: amax at once). A step to amax at the frame switch is a step in the tilt the
   // heavy distance term asks for: the body-rate and thrust steps of Fig. 8.

@@ -22,7 +22,7 @@ struct TransitionProcess {
   Eigen::Vector3d transition_point_m{0.0, 0.0, 1.0};  // in Gj, end of the transition stage
   Eigen::Vector3d final_point_m{0.0, 0.0, 0.3};       // in Gj, end of the final stage
   FinalAction final_action = FinalAction::None;
-  double vmax_m_s = kDefaultVmax_m_s;   // UAV speed limit relative to the reference frame
+  double vmax_m_s = kDefaultVmax_m_s;    // UAV speed limit relative to the reference frame
   double amax_m_s2 = kDefaultAmax_m_s2;  // UAV acceleration limit relative to the reference frame
   // The method flying this process (a sampc::kModes name: cover, no-ref-vxy, intercept, ...);
   // empty: the UAV's configured one (sampc.yaml's mode, or its --method).
