@@ -100,7 +100,8 @@ TEST(PlanOffThread, ARealtimeStepNeverWaitsForAPlan) {
     }
     return planned;
   });
-  const bool returned = stepping.wait_for(cover::test::scaled(10000ms)) == std::future_status::ready;
+  const bool returned =
+      stepping.wait_for(cover::test::scaled(10000ms)) == std::future_status::ready;
   gate.open();  // never leave the worker (or a blocked step) waiting
   ASSERT_TRUE(returned) << "a realtime control step waited for the plan";
   EXPECT_EQ(stepping.get(), 0);  // 20 steps flown on the coasting reference
@@ -146,12 +147,12 @@ TEST(PlanOffThread, ALockstepStepWaitsForThePlanDueAtIt) {
 
 TEST(PlanOffThread, ANewStageSupersedesThePlanInFlight) {
   std::atomic<int> plans{0};
-  PlanWorker worker([&](const cover::planner::StageProblem& problem,
-                        cover::planner::PlanResult& result) {
-    ++plans;
-    result = cover::planner::PlanResult{};
-    result.iterations = static_cast<int>(problem.goal_position_m.x());
-  });
+  PlanWorker worker(
+      [&](const cover::planner::StageProblem& problem, cover::planner::PlanResult& result) {
+        ++plans;
+        result = cover::planner::PlanResult{};
+        result.iterations = static_cast<int>(problem.goal_position_m.x());
+      });
   cover::planner::StageProblem first;
   first.goal_position_m.x() = 1.0;
   cover::planner::StageProblem second;
@@ -167,7 +168,8 @@ TEST(PlanOffThread, ANewStageSupersedesThePlanInFlight) {
 }
 
 // What a run flew, every control step: equal runs have equal traces, bit for bit.
-void expect_identical(const cover::sim::ClosedLoopResult& a, const cover::sim::ClosedLoopResult& b) {
+void expect_identical(const cover::sim::ClosedLoopResult& a,
+                      const cover::sim::ClosedLoopResult& b) {
   ASSERT_EQ(a.step_trace.size(), b.step_trace.size());
   for (std::size_t i = 0; i < a.step_trace.size(); ++i) {
     const cover::sim::StepSample& x = a.step_trace[i];

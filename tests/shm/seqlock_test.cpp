@@ -9,6 +9,7 @@
 
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/shm/seqlock_writer.hpp"
+#include "cover/test/time_scale.hpp"
 #include "shm_test_support.hpp"
 
 namespace {
@@ -170,3 +171,38 @@ TEST_F(ShmSeqlock, WriterUnlinksOnDestructionAndReadersKeepTheirMapping) {
 }
 
 }  // namespace
+
+// A reader that would poll blocks on the sequence instead (SeqlockReader::wait_for_write):
+// the next write wakes it, through its own mapping of the segment (as in another process).
+TEST_F(ShmSeqlock, AWriteWakesAReaderBlockedOnTheSequence) {
+  const std::string name = unique_name();
+  SeqlockWriter<CounterPayload> writer(name, kCounterLayout);
+  const auto reader = SeqlockReader<CounterPayload>::open(name, kCounterLayout, 1s);
+  const auto value = std::make_unique<CounterPayload>();
+  cover::shm::test::fill(*value, 1);
+  writer.write(*value, 1);
+  const std::uint64_t seen = reader.sequence();
+
+  // Unchanged: the wait lasts its timeout.
+  const auto start = std::chrono::steady_clock::now();
+  reader.wait_for_write(seen, 20ms);
+  EXPECT_GE(std::chrono::steady_clock::now() - start, 15ms);
+
+  // A write while it waits (or before it got to wait) ends it long before its timeout; a
+  // write that did not wake it would keep it 60 s.
+  std::atomic<bool> woke{false};
+  std::chrono::steady_clock::duration waited{};
+  std::thread waiter([&] {
+    const auto begin = std::chrono::steady_clock::now();
+    reader.wait_for_write(seen, 60s);
+    waited = std::chrono::steady_clock::now() - begin;
+    woke = true;
+  });
+  cover::shm::test::fill(*value, 2);
+  writer.write(*value, 2);
+  const bool returned = cover::test::wait_until([&] { return woke.load(); }, 10000ms);
+  waiter.join();
+  EXPECT_TRUE(returned);
+  EXPECT_LT(waited, 30s);
+  EXPECT_NE(reader.sequence(), seen);
+}

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -37,6 +38,11 @@ class DdsUavInputs : public uav::UavInputs {
   // Stamps of the newest samples received for `ugv`, ns (-1: none), for lockstep waits.
   std::int64_t relative_stamp_ns(int ugv) const;
   std::int64_t imu_stamp_ns(int ugv) const;
+  // Blocks until every UGV `task` names has a relative state stamped >= relative_ns and an
+  // IMU sample stamped >= imu_ns (a stamp < 0: that input is not awaited), woken by the
+  // readers' callbacks as samples arrive; false at `deadline`.
+  bool wait_for_stamps(const mission::Task& task, std::int64_t relative_ns, std::int64_t imu_ns,
+                       std::chrono::steady_clock::time_point deadline) const;
   // Waits until every subscribed UGV has a relative-state and an IMU writer; false on
   // timeout (then logs which is missing).
   bool wait_for_writers(std::chrono::milliseconds timeout) const;
@@ -62,7 +68,8 @@ class DdsUavInputs : public uav::UavInputs {
   dds::Participant& participant_;
   std::uint32_t uav_id_;
   wire::IntakeLimits limits_;
-  mutable std::mutex mutex_;  // the slots, the clock and the counts
+  mutable std::mutex mutex_;                 // the slots, the clock and the counts
+  mutable std::condition_variable arrived_;  // a sample was offered to a slot
   std::optional<double> now_s_;
   wire::RejectionCounts rejections_;
   std::vector<std::unique_ptr<UgvReaders>> readers_;  // by UGV id; null: not subscribed

@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <thread>
 
 #include "cover/clock/clock.hpp"
 #include "cover/process/shutdown_signal.hpp"
@@ -88,6 +87,12 @@ int UavAgentNode::run() {
     spdlog::info("{} lockstep answer(s) written again for ticks published again",
                  answers_repeated_);
   }
+  if (const LockstepTimes& t = lockstep_times_; t.ticks > 0) {
+    spdlog::info(
+        "lockstep: {} ticks; wall time waiting for ticks {:.3f} s, for their inputs "
+        "{:.3f} s, stepping {:.3f} s (of which waiting for plans {:.3f} s)",
+        t.ticks, t.tick_wait_s, t.input_wait_s, t.step_s, t.plan_wait_s);
+  }
   spdlog::info("shutting down: {}", loop_.describe());
   return 0;
 }
@@ -95,7 +100,11 @@ int UavAgentNode::run() {
 void UavAgentNode::run_lockstep() {
   auto last_tick = std::chrono::steady_clock::now();
   bool connected = false;
+  auto seconds_since = [](std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   while (!process::ShutdownSignal::requested()) {
+    const auto waiting = std::chrono::steady_clock::now();
     const auto tick = clock_.next_tick(100ms);
     if (!tick) {
       // The heartbeat goes on between ticks (before the first, or while the simulator
@@ -121,8 +130,18 @@ void UavAgentNode::run_lockstep() {
       connected = inputs_.wait_for_writers(clock::to_milliseconds(options_.connect_timeout_s));
       if (connected) spdlog::info("inputs connected");
     }
+    const auto inputs = std::chrono::steady_clock::now();
+    // Before the first answered tick the wait is start-up (discovery, the others' start).
+    if (lockstep_times_.ticks > 0) lockstep_times_.tick_wait_s += seconds_since(waiting);
     wait_for_inputs(tick->tick);
+    const auto stepping = std::chrono::steady_clock::now();
+    lockstep_times_.input_wait_s += seconds_since(inputs);
     step(wire::to_seconds(tick->tick.stamp_ns));
+    lockstep_times_.step_s += seconds_since(stepping);
+    ++lockstep_times_.ticks;
+    if (loop_.output().status.planned) {
+      lockstep_times_.plan_wait_s += 1e-3 * loop_.output().status.plan_wait_ms;
+    }
   }
 }
 
@@ -133,24 +152,10 @@ void UavAgentNode::wait_for_inputs(const msg::SimClock& tick) {
   if (!task) return;
   const auto deadline =
       std::chrono::steady_clock::now() + clock::to_milliseconds(options_.input_wait_s);
-  auto arrived = [&] {
-    for (const auto& p : task->processes) {
-      for (const int k : {p.from_ugv, p.to_ugv}) {
-        if (tick.relative_stamp_ns >= 0 && inputs_.relative_stamp_ns(k) < tick.relative_stamp_ns) {
-          return false;
-        }
-        if (tick.imu_stamp_ns >= 0 && inputs_.imu_stamp_ns(k) < tick.imu_stamp_ns) return false;
-      }
-    }
-    return true;
-  };
-  while (!arrived()) {
-    if (std::chrono::steady_clock::now() >= deadline) {
-      spdlog::warn("tick {}: inputs missing after {:.1f} s, stepping on what arrived", tick.tick,
-                   options_.input_wait_s);
-      return;
-    }
-    std::this_thread::sleep_for(50us);
+  // Blocks on the readers' arrivals (no polling: a poll's sleep costs its slack every tick).
+  if (!inputs_.wait_for_stamps(*task, tick.relative_stamp_ns, tick.imu_stamp_ns, deadline)) {
+    spdlog::warn("tick {}: inputs missing after {:.1f} s, stepping on what arrived", tick.tick,
+                 options_.input_wait_s);
   }
 }
 

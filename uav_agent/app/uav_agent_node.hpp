@@ -85,8 +85,17 @@ class UavAgentNode {
   double next_status_s_ = 0.0;
   double last_step_s_ = 0.0;  // time of the last control step (the status stamp between steps)
   std::uint64_t answers_repeated_ = 0;  // lockstep ticks answered again (a lost answer)
-  std::string reported_key_;            // task id, state, process, stage of the last TaskStatus
-  std::string logged_stage_;            // stage line last logged
+  // Where a lockstep run's wall time goes (logged at the end): waiting for the simulator's
+  // tick, for that tick's inputs, and the step (of which waiting for a plan due at it).
+  struct LockstepTimes {
+    std::uint64_t ticks = 0;
+    double tick_wait_s = 0.0;
+    double input_wait_s = 0.0;
+    double step_s = 0.0;
+    double plan_wait_s = 0.0;
+  } lockstep_times_;
+  std::string reported_key_;  // task id, state, process, stage of the last TaskStatus
+  std::string logged_stage_;  // stage line last logged
   mission::Failsafe logged_failsafe_ = mission::Failsafe::WaitingForInputs;
   bool logged_handover_ = false;
   std::string failsafe_event_;  // the last failsafe entry or exit, with its cause

@@ -312,10 +312,9 @@ void MissionController::adopt_plan(double now_s) {
   const auto started = std::chrono::steady_clock::now();
   if (!plan_worker_.take(plan_request_id_, adopted_, wait)) return;  // realtime: fly on
   output_.status.plan_wait_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
-          .count();
-  output_.status.plan_late_steps = static_cast<int>(
-      std::lround((now_s - plan_adopt_at_s_) / params_.control_period_s));
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+  output_.status.plan_late_steps =
+      static_cast<int>(std::lround((now_s - plan_adopt_at_s_) / params_.control_period_s));
   plan_request_id_ = 0;
   output_.status.planned = true;
   output_.status.plan_status = adopted_.status;

@@ -2,8 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <stdexcept>
-#include <thread>
 
 #include "cover/shm/segment.hpp"
 #include "cover/shm/segment_name.hpp"
@@ -60,7 +60,12 @@ std::size_t SimShmImuSource::read(std::vector<ImuSample>& out, std::chrono::mill
       continue;
     }
     if (now >= give_up) break;
-    std::this_thread::sleep_for(kPollInterval);
+    // Nothing new: sleep until the simulator writes (its wake-up), the next liveness check
+    // or the timeout. A write that completed since the look above is read first.
+    const std::uint64_t sequence = reader_.sequence();
+    if (sequence == seen_sequence_ || sequence % 2 == 1) {
+      reader_.wait_for_write(sequence, std::min(give_up, next_liveness_check) - now);
+    }
   }
   return out.size();
 }

@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "cover/shm/futex.hpp"
 #include "cover/shm/segment.hpp"
 
 namespace cover::shm {
@@ -76,6 +77,11 @@ class SeqlockReader {
   // new was written without copying the payload. Odd while a write is in progress.
   std::uint64_t sequence() const {
     return segment_.header().sequence.load(std::memory_order_acquire);
+  }
+  // Blocks until the sequence is no longer `seen` (a write began or ended since), at most
+  // `timeout`; may return early. For readers that would otherwise poll sequence().
+  void wait_for_write(std::uint64_t seen, std::chrono::nanoseconds timeout) const {
+    wait_while(segment_.header().sequence, seen, timeout);
   }
   // The sequence of the value the last successful read() returned (0 before any).
   std::uint64_t last_read_sequence() const { return last_read_sequence_; }

@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "cover/shm/futex.hpp"
 #include "cover/shm/segment.hpp"
 
 namespace cover::shm {
@@ -51,6 +52,8 @@ class SeqlockWriter {
     std::forward<F>(mutate)(payload());
     header.sim_time_ns.store(sim_time_ns, std::memory_order_relaxed);
     header.sequence.store(sequence + 2, std::memory_order_release);
+    // Readers blocked in SeqlockReader::wait_for_write() (agents in lockstep) go on now.
+    wake_all(header.sequence);
   }
 
   const std::string& name() const { return segment_.name(); }

@@ -21,9 +21,9 @@ namespace cover::ugv {
 // the agent was not running then.
 class SimShmImuSource : public ImuSource {
  public:
-  // Between two looks at the segment's sequence while waiting: short, because the
-  // simulator in lockstep mode waits for the agents every control period (10 ms).
-  static constexpr std::chrono::microseconds kPollInterval{150};
+  // A waiting read blocks on the segment's sequence (shm::SeqlockReader::wait_for_write),
+  // woken by the simulator's next write: the simulator in lockstep waits for the agents
+  // every control period, and a poll's sleep would add its slack to every tick.
   // How often a waiting read checks that the writer still exists (a syscall or two).
   static constexpr std::chrono::milliseconds kLivenessInterval{50};
 
