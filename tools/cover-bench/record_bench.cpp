@@ -5,7 +5,8 @@
 // lost (published after the recorder heard every writer, missing from the file), samples
 // per second written, file bytes per flight minute, and the recorder's CPU share of one
 // core (utime + stime from /proc over the measured window), per compression; then the
-// recorder's CPU share during a realtime Scenario 2 recorded by cover-launch --record.
+// recorder's and the live view's CPU shares during a realtime Scenario 2 recorded and served
+// by cover-launch --record --foxglove, a Foxglove client subscribed to every channel.
 #include <unistd.h>
 
 #include <chrono>
@@ -28,6 +29,7 @@
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
+#include "cover/foxglove/subscriber_client.hpp"
 #include "cover/mcap/reader.hpp"
 #include "cover/process/child_process.hpp"
 
@@ -50,6 +52,8 @@ const std::string kCover = "cover";
 #endif
 
 constexpr std::uint32_t kUavs = 4;
+// cover-launch --foxglove serves the live view on the bridge's default port.
+constexpr int kLiveViewPort = 8765;
 constexpr std::uint32_t kUgvs = 4;
 
 struct Row {
@@ -229,27 +233,51 @@ Row run_row(const std::string& compression, double scale, double duration_s, int
   return row;
 }
 
-// The launch's recorder during a realtime Scenario 2 (cover-launch --record): its CPU
-// share of one core as it logs it at exit; negative when the run failed.
-double scenario2_cpu_share(int domain, const fs::path& dir) {
-  const fs::path run_dir = dir / "scenario2";
-  cover::process::SpawnOptions options;
-  options.log_file = (dir / "launch.log").string();
-  cover::process::ChildProcess launch(
-      {kLauncher, cover::config::default_config_dir() + "/launch/scenario2.yaml", "--clock",
-       "realtime", "--record", "--domain", std::to_string(domain), "--run-dir", run_dir.string()},
-      options);
-  if (launch.wait(120s).value_or(-1) != 0) return -1.0;
-  std::ifstream log(run_dir / "recorder.log");
+// `label ... s: X` in a process's log (its CPU share, in percent, logged at exit) as a
+// fraction of one core; negative when the line is missing.
+double logged_cpu_share(const fs::path& log_path, const std::string& label) {
+  std::ifstream log(log_path);
   std::string line;
   double share = -1.0;
   while (std::getline(log, line)) {
     const auto at = line.find(" s: ");
-    if (line.find("recorder CPU") != std::string::npos && at != std::string::npos) {
+    if (line.find(label) != std::string::npos && at != std::string::npos) {
       share = std::stod(line.substr(at + 4)) / 100.0;
     }
   }
   return share;
+}
+
+struct Scenario2Shares {
+  double recorder = -1.0;  // of one core; negative when the run failed
+  double live_view = -1.0;
+  std::uint64_t live_view_messages = 0;  // what the subscribed-to-everything client received
+  std::uint64_t live_view_channels = 0;
+};
+
+// The launch's recorder and live view during a realtime Scenario 2 (cover-launch --record
+// --foxglove), a Foxglove client subscribed to every advertised channel: their CPU shares
+// of one core as they log them at exit.
+Scenario2Shares scenario2_cpu_shares(int domain, const fs::path& dir) {
+  const fs::path run_dir = dir / "scenario2";
+  cover::process::SpawnOptions options;
+  options.log_file = (dir / "launch.log").string();
+  cover::foxglove::SubscriberClient client("ws://127.0.0.1:" + std::to_string(kLiveViewPort));
+  cover::process::ChildProcess launch(
+      {kLauncher, cover::config::default_config_dir() + "/launch/scenario2.yaml", "--clock",
+       "realtime", "--record", "--foxglove", "--domain", std::to_string(domain), "--run-dir",
+       run_dir.string()},
+      options);
+  Scenario2Shares shares;
+  const bool ok = launch.wait(120s).value_or(-1) == 0;
+  const auto counts = client.counts();
+  client.stop();
+  if (!ok) return shares;
+  shares.recorder = logged_cpu_share(run_dir / "recorder.log", "recorder CPU");
+  shares.live_view = logged_cpu_share(run_dir / "foxglove.log", "bridge CPU");
+  shares.live_view_messages = counts.messages;
+  shares.live_view_channels = counts.channels_advertised;
+  return shares;
 }
 
 int run(const std::vector<std::string>& args) {
@@ -274,7 +302,7 @@ int run(const std::vector<std::string>& args) {
       rows.push_back(run_row(compression, scale, duration_s, claim.domain(), dir));
     }
   }
-  const double scenario2_share = scenario2_cpu_share(claim.domain(), dir);
+  const Scenario2Shares scenario2 = scenario2_cpu_shares(claim.domain(), dir);
   fs::remove_all(dir);
 
   nlohmann::json out = nlohmann::json::array();
@@ -291,7 +319,10 @@ int run(const std::vector<std::string>& args) {
   }
   if (json) {
     std::cout << nlohmann::json{{"record", out},
-                                {"scenario2_realtime_recorder_cpu_share", scenario2_share}}
+                                {"scenario2_realtime_recorder_cpu_share", scenario2.recorder},
+                                {"scenario2_realtime_live_view_cpu_share", scenario2.live_view},
+                                {"scenario2_live_view_messages", scenario2.live_view_messages},
+                                {"scenario2_live_view_channels", scenario2.live_view_channels}}
                      .dump()
               << std::endl;
     return 0;
@@ -305,8 +336,12 @@ int run(const std::vector<std::string>& args) {
                 static_cast<unsigned long long>(r.published - std::min(r.published, r.recorded)),
                 r.samples_per_s, r.bytes_per_minute / (1024.0 * 1024.0), 100.0 * r.cpu_share);
   }
-  std::printf("realtime Scenario 2 (cover-launch --record): recorder %.1f%% of one core\n",
-              100.0 * scenario2_share);
+  std::printf(
+      "realtime Scenario 2 (cover-launch --record --foxglove): recorder %.1f%%, live view %.1f%% "
+      "of one core (its client subscribed to %llu channels, received %llu messages)\n",
+      100.0 * scenario2.recorder, 100.0 * scenario2.live_view,
+      static_cast<unsigned long long>(scenario2.live_view_channels),
+      static_cast<unsigned long long>(scenario2.live_view_messages));
   return 0;
 }
 
