@@ -65,6 +65,14 @@ TEST(Qos, UnknownProfileAndBadValuesAreErrors) {
   bad = sensor_qos();
   bad.deadline_s = std::nan("");
   EXPECT_THROW(bad.validate(), DdsError);
+  for (const double delay_s : {-0.01, 1.5, std::nan("")}) {
+    bad = command_qos();
+    bad.acknowledgement_delay_s = delay_s;
+    EXPECT_THROW(bad.validate(), DdsError) << delay_s;
+  }
+  bad = command_qos();
+  bad.acknowledgement_delay_s = 0.05;
+  EXPECT_NO_THROW(bad.validate());
 }
 
 TEST(Vendor, ParsesNamesAndRejectsOthers) {

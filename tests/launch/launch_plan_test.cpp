@@ -11,7 +11,10 @@
 #include "cover/launch/dds_override.hpp"
 #include "cover/launch/executable_lookup.hpp"
 #include "cover/launch/launch_plan.hpp"
+#include "cover/launch/launched_fleet.hpp"
+#include "cover/launch/live_view.hpp"
 #include "cover/launch/placeholders.hpp"
+#include "cover/launch/recording.hpp"
 #include "cover/launch/run_naming.hpp"
 #include "cover/launch/security_identity.hpp"
 #include "cover/launch/shm_cleanup.hpp"
@@ -252,6 +255,61 @@ TEST(LaunchExecutable, BareNamesBesideSelfThenPath) {
             (dir / "path" / "other").string());
   EXPECT_EQ(resolve_executable((dir / "self" / "tool").string(), "/x", "", ""),
             (dir / "self" / "tool").string());
+}
+
+ProcessSpec vehicle(const std::string& executable, std::vector<std::string> args) {
+  ProcessSpec spec;
+  spec.name = executable;
+  spec.executable = executable;
+  spec.args = std::move(args);
+  return spec;
+}
+
+LaunchFile scenario_two_processes() {
+  LaunchFile file;
+  file.processes = {vehicle("cover-sim", {"--scenario", "scenario2"}),
+                    vehicle("cover-ugv-agent", {"--id", "0", "--source", "sim"}),
+                    vehicle("cover-ugv-agent", {"--id=1"}),
+                    vehicle("../bin/cover-uav-agent", {"--id", "0", "--clock={clock}"})};
+  return file;
+}
+
+TEST(LaunchedFleet, FromTheVehicleProcessesIds) {
+  const auto fleet = launched_fleet(scenario_two_processes());
+  ASSERT_TRUE(fleet.has_value());
+  EXPECT_EQ(fleet->uavs, 1u);
+  EXPECT_EQ(fleet->ugvs, 2u);
+  // A bridge names a UAV too: UAV 2's bridge makes ids 0..2.
+  LaunchFile with_bridge = scenario_two_processes();
+  with_bridge.processes.push_back(vehicle("cover-fc-bridge", {"--id", "2"}));
+  EXPECT_EQ(launched_fleet(with_bridge)->uavs, 3u);
+}
+
+TEST(LaunchedFleet, NoneWhereTheLaunchCannotKnowTheWholeFleet) {
+  LaunchFile field = scenario_two_processes();
+  field.kind = LaunchKind::Field;  // the other vehicles run on other hosts
+  EXPECT_FALSE(launched_fleet(field).has_value());
+  LaunchFile placeholder = scenario_two_processes();
+  placeholder.processes[1].args = {"--id", "{ugv}"};
+  EXPECT_FALSE(launched_fleet(placeholder).has_value());
+  LaunchFile no_uav = scenario_two_processes();
+  no_uav.processes.pop_back();
+  EXPECT_FALSE(launched_fleet(no_uav).has_value());
+}
+
+TEST(LaunchedFleet, RecorderAndLiveViewBindTheLaunchedFleetElseEveryVehicle) {
+  LaunchFile file = scenario_two_processes();
+  add_recorder(file, "cover");
+  add_live_view(file);
+  const std::vector<std::string> bound{"--uavs", "1", "--ugvs", "2"};
+  for (const auto& process : file.processes) {
+    if (process.name != kRecorderName && process.name != kLiveViewName) continue;
+    ASSERT_GE(process.args.size(), bound.size()) << process.name;
+    EXPECT_TRUE(std::equal(bound.begin(), bound.end(), process.args.end() - 4)) << process.name;
+  }
+  EXPECT_EQ(recorder_spec("cover").args,
+            (std::vector<std::string>{"record", "-o", "{run_dir}/recording.mcap"}));
+  EXPECT_TRUE(live_view_spec().args.empty());
 }
 
 TEST(LaunchShm, RemovesOnlyEntriesOfTheRun) {

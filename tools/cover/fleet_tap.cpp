@@ -63,7 +63,9 @@ void FleetTap::subscribe(dds::Participant& participant, const dds::Topic<T>& top
   topics_.push_back(TapTopic{topic.name(), T::kTypeName});
   auto subscription = std::make_unique<TypedSubscription<T>>();
   subscription->codec = codec;
-  const auto deep = topic.with_history_depth(options.history_depth).without_deadline();
+  const auto deep = topic.with_history_depth(options.history_depth)
+                        .without_deadline()
+                        .with_acknowledgement_delay(options.acknowledgement_delay_s);
   subscription->reader = participant.make_reader(deep, [this, index](const T& sample) {
     if (wanted_ && !wanted_(index)) return;
     TapSample tapped;

@@ -16,6 +16,10 @@ void QosProfile::validate() const {
   if (!std::isfinite(deadline_s) || deadline_s < 0) {
     throw DdsError("QoS profile '" + name + "': deadline_s must be >= 0");
   }
+  if (!std::isfinite(acknowledgement_delay_s) || acknowledgement_delay_s < 0 ||
+      acknowledgement_delay_s > 1.0) {
+    throw DdsError("QoS profile '" + name + "': acknowledgement_delay_s must be in 0..1");
+  }
 }
 
 QosProfile sensor_qos() {

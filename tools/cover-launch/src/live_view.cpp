@@ -4,10 +4,11 @@
 
 namespace cover::launch {
 
-ProcessSpec live_view_spec() {
+ProcessSpec live_view_spec(const std::optional<LaunchedFleet>& fleet) {
   ProcessSpec spec;
   spec.name = kLiveViewName;
   spec.executable = "cover-foxglove-bridge";
+  spec.args = fleet_args(fleet);
   // Stateless: a restarted bridge serves as before (clients reconnect).
   spec.respawn.enabled = true;
   return spec;
@@ -21,7 +22,7 @@ void add_live_view(LaunchFile& file) {
           "'");
     }
   }
-  file.processes.insert(file.processes.begin(), live_view_spec());
+  file.processes.insert(file.processes.begin(), live_view_spec(launched_fleet(file)));
 }
 
 }  // namespace cover::launch

@@ -15,11 +15,14 @@ std::string recorder_executable() {
   return COVER_CLI_BUILD_PATH;
 }
 
-ProcessSpec recorder_spec(const std::string& executable) {
+ProcessSpec recorder_spec(const std::string& executable,
+                          const std::optional<LaunchedFleet>& fleet) {
   ProcessSpec spec;
   spec.name = kRecorderName;
   spec.executable = executable;
   spec.args = {"record", "-o", std::string("{run_dir}/") + kRecordingFileName};
+  const auto bound = fleet_args(fleet);
+  spec.args.insert(spec.args.end(), bound.begin(), bound.end());
   spec.respawn.enabled = false;
   // On the launch's usual vendor (Fast DDS; --dds overrides): a Cyclone recorder matches
   // Fast DDS writers ~2 s late, and would miss the start of a lockstep run.
@@ -34,7 +37,7 @@ void add_recorder(LaunchFile& file, const std::string& executable) {
           "'");
     }
   }
-  file.processes.insert(file.processes.begin(), recorder_spec(executable));
+  file.processes.insert(file.processes.begin(), recorder_spec(executable, launched_fleet(file)));
 }
 
 }  // namespace cover::launch

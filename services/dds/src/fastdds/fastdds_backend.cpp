@@ -265,6 +265,10 @@ class FastReader final : public ReaderBackend, private fdds::DataReaderListener 
         neutral_sample_(type.new_sample(), type.delete_sample) {
     fdds::DataReaderQos qos = fdds::DATAREADER_QOS_DEFAULT;
     apply_common(profile, qos);
+    if (profile.acknowledgement_delay_s > 0) {
+      qos.reliable_reader_qos().times.heartbeatResponseDelay =
+          to_duration(profile.acknowledgement_delay_s);
+    }
     reader_ = core_->subscriber()->create_datareader(core_->topic(type, topic), qos, this,
                                                      fdds::StatusMask::all());
     if (!reader_) {

@@ -20,6 +20,10 @@ struct QosProfile {
   // Instances (distinct keys) a writer or reader keeps; set on both vendors because Fast
   // DDS defaults to 10, which silently refuses the 11th task's status.
   int max_instances = 4096;
+  // Reliable readers: how long a reader waits after a writer's heartbeat before it
+  // acknowledges (one acknowledgement then covers every sample since); 0 = the vendor's
+  // default (Fast DDS 5 ms). Fast DDS only: Cyclone acknowledges by its own settings.
+  double acknowledgement_delay_s = 0.0;
 
   void validate() const;  // throws DdsError with the reason
 };

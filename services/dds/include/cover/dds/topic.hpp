@@ -44,6 +44,15 @@ class Topic {
     return relaxed;
   }
 
+  // The same topic, its reliable reader acknowledging at most every `delay_s`: for a
+  // reader that only logs (a recorder), whose acknowledgement per sample would cost a
+  // wake-up of its own per sample. The writer keeps unacknowledged samples that long.
+  Topic with_acknowledgement_delay(double delay_s) const {
+    Topic batched = *this;
+    batched.qos_.acknowledgement_delay_s = delay_s;
+    return batched;
+  }
+
   // For tests and benchmarks only: a topic outside the catalogue (e.g. "cover_test/...").
   // Creating a writer/reader on it checks the name is NOT a catalogued pattern (throws
   // DdsError otherwise), so it cannot bypass the catalogue's type and QoS.

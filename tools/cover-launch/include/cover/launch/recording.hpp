@@ -1,8 +1,10 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "cover/launch/launch_file.hpp"
+#include "cover/launch/launched_fleet.hpp"
 
 namespace cover::launch {
 
@@ -16,8 +18,10 @@ inline constexpr const char* kRecordingFileName = "recording.mcap";
 // `cover` beside the launcher, then on $PATH, then the one of this build tree.
 std::string recorder_executable();
 
-// The recorder's process, never respawned (a restart would truncate the recording).
-ProcessSpec recorder_spec(const std::string& executable);
+// The recorder's process, never respawned (a restart would truncate the recording);
+// binding `fleet`'s topics, else every vehicle's.
+ProcessSpec recorder_spec(const std::string& executable,
+                          const std::optional<LaunchedFleet>& fleet = std::nullopt);
 
 // Puts the recorder first in `file`; throws std::invalid_argument when a process of the
 // file already has its name.
