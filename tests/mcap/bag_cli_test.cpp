@@ -79,6 +79,12 @@ std::string file_text(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// play's --delay: the most the first sample waits for the test's reader to match (it
+// starts as soon as it did); discovery took over 2 s on a loaded CI machine.
+std::string discovery_s() {
+  return std::to_string(scaled(std::chrono::milliseconds(20000)).count() / 1000);
+}
+
 class Play : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -128,7 +134,7 @@ class Play : public ::testing::Test {
 };
 
 TEST_F(Play, RepublishesEverySampleAtTheRecordedPaceScaledByRate) {
-  const Output out = play(file_, {"--rate", "2", "--delay", "2"});
+  const Output out = play(file_, {"--rate", "2", "--delay", discovery_s()});
   ASSERT_EQ(out.code, 0) << file_text(scratch_path("play.stderr"));
   ASSERT_EQ(wait_received(kSamples), kSamples);
   std::lock_guard<std::mutex> lock(mutex_);
@@ -140,7 +146,7 @@ TEST_F(Play, RepublishesEverySampleAtTheRecordedPaceScaledByRate) {
 }
 
 TEST_F(Play, StartSkipsTheFirstSecondsAndTopicsSelects) {
-  Output out = play(file_, {"--rate", "4", "--start", "0.5", "--delay", "2"});
+  Output out = play(file_, {"--rate", "4", "--start", "0.5", "--delay", discovery_s()});
   ASSERT_EQ(out.code, 0);
   ASSERT_EQ(wait_received(kSamples / 2), kSamples / 2);
   {
@@ -165,7 +171,7 @@ TEST_F(Play, ACutFileIsReportedWhereAndWhatAndItsReadablePartPlayed) {
   EXPECT_NE(text.find("Problem:           at byte "), std::string::npos) << text;
   EXPECT_NE(text.find("truncated"), std::string::npos) << text;
 
-  const Output out = play(cut, {"--rate", "10", "--delay", "2"});
+  const Output out = play(cut, {"--rate", "10", "--delay", discovery_s()});
   EXPECT_EQ(out.code, 1);
   const std::string log = file_text(scratch_path("play.stderr"));
   EXPECT_NE(log.find(cut + ": at byte "), std::string::npos) << log;

@@ -26,6 +26,7 @@ class TypedPublisher : public Player::Publisher {
     writer_.write(sample_);
     return true;
   }
+  std::size_t matched_readers() const override { return writer_.matched_readers(); }
 
  private:
   dds::CdrCodec codec_;
@@ -39,6 +40,25 @@ bool sleep_until(Clock::time_point when, const std::function<bool()>& stop_reque
     if (stop_requested && stop_requested()) return false;
     std::this_thread::sleep_for(
         std::min<Clock::duration>(when - Clock::now(), std::chrono::milliseconds(50)));
+  }
+  return !(stop_requested && stop_requested());
+}
+
+// Waits until every writer matched a reader or `deadline` passed (checking every 10 ms);
+// false when stopped.
+bool wait_for_readers(const std::map<std::string, std::unique_ptr<Player::Publisher>>& publishers,
+                      Clock::time_point deadline, const std::function<bool()>& stop_requested) {
+  const auto all_matched = [&] {
+    for (const auto& [topic, publisher] : publishers) {
+      if (publisher->matched_readers() == 0) return false;
+    }
+    return true;
+  };
+  while (Clock::now() < deadline && !all_matched()) {
+    if (!sleep_until(std::min(deadline, Clock::now() + std::chrono::milliseconds(10)),
+                     stop_requested)) {
+      return false;
+    }
   }
   return !(stop_requested && stop_requested());
 }
@@ -103,9 +123,10 @@ void Player::listen_for_answers(const std::map<std::string, std::string>& record
 PlayStats Player::run(const std::function<bool()>& stop_requested) {
   PlayStats stats;
   if (!prepare(stats) || publishers_.empty()) return stats;
-  if (!sleep_until(Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                      std::chrono::duration<double>(options_.delay_s)),
-                   stop_requested)) {
+  if (!wait_for_readers(publishers_,
+                        Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(options_.delay_s)),
+                        stop_requested)) {
     stats.stopped = true;
     return stats;
   }
