@@ -24,6 +24,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
 
@@ -39,12 +40,7 @@ constexpr int kDomain = 130;  // apart from every other test and benchmark
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Wall-clock deadlines stretch under the sanitizers (scripts/test --sanitize sets it).
-std::chrono::milliseconds scaled(std::chrono::milliseconds t) {
-  const char* scale = std::getenv("COVER_TEST_TIME_SCALE");
-  const double factor = scale ? std::max(1.0, std::atof(scale)) : 1.0;
-  return std::chrono::milliseconds(static_cast<long long>(t.count() * factor));
-}
+using cover::test::scaled;
 
 // Every command the agent sends, checked as it arrives.
 class CommandCheck {

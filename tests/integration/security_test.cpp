@@ -22,6 +22,7 @@
 
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 #include "process_support.hpp"
 
 namespace {
@@ -129,12 +130,6 @@ std::unique_ptr<ChildProcess> start_echo(const fs::path& fleet, const std::strin
   return std::make_unique<ChildProcess>(argv, options);
 }
 
-// Wall-clock deadlines stretch under the sanitizers (scripts/test --sanitize sets it).
-int time_scale() {
-  const char* scale = std::getenv("COVER_TEST_TIME_SCALE");
-  return scale ? std::max(1, std::atoi(scale)) : 1;
-}
-
 int samples_taken(ChildProcess& echo) {
   int samples = 0;
   // Only JSON objects are samples: a vendor's log lines may share stdout.
@@ -172,37 +167,35 @@ TEST_P(Security, UnauthenticatedParticipantIsIgnored) {
   constexpr int kTaken = 11;  // what shows the secure reader takes a permitted writer's samples
   // Six secure participants handshake pairwise at once: on a loaded 2-core CI machine one
   // pair took longer than 15 s (the permitted echo then timed out with 0 samples).
-  const int handshake_s = 40 * time_scale();
+  const int handshake_s = 40 * cover::test::whole_time_scale();
   const int echo_timeout_s = handshake_s + 15;
   for (const bool authenticated : {false, true}) {
     std::vector<std::unique_ptr<ChildProcess>> echoes;
     for (const auto& injection : kInjections) {
       const std::string log = "echo_" + injection.topic.substr(6, 3) + ".log";
-      echoes.push_back(authenticated
-                           ? start_echo(fleet, vendor, domain, injection.topic, log, kTaken,
-                                        echo_timeout_s)
-                           : start_echo(fleet, vendor, domain, injection.topic, log));
+      echoes.push_back(authenticated ? start_echo(fleet, vendor, domain, injection.topic, log,
+                                                  kTaken, echo_timeout_s)
+                                     : start_echo(fleet, vendor, domain, injection.topic, log));
     }
     std::vector<std::unique_ptr<ChildProcess>>
         publishers;  // at once, so all fit in the readers' time
     for (const auto& injection : kInjections) {
       const auto flags =
           authenticated ? secure(fleet, injection.allowed_identity) : std::vector<std::string>{};
-      publishers.push_back(
-          start_cover(on(vendor, domain,
-                         std::vector<std::string>{"pub", injection.topic, injection.json, "--rate",
-                                                  "50", "--count", std::to_string(kSamples),
-                                                  "--wait",
-                                                  authenticated ? std::to_string(handshake_s)
-                                                                : "2"} +
-                             flags),
-                      "pub_" + injection.topic.substr(6, 3) + ".log"));
+      publishers.push_back(start_cover(
+          on(vendor, domain,
+             std::vector<std::string>{"pub", injection.topic, injection.json, "--rate", "50",
+                                      "--count", std::to_string(kSamples), "--wait",
+                                      authenticated ? std::to_string(handshake_s) : "2"} +
+                 flags),
+          "pub_" + injection.topic.substr(6, 3) + ".log"));
     }
     for (std::size_t i = 0; i < publishers.size(); ++i) {
       EXPECT_EQ(publishers[i]->wait(std::chrono::seconds(echo_timeout_s)), 0);
       // A permitted writer that never matched published into nothing: the handshake, not
       // the permission, would be what the count below measures.
-      const std::string pub_log = read_text(log_path("pub_" + kInjections[i].topic.substr(6, 3) + ".log"));
+      const std::string pub_log =
+          read_text(log_path("pub_" + kInjections[i].topic.substr(6, 3) + ".log"));
       if (authenticated) {
         EXPECT_EQ(pub_log.find("no subscriber"), std::string::npos) << pub_log;
       }

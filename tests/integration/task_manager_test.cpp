@@ -30,6 +30,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/task_manager/task_store.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 #include "cover/wire/task.hpp"
 #include "manager_client.hpp"
 #include "process_support.hpp"
@@ -470,14 +471,8 @@ TEST(TaskManager, FuzzedSubmissionsAreAnsweredAndTheManagerSurvives) {
 
 // --- A task manager and a fleet played by the test: vehicles heard or not, as it says ---
 
-double time_scale() {
-  const char* text = std::getenv("COVER_TEST_TIME_SCALE");
-  return text ? std::max(1.0, std::atof(text)) : 1.0;
-}
-std::chrono::milliseconds scaled(std::chrono::milliseconds timeout) {
-  return std::chrono::milliseconds(
-      static_cast<long>(static_cast<double>(timeout.count()) * time_scale()));
-}
+using cover::test::scaled;
+using cover::test::time_scale;
 
 // The fleet as the manager hears it, published by the test at 20 Hz: UAV agents idle,
 // UGVs' IMU, and where a "bridge" runs, the UAV's autopilot (FcState) as set.

@@ -28,6 +28,7 @@
 #include "cover/mission/task.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "cover/test/time_scale.hpp"
 #include "cover/wire/task.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
@@ -42,15 +43,8 @@ using namespace std::chrono_literals;
 constexpr int kDomain = 147;
 constexpr int kManagerDomain = 148;
 
-double time_scale() {
-  const char* text = std::getenv("COVER_TEST_TIME_SCALE");
-  const double scale = text ? std::atof(text) : 1.0;
-  return scale > 0.0 ? scale : 1.0;
-}
-std::chrono::milliseconds scaled(std::chrono::milliseconds t) {
-  return std::chrono::milliseconds(
-      static_cast<long>(static_cast<double>(t.count()) * time_scale()));
-}
+using cover::test::scaled;
+using cover::test::time_scale;
 
 // Polls `condition` every 20 ms until it holds or `timeout` (scaled) passes.
 bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {

@@ -23,6 +23,7 @@
 #include "cover/dds/topics.hpp"
 #include "cover/sim/mocap/mocap_feed.hpp"
 #include "cover/sim/mocap/vrpn_server.hpp"
+#include "cover/test/time_scale.hpp"
 #include "process_support.hpp"
 #include "scripted_motion.hpp"
 #include "spec_bytes.hpp"
@@ -34,20 +35,10 @@ namespace mocap = cover::sim::mocap;
 namespace motion = cover::test::mocap_motion;
 using cover::process::ChildProcess;
 
-double time_scale() {
-  const char* s = std::getenv("COVER_TEST_TIME_SCALE");
-  return s ? std::max(1.0, std::atof(s)) : 1.0;
-}
-std::chrono::milliseconds scaled(std::chrono::milliseconds d) {
-  return std::chrono::milliseconds(static_cast<long>(d.count() * time_scale()));
-}
+using cover::test::scaled;
+using cover::test::time_scale;
 bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + scaled(timeout);
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(2ms);  // polling a condition with a deadline
-  }
-  return true;
+  return cover::test::wait_until(done, timeout, 2ms);
 }
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return NAN;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cover/test/time_scale.hpp"
 #include "process_support.hpp"
 
 namespace {
@@ -28,11 +29,7 @@ std::uint16_t free_tcp_port() {
   return ntohs(a.sin_port);
 }
 
-std::chrono::milliseconds scaled(std::chrono::milliseconds d) {
-  const char* s = std::getenv("COVER_TEST_TIME_SCALE");
-  const double k = s ? std::max(1.0, std::atof(s)) : 1.0;
-  return std::chrono::milliseconds(static_cast<long>(d.count() * k));
-}
+using cover::test::scaled;
 
 TEST(MocapScenario, Scenario2InLockstepThroughTheRelayLandsWithin5cm) {
   const auto claim = cover::dds::DomainClaim::claim_any(132, 139);
