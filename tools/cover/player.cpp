@@ -44,8 +44,10 @@ bool sleep_until(Clock::time_point when, const std::function<bool()>& stop_reque
   return !(stop_requested && stop_requested());
 }
 
-// Waits until every writer matched a reader or `deadline` passed (checking every 10 ms);
-// false when stopped.
+constexpr auto kReaderSideMatch = std::chrono::milliseconds(250);
+
+// Waits until every writer matched a reader or `deadline` passed (checking every 10 ms),
+// then kReaderSideMatch; false when stopped.
 bool wait_for_readers(const std::map<std::string, std::unique_ptr<Player::Publisher>>& publishers,
                       Clock::time_point deadline, const std::function<bool()>& stop_requested) {
   const auto all_matched = [&] {
@@ -60,7 +62,11 @@ bool wait_for_readers(const std::map<std::string, std::unique_ptr<Player::Publis
       return false;
     }
   }
-  return !(stop_requested && stop_requested());
+  // A writer sees its reader before that reader has taken in the writer's announcement, and
+  // a reader drops a volatile sample from a writer it does not know yet: 1 of 25 samples
+  // went missing when the first went out at the writer's match (loaded CI machine). The
+  // reader's side of the match cannot be seen from here.
+  return sleep_until(Clock::now() + kReaderSideMatch, stop_requested);
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ struct PlayOptions {
   std::vector<std::string> topic_globs;  // empty: every recorded topic
   double start_s = 0.0;                  // skip the recording's first S seconds
   // Discovery: the first sample waits until every topic's writer matched a reader, or this
-  // long (then it goes out anyway: nobody may be listening yet).
+  // long (then it goes out anyway: nobody may be listening yet), then 0.25 s more for the
+  // readers' side of the match.
   double delay_s = 0.5;
   // Replay into live UAV agents with the simulator's lockstep protocol instead of at the
   // recorded pace (lockstep_replay.cpp): tick after tick, the inputs the tick names (its
