@@ -162,7 +162,7 @@ TEST(Replay, AScenario2RecordingReplayedIntoAFreshAgentGivesItsCommands) {
   const Output play =
       run({COVER_CLI, "play", file, "--lockstep", "--topics", "cover/uav/0/rel/*",
            "cover/ugv/*/imu", "cover/sim/clock", "--delay",
-           std::to_string(scaled(20s).count() / 1000), "--dds", "fastdds", "--domain", domain},
+           std::to_string(scaled(5s).count() / 1000), "--dds", "fastdds", "--domain", domain},
           "play.stderr", 120s);
   ASSERT_EQ(play.code, 0) << "see " << scratch_path("play.stderr");
   EXPECT_EQ(agent.terminate(scaled(10s), SIGINT), 0);

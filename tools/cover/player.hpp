@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -18,10 +19,7 @@ struct PlayOptions {
   double rate = 1.0;                     // 2: twice as fast
   std::vector<std::string> topic_globs;  // empty: every recorded topic
   double start_s = 0.0;                  // skip the recording's first S seconds
-  // Discovery: the first sample waits until every topic's writer matched a reader, or this
-  // long (then it goes out anyway: nobody may be listening yet), then 0.25 s more for the
-  // readers' side of the match.
-  double delay_s = 0.5;
+  double delay_s = 0.5;  // between making the writers and the first sample: discovery
   // Replay into live UAV agents with the simulator's lockstep protocol instead of at the
   // recorded pace (lockstep_replay.cpp): tick after tick, the inputs the tick names (its
   // relative_stamp_ns, imu_stamp_ns) are published, then the tick, then the player waits
@@ -62,7 +60,8 @@ class Player {
     virtual ~Publisher() = default;
     // False when the bytes are not the topic type's CDR.
     virtual bool publish(const std::uint8_t* data, std::size_t size) = 0;
-    virtual std::size_t matched_readers() const = 0;
+    // Reliable topics: until the subscribers have every sample, at most `timeout`.
+    virtual void wait_for_acknowledgments(std::chrono::milliseconds timeout) = 0;
   };
 
  private:

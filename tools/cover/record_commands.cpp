@@ -89,8 +89,7 @@ RecordCommands::RecordCommands(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   play_
       ->add_option("--delay", play_options_.delay_s,
-                   "seconds the first sample waits at most for every topic's writer to match a "
-                   "subscriber (discovery)")
+                   "seconds between making the writers and the first sample (discovery)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   play_->add_flag("--lockstep", play_options_.lockstep,
