@@ -4,32 +4,19 @@
 #include <unistd.h>
 #include <algorithm>
 #include <chrono>
-#include <condition_variable>
 #include <iomanip>
 #include <iostream>
-#include <mutex>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
 #include "bench_stats.hpp"
-#include "cover/dds/participant.hpp"
-#include "cover/process/child_process.hpp"
-#include "cover/process/shutdown_signal.hpp"
+#include "dds_ping_pong.hpp"
 
 namespace {
 
 using cover::dds::Vendor;
 using cover::msg::RelativeState;
-using namespace std::chrono_literals;
-
-// Reliable so that a lost sample would be retransmitted rather than counted as lost;
-// keep-last 1 because only one ping is in flight at a time.
-cover::dds::Topic<RelativeState> bench_topic(const std::string& name) {
-  return cover::dds::Topic<RelativeState>::uncatalogued(
-      name, {"bench", cover::dds::Reliability::Reliable, cover::dds::Durability::Volatile, 1, 0.0});
-}
 
 struct SeriesResult {
   int sent = 0;
@@ -38,58 +25,13 @@ struct SeriesResult {
   double p99_us = 0;
 };
 
-using cover::bench::percentile;
-
-// Receives pongs and lets the pinger wait for a given sequence number.
-class PongWaiter {
- public:
-  void on_pong(const RelativeState& pong) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      last_seq_ = pong.stamp_ns;
-    }
-    arrived_.notify_all();
-  }
-  bool wait_for(std::int64_t seq, std::chrono::milliseconds timeout) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    return arrived_.wait_for(lock, timeout, [&] { return last_seq_ == seq; });
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable arrived_;
-  std::int64_t last_seq_ = -1;
-};
-
-SeriesResult run_series(cover::dds::Writer<RelativeState>& ping, PongWaiter& waiter,
-                        std::int64_t& seq, int count, double rate_hz) {
-  SeriesResult result;
+// One-way = round trip / 2.
+SeriesResult one_way(const cover::bench::RoundTrips& trips) {
   std::vector<double> one_way_us;
-  one_way_us.reserve(static_cast<std::size_t>(count));
-  RelativeState sample;
-  sample.position_m = {1.0, 2.0, 3.0};
-  sample.attitude = {1.0, 0.0, 0.0, 0.0};
-  sample.valid = true;
-  const auto period = rate_hz > 0 ? std::chrono::nanoseconds(static_cast<long>(1e9 / rate_hz))
-                                  : std::chrono::nanoseconds(0);
-  auto next = std::chrono::steady_clock::now();
-  for (int i = 0; i < count; ++i) {
-    if (rate_hz > 0) {
-      next += period;
-      std::this_thread::sleep_until(next);
-    }
-    sample.stamp_ns = ++seq;
-    const auto start = std::chrono::steady_clock::now();
-    if (!ping.write(sample)) continue;
-    ++result.sent;
-    if (!waiter.wait_for(seq, 1000ms)) continue;  // counted as lost
-    const auto round_trip = std::chrono::steady_clock::now() - start;
-    ++result.received;
-    one_way_us.push_back(std::chrono::duration<double, std::micro>(round_trip).count() / 2.0);
-  }
-  result.p50_us = percentile(one_way_us, 0.50);
-  result.p99_us = percentile(one_way_us, 0.99);
-  return result;
+  one_way_us.reserve(trips.round_trip_us.size());
+  for (const double round_trip : trips.round_trip_us) one_way_us.push_back(round_trip / 2.0);
+  return {trips.sent, trips.received, cover::bench::percentile(one_way_us, 0.50),
+          cover::bench::percentile(one_way_us, 0.99)};
 }
 
 nlohmann::ordered_json to_json(const SeriesResult& r) {
@@ -104,30 +46,15 @@ struct BenchOptions {
 };
 
 nlohmann::ordered_json run_pair(Vendor ping_vendor, Vendor pong_vendor, const BenchOptions& opts) {
-  cover::process::ChildProcess pong(
-      {"/proc/self/exe", "dds-pong", "--dds", cover::dds::vendor_name(pong_vendor), "--domain",
-       std::to_string(opts.domain_id), "--prefix", opts.prefix},
-      {}, /*capture_stdout=*/true);
-  const auto ready = pong.read_line(20s);
-  if (!ready || *ready != "ready") throw std::runtime_error("the pong process did not start");
-
-  cover::dds::ParticipantOptions options;
-  options.vendor = ping_vendor;
+  cover::bench::PingPongOptions options;
+  options.ping_vendor = ping_vendor;
+  options.pong_vendor = pong_vendor;
   options.domain_id = opts.domain_id;
-  options.participant_name = "cover-bench-ping";
-  cover::dds::Participant participant(options);
-  PongWaiter waiter;
-  auto pong_reader = participant.make_reader(
-      bench_topic(opts.prefix + "/pong"), [&waiter](const RelativeState& s) { waiter.on_pong(s); });
-  auto ping = participant.make_writer(bench_topic(opts.prefix + "/ping"));
-  if (!ping.wait_for_readers(1, 20s) || !pong_reader.wait_for_writers(1, 20s)) {
-    throw std::runtime_error("ping and pong never matched");
-  }
-  std::int64_t seq = 0;
-  run_series(ping, waiter, seq, 100, 0.0);  // warm-up: caches, first-time allocations
-  const auto back_to_back = run_series(ping, waiter, seq, opts.count, 0.0);
-  const auto paced = run_series(ping, waiter, seq, opts.paced_count, 100.0);
-  pong.terminate();
+  options.prefix = opts.prefix;
+  cover::bench::PingPong ping_pong(options);
+  ping_pong.run(100, 0.0);  // warm-up: caches, first-time allocations
+  const auto back_to_back = one_way(ping_pong.run(opts.count, 0.0));
+  const auto paced = one_way(ping_pong.run(opts.paced_count, 100.0));
   const std::string name = std::string(cover::dds::vendor_name(ping_vendor)) + "-" +
                            cover::dds::vendor_name(pong_vendor);
   return {{"pair", name},
@@ -184,33 +111,9 @@ int run_dds_bench(const std::vector<std::string>& args) {
   return 0;
 }
 
-// The echo side, run as a child process by run_dds_bench.
-int run_dds_pong(const std::vector<std::string>& args) {
-  cover::process::ShutdownSignal::install();
-  CLI::App app{"cover-bench dds-pong: echo peer of `cover-bench dds` (internal)"};
-  std::string vendor = "fastdds", prefix;
-  int domain_id = 0;
-  app.add_option("--dds", vendor);
-  app.add_option("--domain", domain_id);
-  app.add_option("--prefix", prefix)->required();
-  if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
-  cover::dds::ParticipantOptions options;
-  options.vendor = cover::dds::parse_vendor(vendor);
-  options.domain_id = domain_id;
-  options.participant_name = "cover-bench-pong";
-  cover::dds::Participant participant(options);
-  auto pong = participant.make_writer(bench_topic(prefix + "/pong"));
-  auto ping = participant.make_reader(bench_topic(prefix + "/ping"),
-                                      [&pong](const RelativeState& sample) { pong.write(sample); });
-  std::cout << "ready" << std::endl;
-  while (!cover::process::ShutdownSignal::wait_for(1000ms)) {
-  }
-  return 0;
-}
-
 const cover::bench::Registrar dds_registrar{
     "dds", "DDS one-way latency, every vendor pair, back-to-back and at 100 Hz", &run_dds_bench};
-const cover::bench::Registrar pong_registrar{"dds-pong", "(internal) echo peer of `dds`",
-                                             &run_dds_pong};
+const cover::bench::Registrar pong_registrar{"dds-pong", "(internal) echo peer of `dds` and `e2e`",
+                                             &cover::bench::run_pong};
 
 }  // namespace

@@ -3,7 +3,11 @@
 //            stamps each relative state it publishes; the command computed from it names
 //            that stamp when it comes back), per DDS mix, plain and with DDS-Security
 //            (secure: every process authenticated, its data encrypted; one-vendor mixes
-//            only, docs/security.md);
+//            only, docs/security.md); beside each plain mix, its floor measured in the same
+//            run: round trips between two bare processes on the simulator's and the UAV
+//            agent's vendors, paced at 100 Hz, out on the relative state's QoS and back on
+//            the command's (the two hops of the path with no work at either end), and the
+//            latency as a multiple of it;
 //  lockstep: Scenarios 2 and 4 in lockstep, simulated seconds per wall second.
 #include <unistd.h>
 
@@ -18,7 +22,9 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
+#include "bench_stats.hpp"
 #include "cover/process/child_process.hpp"
+#include "dds_ping_pong.hpp"
 #include "launch_run.hpp"
 #include "vendor_mix.hpp"
 
@@ -52,6 +58,35 @@ std::string make_fleet(const char* vendor) {
   return dir.string();
 }
 
+// The mix's floor: `count` paced round trips, simulator vendor -> UAV agent vendor -> back.
+nlohmann::json measure_floor(const cover::bench::VendorMix& mix, int domain, int count) {
+  cover::bench::PingPongOptions options;
+  options.ping_vendor = cover::dds::parse_vendor(mix.sim);
+  options.pong_vendor = cover::dds::parse_vendor(mix.uav);
+  options.domain_id = domain;
+  options.prefix = "cover_bench/e2e_floor_" + std::to_string(getpid());
+  options.ping_qos = cover::dds::sensor_qos();
+  options.pong_qos = cover::dds::command_qos();
+  try {
+    cover::bench::PingPong ping_pong(options);
+    ping_pong.run(50, 100.0);  // warm-up at the same pace
+    const auto trips = ping_pong.run(count, 100.0);
+    return {{"p50_ms", cover::bench::percentile(trips.round_trip_us, 0.50) / 1000.0},
+            {"p99_ms", cover::bench::percentile(trips.round_trip_us, 0.99) / 1000.0},
+            {"samples", trips.received},
+            {"lost", trips.sent - trips.received}};
+  } catch (const std::exception& e) {
+    std::cerr << "cover-bench e2e: the floor of " << mix.name << " was not measured: " << e.what()
+              << "\n";
+    return nullptr;
+  }
+}
+
+double ratio(double value, const nlohmann::json& floor, const char* key) {
+  if (!floor.is_object() || floor[key].get<double>() <= 0.0) return 0.0;
+  return value / floor[key].get<double>();
+}
+
 double number(const nlohmann::json& j, const char* key) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : 0.0;
 }
@@ -68,6 +103,10 @@ int run(const std::vector<std::string>& args) {
                  "the UAV agents' method: " + cover::bench::joined_method_names(" | ") +
                      " (default: sampc.yaml's mode)")
       ->check(CLI::IsMember(cover::bench::method_names()));
+  int floor_count = 1000;
+  app.add_option("--floor-count", floor_count,
+                 "paced round trips measuring each plain mix's floor (0: none)")
+      ->capture_default_str();
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
   // The launch files pass {method} to every UAV agent as --method.
   const std::vector<std::string> method_flags =
@@ -83,17 +122,24 @@ int run(const std::vector<std::string>& args) {
       flags.insert(flags.end(), method_flags.begin(), method_flags.end());
       const std::string fleet = secure ? make_fleet(mix.sim) : "";
       if (!fleet.empty()) flags.insert(flags.end(), {"--security", fleet});
+      const nlohmann::json floor =
+          secure || floor_count <= 0 ? nullptr : measure_floor(mix, domain++, floor_count);
       const nlohmann::json r = cover::bench::run_launch("scenario2", flags, domain++, "e2e");
       if (!fleet.empty()) std::filesystem::remove_all(fleet);
       const nlohmann::json latency =
           r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();
+      const double p50 = number(latency, "p50");
+      const double p99 = number(latency, "p99");
       out["latency"].push_back(
           {{"mix", mix.name},
            {"secure", secure},
            {"success", r.is_object() && r.value("success", false) && (!secure || !fleet.empty())},
-           {"p50_ms", number(latency, "p50")},
-           {"p99_ms", number(latency, "p99")},
-           {"samples", latency.value("samples", 0)}});
+           {"p50_ms", p50},
+           {"p99_ms", p99},
+           {"samples", latency.value("samples", 0)},
+           {"floor", floor},
+           {"p50_over_floor", ratio(p50, floor, "p50_ms")},
+           {"p99_over_floor", ratio(p99, floor, "p99_ms")}});
     }
   }
   for (const char* scenario : {"scenario2", "scenario4"}) {
@@ -114,6 +160,13 @@ int run(const std::vector<std::string>& args) {
                   l["mix"].get<std::string>().c_str(), l["secure"].get<bool>() ? "secure" : "plain",
                   l["p50_ms"].get<double>(), l["p99_ms"].get<double>(), l["samples"].get<int>(),
                   l["success"].get<bool>() ? "" : "  MISSION FAILED");
+      if (l["floor"].is_object()) {
+        const auto& f = l["floor"];
+        std::printf("  %-15s floor p50 %.3f ms  p99 %.3f ms  (%d round trips)  -> %.2fx / %.2fx\n",
+                    "", f["p50_ms"].get<double>(), f["p99_ms"].get<double>(),
+                    f["samples"].get<int>(), l["p50_over_floor"].get<double>(),
+                    l["p99_over_floor"].get<double>());
+      }
     }
     std::printf("lockstep (UGV agents on Cyclone, the rest on Fast DDS)\n");
     for (const auto& l : out["lockstep"]) {
