@@ -32,7 +32,9 @@ nlohmann::json make_report(const LaunchPlan& plan, const RunOutcome& outcome) {
                          {"pid", optional_number(process.pid)},
                          {"exit_code", optional_number(process.exit_code)},
                          {"stopped_by", process.stopped_by},
-                         {"respawns", process.respawns}});
+                         {"respawns", process.respawns},
+                         {"cpu_s", process.cpu_s ? nlohmann::json(*process.cpu_s)
+                                                 : nlohmann::json(nullptr)}});
   }
   report["processes"] = std::move(processes);
   report["run_dir"] = plan.run_dir;
@@ -54,6 +56,7 @@ std::string make_summary(const LaunchPlan& plan, const RunOutcome& outcome) {
     text << "pid " << *process.pid << ", exit code "
          << (process.exit_code ? std::to_string(*process.exit_code) : "?");
     if (!process.stopped_by.empty()) text << ", stopped with " << process.stopped_by;
+    if (process.cpu_s) text << ", " << *process.cpu_s << " s of CPU";
     if (process.respawns > 0) {
       text << ", respawned " << process.respawns << (process.respawns == 1 ? " time" : " times");
     }

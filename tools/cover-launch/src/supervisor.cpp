@@ -68,6 +68,7 @@ bool poll_exit(Child& child) {
   if (child.outcome->exit_code) return true;
   if (!child.process->wait(milliseconds(0))) return false;
   child.outcome->exit_code = child.process->exit_code();
+  child.outcome->cpu_s = child.process->cpu_s();
   return true;
 }
 
@@ -352,6 +353,7 @@ class Supervisor {
     }
     child.outcome->pid = child.process->pid();
     child.outcome->exit_code.reset();
+    child.outcome->cpu_s.reset();
     ++child.outcome->respawns;
     spdlog::info("started {} pid {} (respawn {})", name, child.process->pid(),
                  child.outcome->respawns);

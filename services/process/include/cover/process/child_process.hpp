@@ -73,6 +73,9 @@ class ChildProcess {
   // The signal that killed the child, once it has exited; 0 when it exited by itself (the
   // exit code 128 + N alone cannot tell `exit(130)` from death by SIGINT).
   int killed_by_signal() const { return killed_by_signal_; }
+  // CPU time the child used (user + system, its own threads and its reaped children),
+  // seconds, once wait() or terminate() has seen it exit.
+  std::optional<double> cpu_s() const { return cpu_s_; }
 
  private:
   pid_t pid_ = -1;
@@ -80,6 +83,7 @@ class ChildProcess {
   std::string buffer_;
   std::optional<int> exit_code_;
   int killed_by_signal_ = 0;
+  std::optional<double> cpu_s_;
 };
 
 }  // namespace cover::process

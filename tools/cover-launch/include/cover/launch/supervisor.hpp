@@ -16,6 +16,7 @@ struct ProcessOutcome {
   std::optional<int> exit_code;  // of the latest run; 128 + signal when killed by a signal
   std::string stopped_by;        // "", "SIGINT", "SIGTERM" or "SIGKILL": the last one sent
   int respawns = 0;              // restarts after a death (respawn: true)
+  std::optional<double> cpu_s;   // CPU time (user + system) of the latest run, once it ended
 };
 
 struct RunOutcome {
