@@ -17,6 +17,8 @@
 // cannot leave it running for ever.
 #include <dirent.h>
 #include <fcntl.h>
+#include <pthread.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/mman.h>
 #include <unistd.h>
@@ -74,6 +76,14 @@ void print_environment(int argc, char** argv) {
   struct sigaction hangup {};
   sigaction(SIGHUP, nullptr, &hangup);
   std::printf("sighup: %s\n", hangup.sa_handler == SIG_IGN ? "ignored" : "default");
+  // The scheduling of a thread started now: what every thread of a real process gets.
+  std::thread([] {
+    int policy = 0;
+    sched_param param{};
+    pthread_getschedparam(pthread_self(), &policy, &param);
+    std::printf("thread sched: %s %d\n", policy == SCHED_FIFO ? "fifo" : "other",
+                param.sched_priority);
+  }).join();
   for (int i = 1; i < argc; ++i) std::printf("arg: %s\n", argv[i]);
   // Descriptors beyond stdin, stdout and stderr that the launcher let through.
   if (DIR* fds = opendir("/proc/self/fd")) {

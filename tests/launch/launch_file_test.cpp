@@ -327,3 +327,24 @@ TEST(LaunchFile, ShippedFlightControllerLaunchesLoad) {
 
 }  // namespace
 }  // namespace cover::launch
+
+namespace cover::launch {
+namespace {
+
+TEST(LaunchFile, RealtimePriority) {
+  const auto file = parse(
+      "launch: {name: a, processes: [{name: p, executable: x, ends_run: true, "
+      "realtime_priority: 55}, {name: q, executable: x}]}");
+  EXPECT_EQ(file.processes[0].realtime_priority, 55);
+  EXPECT_EQ(file.processes[1].realtime_priority, 0) << "normal scheduling unless asked";
+  for (const char* bad : {"100", "-1"}) {
+    const std::string error =
+        error_of(std::string("launch: {name: a, processes: [{name: p, executable: x, ends_run: "
+                             "true, realtime_priority: ") +
+                 bad + "}]}");
+    EXPECT_NE(error.find("realtime_priority must be 1..99"), std::string::npos) << error;
+  }
+}
+
+}  // namespace
+}  // namespace cover::launch

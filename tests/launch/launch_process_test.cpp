@@ -442,3 +442,44 @@ TEST_F(LaunchProcess, HelpExplainsFormatAndExitCodes) {
 }
 
 }  // namespace
+
+namespace {
+
+// A process given realtime_priority runs SCHED_FIFO at it, every thread it starts too, when
+// the run is realtime and the launcher may (root here); the launcher says which it did.
+TEST_F(LaunchProcess, RealtimePriorityIsSchedFifoInRealtimeOnly) {
+  const std::string yaml = R"(
+launch:
+  name: rt-priority
+  grace_period_s: 0.3
+  variables: {clock: lockstep}
+  processes:
+    - name: sim
+      executable: fake_process
+      args: [--mode=exit, "--await={run_dir}/uav0.ready"]
+      ends_run: true
+    - {name: uav0, executable: fake_process, args: ["--ready={run_dir}/uav0.ready"],
+       realtime_priority: 12}
+)";
+  const bool may = geteuid() == 0;
+  const auto realtime = run(yaml, {"--json", "--clock", "realtime"});
+  ASSERT_EQ(realtime.exit_code, 0) << realtime.err;
+  EXPECT_TRUE(contains(log_of("sim"), "thread sched: other 0\n")) << log_of("sim");
+  if (may) {
+    EXPECT_TRUE(contains(log_of("uav0"), "thread sched: fifo 12\n")) << log_of("uav0");
+    EXPECT_TRUE(contains(realtime.err, "uav0 runs SCHED_FIFO priority 12")) << realtime.err;
+  } else {
+    EXPECT_TRUE(contains(log_of("uav0"), "thread sched: other 0\n")) << log_of("uav0");
+    EXPECT_TRUE(contains(realtime.err, "uav0: SCHED_FIFO priority 12 refused")) << realtime.err;
+  }
+  expect_all_gone(realtime.json());
+
+  fs::remove_all(run_dir_);  // the first run's ready file would let the sim end at once
+  const auto lockstep = run(yaml, {"--json"});
+  ASSERT_EQ(lockstep.exit_code, 0) << lockstep.err;
+  EXPECT_TRUE(contains(log_of("uav0"), "thread sched: other 0\n")) << log_of("uav0");
+  EXPECT_TRUE(contains(lockstep.err, "uav0: realtime_priority 12 not applied")) << lockstep.err;
+  expect_all_gone(lockstep.json());
+}
+
+}  // namespace

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -88,6 +89,13 @@ void close_others(int keep) {
     if (!options.capture_stdout && dup2(STDERR_FILENO, STDOUT_FILENO) < 0) fail();
   }
   if (options.close_other_fds) close_others(setup.error_fd);
+  if (options.realtime_priority > 0) {
+    // Before exec, so that every thread the program starts inherits it. A refusal is not
+    // fatal: the parent sees the policy and says so.
+    sched_param param{};
+    param.sched_priority = options.realtime_priority;
+    sched_setscheduler(0, SCHED_FIFO, &param);
+  }
   execve(setup.args[0], setup.args.data(), setup.env.data());
   report_and_exit(setup.error_fd);
 }
@@ -177,6 +185,10 @@ std::optional<std::string> ChildProcess::read_line(std::chrono::milliseconds tim
     if (n <= 0) return std::nullopt;
     buffer_.append(chunk, static_cast<std::size_t>(n));
   }
+}
+
+bool ChildProcess::realtime() const {
+  return sched_getscheduler(pid_) == SCHED_FIFO;
 }
 
 std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {

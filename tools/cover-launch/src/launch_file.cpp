@@ -57,6 +57,7 @@ ProcessSpec parse_process(const YAML::Node& node, const std::string& context, La
   process.optional("respawn_delay_s", spec.respawn.delay_s);
   process.optional("max_respawns", spec.respawn.max_respawns);
   process.optional("keep_running", spec.keep_running);
+  process.optional("realtime_priority", spec.realtime_priority);
   process.reject_unknown_keys();
   apply_kind_defaults(spec, process, kind);
   return spec;
@@ -85,6 +86,11 @@ void validate_respawn(const ProcessSpec& spec, const std::string& context) {
   config::check(std::isfinite(respawn.delay_s) && respawn.delay_s >= 0.0, context,
                 "respawn_delay_s must be a number of seconds >= 0");
   config::check(respawn.max_respawns >= 1, context, "max_respawns must be >= 1");
+}
+
+void validate_realtime_priority(const ProcessSpec& spec, const std::string& context) {
+  config::check(spec.realtime_priority >= 0 && spec.realtime_priority <= 99, context,
+                "realtime_priority must be 1..99 (SCHED_FIFO), or 0 for normal scheduling");
 }
 
 void validate_keep_running(const ProcessSpec& spec, LaunchKind kind, const std::string& context) {
@@ -116,6 +122,7 @@ void validate_process(const ProcessSpec& spec, const std::set<std::string>& know
   }
   validate_respawn(spec, context);
   validate_keep_running(spec, kind, context);
+  validate_realtime_priority(spec, context);
   validate_arguments(spec, known);
 }
 

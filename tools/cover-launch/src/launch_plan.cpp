@@ -5,8 +5,8 @@
 
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/security_options.hpp"
-#include "cover/launch/placeholders.hpp"
 #include "cover/launch/live_view.hpp"
+#include "cover/launch/placeholders.hpp"
 #include "cover/launch/recording.hpp"
 #include "cover/launch/run_naming.hpp"
 #include "cover/launch/security_identity.hpp"
@@ -38,6 +38,10 @@ PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& va
   planned.ends_run = spec.ends_run;
   planned.respawn = spec.respawn;
   planned.keep_running = spec.keep_running;
+  const auto clock = values.find("clock");
+  const bool lockstep = clock != values.end() && clock->second == "lockstep";
+  (lockstep ? planned.realtime_priority_withheld : planned.realtime_priority) =
+      spec.realtime_priority;
   for (const auto& [key, value] : spec.env) planned.env.push_back(key + "=" + value);
   planned.env.push_back("COVER_DDS=" + spec.dds);
   planned.env.push_back("COVER_DDS_DOMAIN=" + std::to_string(domain_id));

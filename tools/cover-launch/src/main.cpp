@@ -44,6 +44,8 @@ Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
         max_respawns: 10     then: mission: an unexpected death (exit 4); else: not restarted
         keep_running: false  standing/field: not stopped when the run ends by another
                              process's exit (default: true for cover-fc-bridge)
+        realtime_priority: 0 SCHED_FIFO priority 1..99 (0: normal scheduling); needs root
+                             or CAP_SYS_NICE; not applied when {clock} is lockstep
   Placeholders: {run_dir} {run_id} {domain} {config_dir} and every variable; an argument
   whose placeholder is empty is dropped. {{ and }} are literal braces.
 

@@ -27,14 +27,14 @@ nlohmann::json make_report(const LaunchPlan& plan, const RunOutcome& outcome) {
   nlohmann::json report = read_result(plan.run_dir);
   nlohmann::json processes = nlohmann::json::array();
   for (const auto& process : outcome.processes) {
-    processes.push_back({{"name", process.name},
-                         {"dds", process.dds},
-                         {"pid", optional_number(process.pid)},
-                         {"exit_code", optional_number(process.exit_code)},
-                         {"stopped_by", process.stopped_by},
-                         {"respawns", process.respawns},
-                         {"cpu_s", process.cpu_s ? nlohmann::json(*process.cpu_s)
-                                                 : nlohmann::json(nullptr)}});
+    processes.push_back(
+        {{"name", process.name},
+         {"dds", process.dds},
+         {"pid", optional_number(process.pid)},
+         {"exit_code", optional_number(process.exit_code)},
+         {"stopped_by", process.stopped_by},
+         {"respawns", process.respawns},
+         {"cpu_s", process.cpu_s ? nlohmann::json(*process.cpu_s) : nlohmann::json(nullptr)}});
   }
   report["processes"] = std::move(processes);
   report["run_dir"] = plan.run_dir;

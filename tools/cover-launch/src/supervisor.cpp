@@ -208,7 +208,28 @@ class Supervisor {
     options.new_session = true;
     options.ignore_hangup = true;
     options.close_other_fds = true;
-    return std::make_unique<process::ChildProcess>(argv_of(index), options);
+    options.realtime_priority = spec.realtime_priority;
+    auto child = std::make_unique<process::ChildProcess>(argv_of(index), options);
+    log_scheduling(spec, *child);
+    return child;
+  }
+
+  static void log_scheduling(const PlannedProcess& spec, const process::ChildProcess& child) {
+    if (spec.realtime_priority_withheld > 0) {
+      spdlog::info(
+          "{}: realtime_priority {} not applied: a lockstep run never sleeps and would "
+          "starve the machine",
+          spec.name, spec.realtime_priority_withheld);
+    }
+    if (spec.realtime_priority == 0) return;
+    if (child.realtime()) {
+      spdlog::info("{} runs SCHED_FIFO priority {}", spec.name, spec.realtime_priority);
+    } else {
+      spdlog::warn(
+          "{}: SCHED_FIFO priority {} refused (needs root, CAP_SYS_NICE or an rtprio "
+          "limit in /etc/security/limits.conf): normal scheduling",
+          spec.name, spec.realtime_priority);
+    }
   }
 
   bool start(std::size_t index) {

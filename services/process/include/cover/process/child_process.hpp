@@ -34,6 +34,10 @@ struct SpawnOptions {
   // Only stdin, stdout and stderr reach the child: open files of the parent (a log it
   // writes, a test harness's pipes) must not be held open by every process it starts.
   bool close_other_fds = false;
+  // SCHED_FIFO at this priority (1..99) for the child and every thread it starts; 0: the
+  // parent's policy. Refused without root, CAP_SYS_NICE or an rtprio limit: the child then
+  // runs with the parent's policy (see ChildProcess::realtime()).
+  int realtime_priority = 0;
 };
 
 // A child process (fork + execve), for integration tests, benchmarks and launchers that run
@@ -76,6 +80,8 @@ class ChildProcess {
   // CPU time the child used (user + system, its own threads and its reaped children),
   // seconds, once wait() or terminate() has seen it exit.
   std::optional<double> cpu_s() const { return cpu_s_; }
+  // Whether the child runs SCHED_FIFO (asked for with SpawnOptions::realtime_priority).
+  bool realtime() const;
 
  private:
   pid_t pid_ = -1;

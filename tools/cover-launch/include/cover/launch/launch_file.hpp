@@ -33,6 +33,12 @@ struct ProcessSpec {
   // cover-fc-bridge, whose autopilot must never lose its last line of defence to a
   // sibling's death; false for any other.
   bool keep_running = false;
+  // SCHED_FIFO priority (1..99) for the process and its threads; 0: normal scheduling. For
+  // the control path on a vehicle (the bridge above the agent): a woken process then runs
+  // at once instead of after whatever else the computer runs. Not applied when {clock} is
+  // lockstep: a lockstep run never sleeps, and FIFO processes that never sleep starve the
+  // rest of the machine.
+  int realtime_priority = 0;
 };
 
 // A whole local system: `launch:` in a launch file. See config/launch/example.yaml.

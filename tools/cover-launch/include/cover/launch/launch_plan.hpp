@@ -21,7 +21,7 @@ struct LaunchOptions {
   // A DDS-Security fleet directory (absolute or relative to the cwd); replaces the file's
   // launch.security. Empty: the file's.
   std::string security_directory;
-  bool record = false;  // --record: as the file's `record: true`
+  bool record = false;    // --record: as the file's `record: true`
   bool foxglove = false;  // --foxglove: as the file's `foxglove: true`
   pid_t launcher_pid = 0;
 };
@@ -40,6 +40,10 @@ struct PlannedProcess {
   bool ends_run = false;
   RespawnPolicy respawn;
   bool keep_running = false;  // standing / field: outlives the run's end (not a signal)
+  // SCHED_FIFO priority to start it with (0: normal); the file's, unless {clock} is
+  // lockstep (then 0, and realtime_priority_withheld holds the file's).
+  int realtime_priority = 0;
+  int realtime_priority_withheld = 0;
 };
 
 struct LaunchPlan {
