@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -152,6 +153,52 @@ std::unique_ptr<ChildProcess> start_cover(const std::vector<std::string>& args,
 
 class Security : public ::testing::TestWithParam<std::string> {};
 
+// What one round of publishers and secure echoes saw, per injection.
+struct RoundResult {
+  std::vector<int> taken;     // samples each secure echo printed
+  std::vector<bool> matched;  // whether each publisher saw a subscriber before sending
+  std::vector<std::string> pub_logs;
+};
+
+// Secure echoes (ground-station-0) on every injection's topic, then a publisher on each:
+// plain ones, or the identities permitted to write there.
+RoundResult run_injection_round(const fs::path& fleet, const std::string& vendor, int domain,
+                                bool authenticated, int samples, int taken_enough, int handshake_s,
+                                int attempt) {
+  const int echo_timeout_s = handshake_s + 15;
+  const std::string tag = (authenticated ? "_secure" : "_plain") + std::to_string(attempt);
+  std::vector<std::unique_ptr<ChildProcess>> echoes;
+  for (const auto& injection : kInjections) {
+    const std::string log = "echo_" + injection.topic.substr(6, 3) + tag + ".log";
+    echoes.push_back(authenticated ? start_echo(fleet, vendor, domain, injection.topic, log,
+                                                taken_enough, echo_timeout_s)
+                                   : start_echo(fleet, vendor, domain, injection.topic, log));
+  }
+  std::vector<std::unique_ptr<ChildProcess>>
+      publishers;  // at once, so all fit in the readers' time
+  std::vector<std::string> pub_log_names;
+  for (const auto& injection : kInjections) {
+    const auto flags =
+        authenticated ? secure(fleet, injection.allowed_identity) : std::vector<std::string>{};
+    pub_log_names.push_back("pub_" + injection.topic.substr(6, 3) + tag + ".log");
+    publishers.push_back(
+        start_cover(on(vendor, domain,
+                       std::vector<std::string>{"pub", injection.topic, injection.json, "--rate",
+                                                "50", "--count", std::to_string(samples), "--wait",
+                                                authenticated ? std::to_string(handshake_s) : "2"} +
+                           flags),
+                    pub_log_names.back()));
+  }
+  RoundResult result;
+  for (std::size_t i = 0; i < publishers.size(); ++i) {
+    EXPECT_EQ(publishers[i]->wait(std::chrono::seconds(echo_timeout_s)), 0);
+    result.pub_logs.push_back(read_text(log_path(pub_log_names[i])));
+    result.matched.push_back(result.pub_logs.back().find("no subscriber") == std::string::npos);
+  }
+  for (auto& echo : echoes) result.taken.push_back(samples_taken(*echo));
+  return result;
+}
+
 // Plain participants publish a task, a command and an IMU sample: the secure readers
 // take none. Then the permitted identities publish the same: the readers take them,
 // which shows the readers would have counted the plain samples had they arrived.
@@ -161,54 +208,42 @@ TEST_P(Security, UnauthenticatedParticipantIsIgnored) {
   const auto claim = cover::test::claim_domain(domain);
   const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
   // Plain publishers never match a secure reader, so they wait out a short --wait and
-  // publish into nothing. Permitted ones wait (up to 15 s) for the secure handshake, which
+  // publish into nothing. Permitted ones wait (up to 40 s) for the secure handshake, which
   // took over 2 s on a loaded machine: samples published before it are lost, not refused.
   constexpr int kSamples = 80;
   constexpr int kTaken = 11;  // what shows the secure reader takes a permitted writer's samples
   // Six secure participants handshake pairwise at once: on a loaded 2-core CI machine one
   // pair took longer than 15 s (the permitted echo then timed out with 0 samples).
   const int handshake_s = 40 * cover::test::whole_time_scale();
-  const int echo_timeout_s = handshake_s + 15;
-  for (const bool authenticated : {false, true}) {
-    std::vector<std::unique_ptr<ChildProcess>> echoes;
-    for (const auto& injection : kInjections) {
-      const std::string log = "echo_" + injection.topic.substr(6, 3) + ".log";
-      echoes.push_back(authenticated ? start_echo(fleet, vendor, domain, injection.topic, log,
-                                                  kTaken, echo_timeout_s)
-                                     : start_echo(fleet, vendor, domain, injection.topic, log));
-    }
-    std::vector<std::unique_ptr<ChildProcess>>
-        publishers;  // at once, so all fit in the readers' time
-    for (const auto& injection : kInjections) {
-      const auto flags =
-          authenticated ? secure(fleet, injection.allowed_identity) : std::vector<std::string>{};
-      publishers.push_back(start_cover(
-          on(vendor, domain,
-             std::vector<std::string>{"pub", injection.topic, injection.json, "--rate", "50",
-                                      "--count", std::to_string(kSamples), "--wait",
-                                      authenticated ? std::to_string(handshake_s) : "2"} +
-                 flags),
-          "pub_" + injection.topic.substr(6, 3) + ".log"));
-    }
-    for (std::size_t i = 0; i < publishers.size(); ++i) {
-      EXPECT_EQ(publishers[i]->wait(std::chrono::seconds(echo_timeout_s)), 0);
-      // A permitted writer that never matched published into nothing: the handshake, not
-      // the permission, would be what the count below measures.
-      const std::string pub_log =
-          read_text(log_path("pub_" + kInjections[i].topic.substr(6, 3) + ".log"));
-      if (authenticated) {
-        EXPECT_EQ(pub_log.find("no subscriber"), std::string::npos) << pub_log;
+
+  const RoundResult plain =
+      run_injection_round(fleet, vendor, domain, false, kSamples, kTaken, handshake_s, 1);
+  for (std::size_t i = 0; i < kInjections.size(); ++i) {
+    EXPECT_EQ(plain.taken[i], 0) << kInjections[i].topic << " (plain)";
+  }
+
+  // A permitted writer that never matched published into nothing: the handshake, not the
+  // permission, would be what the count measures. Cyclone DDS 0.10 can give up a pair's
+  // handshake for good on a loaded machine (eclipse-cyclonedds/cyclonedds#1895; seen once
+  // in CI: no match in 40 s, the other pairs fine), so such a round is run once more with
+  // new participants, which handshake afresh; the second round must be complete.
+  RoundResult permitted =
+      run_injection_round(fleet, vendor, domain, true, kSamples, kTaken, handshake_s, 1);
+  const bool all_matched = std::all_of(permitted.matched.begin(), permitted.matched.end(),
+                                       [](bool matched) { return matched; });
+  if (!all_matched) {
+    for (std::size_t i = 0; i < kInjections.size(); ++i) {
+      if (!permitted.matched[i]) {
+        std::cerr << "[ NOTE     ] " << kInjections[i].topic << ": no secure match in "
+                  << handshake_s << " s (" << vendor << "); the round runs again\n";
       }
     }
-    for (std::size_t i = 0; i < echoes.size(); ++i) {
-      const int taken = samples_taken(*echoes[i]);
-      SCOPED_TRACE(kInjections[i].topic + (authenticated ? " (permitted identity)" : " (plain)"));
-      if (authenticated) {
-        EXPECT_GE(taken, kTaken);
-      } else {
-        EXPECT_EQ(taken, 0);
-      }
-    }
+    permitted = run_injection_round(fleet, vendor, domain, true, kSamples, kTaken, handshake_s, 2);
+  }
+  for (std::size_t i = 0; i < kInjections.size(); ++i) {
+    SCOPED_TRACE(kInjections[i].topic + " (permitted identity)");
+    EXPECT_TRUE(permitted.matched[i]) << permitted.pub_logs[i];
+    EXPECT_GE(permitted.taken[i], kTaken);
   }
 }
 
