@@ -473,12 +473,22 @@ launch:
     EXPECT_TRUE(contains(realtime.err, "uav0: SCHED_FIFO priority 12 refused")) << realtime.err;
   }
   expect_all_gone(realtime.json());
+  // The report says at what priority each process ran: what a latency is compared under.
+  const auto priority_in = [](const nlohmann::json& report, const std::string& name) {
+    for (const auto& process : report["processes"]) {
+      if (process["name"] == name) return process["realtime_priority"].get<int>();
+    }
+    return -1;
+  };
+  EXPECT_EQ(priority_in(realtime.json(), "uav0"), may ? 12 : 0);
+  EXPECT_EQ(priority_in(realtime.json(), "sim"), 0);
 
   fs::remove_all(run_dir_);  // the first run's ready file would let the sim end at once
   const auto lockstep = run(yaml, {"--json"});
   ASSERT_EQ(lockstep.exit_code, 0) << lockstep.err;
   EXPECT_TRUE(contains(log_of("uav0"), "thread sched: other 0\n")) << log_of("uav0");
   EXPECT_TRUE(contains(lockstep.err, "uav0: realtime_priority 12 not applied")) << lockstep.err;
+  EXPECT_EQ(priority_in(lockstep.json(), "uav0"), 0);
   expect_all_gone(lockstep.json());
 }
 

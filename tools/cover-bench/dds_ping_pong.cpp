@@ -1,5 +1,8 @@
 #include "dds_ping_pong.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <chrono>
 #include <condition_variable>
 #include <iostream>
@@ -45,6 +48,37 @@ class PongWaiter {
   std::int64_t last_seq_ = -1;
 };
 
+// The calling thread at a SCHED_FIFO priority while it lives (threads it starts meanwhile
+// inherit it), then back to its policy before.
+class ScopedRealtime {
+ public:
+  explicit ScopedRealtime(int priority) {
+    if (priority <= 0) return;
+    pthread_getschedparam(pthread_self(), &old_policy_, &old_param_);
+    sched_param param{};
+    param.sched_priority = priority;
+    if (pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0) priority_ = priority;
+  }
+  ~ScopedRealtime() {
+    if (priority_ > 0) pthread_setschedparam(pthread_self(), old_policy_, &old_param_);
+  }
+  ScopedRealtime(const ScopedRealtime&) = delete;
+  ScopedRealtime& operator=(const ScopedRealtime&) = delete;
+  int priority() const { return priority_; }
+
+ private:
+  int priority_ = 0;
+  int old_policy_ = SCHED_OTHER;
+  sched_param old_param_{};
+};
+
+process::SpawnOptions pong_spawn_options(const PingPongOptions& options) {
+  process::SpawnOptions spawn;
+  spawn.capture_stdout = true;
+  spawn.realtime_priority = options.pong_realtime_priority;
+  return spawn;
+}
+
 dds::QosProfile named(dds::QosProfile qos) {
   if (qos.name.empty()) return reliable_bench_qos();
   return qos;
@@ -62,7 +96,9 @@ struct PingPong::Impl {
                       "--domain", std::to_string(options.domain_id), "--prefix", options.prefix,
                       "--ping-qos", named(options.ping_qos).name, "--pong-qos",
                       named(options.pong_qos).name},
-                     {}, /*capture_stdout=*/true) {
+                     pong_spawn_options(options)),
+        ping_scheduling(options.ping_realtime_priority),
+        pong_priority(options.pong_realtime_priority) {
     const auto ready = pong_process.read_line(20s);
     if (!ready || *ready != "ready") throw std::runtime_error("the pong process did not start");
     dds::ParticipantOptions participant_options;
@@ -81,6 +117,8 @@ struct PingPong::Impl {
   }
 
   process::ChildProcess pong_process;
+  ScopedRealtime ping_scheduling;  // before the participant: its threads inherit it
+  int pong_priority = 0;
   std::unique_ptr<dds::Participant> participant;
   PongWaiter waiter;
   std::optional<dds::Reader<RelativeState>> pong_reader;
@@ -89,6 +127,14 @@ struct PingPong::Impl {
 };
 
 PingPong::PingPong(const PingPongOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+
+int PingPong::ping_realtime_priority() const {
+  return impl_->ping_scheduling.priority();
+}
+
+int PingPong::pong_realtime_priority() const {
+  return impl_->pong_process.realtime() ? impl_->pong_priority : 0;
+}
 
 PingPong::~PingPong() {
   impl_->pong_process.terminate();

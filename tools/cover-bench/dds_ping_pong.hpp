@@ -21,6 +21,11 @@ struct PingPongOptions {
   // as the relative state and the command travel.
   dds::QosProfile ping_qos;
   dds::QosProfile pong_qos;
+  // SCHED_FIFO priorities (1..99) of the ping side (this process's participant threads and
+  // the pinging thread, while the PingPong lives) and of the pong process; 0: normal
+  // scheduling. A floor compared with a system's latency runs as that system's processes do.
+  int ping_realtime_priority = 0;
+  int pong_realtime_priority = 0;
 };
 
 struct RoundTrips {
@@ -43,6 +48,11 @@ class PingPong {
   // sleep, so both ends wake from sleep as a paced control loop does). A pong not back
   // within 1 s is counted as lost.
   RoundTrips run(int count, double rate_hz);
+
+  // The SCHED_FIFO priorities each end runs at (0: normal scheduling, also when asked for
+  // but refused: that needs root, CAP_SYS_NICE or an rtprio limit).
+  int ping_realtime_priority() const;
+  int pong_realtime_priority() const;
 
  private:
   struct Impl;

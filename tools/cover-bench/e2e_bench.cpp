@@ -58,8 +58,20 @@ std::string make_fleet(const char* vendor) {
   return dir.string();
 }
 
-// The mix's floor: `count` paced round trips, simulator vendor -> UAV agent vendor -> back.
-nlohmann::json measure_floor(const cover::bench::VendorMix& mix, int domain, int count) {
+// The SCHED_FIFO priority the launcher reports `name` ran at (0: normal scheduling).
+int realtime_priority_of(const nlohmann::json& report, const std::string& name) {
+  if (!report.is_object() || !report.contains("processes")) return 0;
+  for (const auto& process : report["processes"]) {
+    if (process.value("name", "") == name) return process.value("realtime_priority", 0);
+  }
+  return 0;
+}
+
+// The mix's floor: `count` paced round trips, simulator vendor -> UAV agent vendor -> back,
+// each end scheduled as the run's simulator and UAV agent were (`report`): a floor at normal
+// scheduling beside a run at SCHED_FIFO would compare the schedulers, not the path.
+nlohmann::json measure_floor(const cover::bench::VendorMix& mix, const nlohmann::json& report,
+                             int domain, int count) {
   cover::bench::PingPongOptions options;
   options.ping_vendor = cover::dds::parse_vendor(mix.sim);
   options.pong_vendor = cover::dds::parse_vendor(mix.uav);
@@ -67,6 +79,8 @@ nlohmann::json measure_floor(const cover::bench::VendorMix& mix, int domain, int
   options.prefix = "cover_bench/e2e_floor_" + std::to_string(getpid());
   options.ping_qos = cover::dds::sensor_qos();
   options.pong_qos = cover::dds::command_qos();
+  options.ping_realtime_priority = realtime_priority_of(report, "sim");
+  options.pong_realtime_priority = realtime_priority_of(report, "uav0");
   try {
     cover::bench::PingPong ping_pong(options);
     ping_pong.run(50, 100.0);  // warm-up at the same pace
@@ -74,7 +88,9 @@ nlohmann::json measure_floor(const cover::bench::VendorMix& mix, int domain, int
     return {{"p50_ms", cover::bench::percentile(trips.round_trip_us, 0.50) / 1000.0},
             {"p99_ms", cover::bench::percentile(trips.round_trip_us, 0.99) / 1000.0},
             {"samples", trips.received},
-            {"lost", trips.sent - trips.received}};
+            {"lost", trips.sent - trips.received},
+            {"ping_realtime_priority", ping_pong.ping_realtime_priority()},
+            {"pong_realtime_priority", ping_pong.pong_realtime_priority()}};
   } catch (const std::exception& e) {
     std::cerr << "cover-bench e2e: the floor of " << mix.name << " was not measured: " << e.what()
               << "\n";
@@ -122,9 +138,9 @@ int run(const std::vector<std::string>& args) {
       flags.insert(flags.end(), method_flags.begin(), method_flags.end());
       const std::string fleet = secure ? make_fleet(mix.sim) : "";
       if (!fleet.empty()) flags.insert(flags.end(), {"--security", fleet});
-      const nlohmann::json floor =
-          secure || floor_count <= 0 ? nullptr : measure_floor(mix, domain++, floor_count);
       const nlohmann::json r = cover::bench::run_launch("scenario2", flags, domain++, "e2e");
+      const nlohmann::json floor =
+          secure || floor_count <= 0 ? nullptr : measure_floor(mix, r, domain++, floor_count);
       if (!fleet.empty()) std::filesystem::remove_all(fleet);
       const nlohmann::json latency =
           r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();

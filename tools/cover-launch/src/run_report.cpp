@@ -34,6 +34,7 @@ nlohmann::json make_report(const LaunchPlan& plan, const RunOutcome& outcome) {
          {"exit_code", optional_number(process.exit_code)},
          {"stopped_by", process.stopped_by},
          {"respawns", process.respawns},
+         {"realtime_priority", process.realtime_priority},
          {"cpu_s", process.cpu_s ? nlohmann::json(*process.cpu_s) : nlohmann::json(nullptr)}});
   }
   report["processes"] = std::move(processes);

@@ -237,6 +237,7 @@ class Supervisor {
     try {
       auto child = spawn(index, /*restart=*/false);
       outcome_.processes[index].pid = child->pid();
+      outcome_.processes[index].realtime_priority = child->realtime() ? spec.realtime_priority : 0;
       spdlog::info("started {} pid {} dds {}: {}", spec.name, child->pid(), spec.dds,
                    join(argv_of(index)));
       children_.push_back({index, &spec, std::move(child), &outcome_.processes[index], {}});

@@ -17,6 +17,7 @@ struct ProcessOutcome {
   std::string stopped_by;        // "", "SIGINT", "SIGTERM" or "SIGKILL": the last one sent
   int respawns = 0;              // restarts after a death (respawn: true)
   std::optional<double> cpu_s;   // CPU time (user + system) of the latest run, once it ended
+  int realtime_priority = 0;     // the SCHED_FIFO priority it runs at; 0: normal scheduling
 };
 
 struct RunOutcome {
