@@ -167,25 +167,33 @@ double narrow_to_feasible(double infeasible, double f_infeasible, double feasibl
 // The first time in (lo, hi] at which `infeasibility` is <= 0: a 24-point grid for the first
 // feasible cell, then that cell narrowed to 2^-halvings of its width; nullopt when no grid
 // point is feasible. `lo` itself is taken as infeasible (the callers start where the
-// excess is >= 0); its value is computed only when the first grid point is feasible.
-template <typename Infeasibility>
+// excess is >= 0). `surely_infeasible(t)`, a cheap bound, answers for a grid point it is
+// sure of, so the full evaluation runs only where the bound cannot tell: the same cell,
+// the same answer. The infeasible end's value is computed when the narrowing needs it.
+template <typename Infeasibility, typename Bound>
 std::optional<double> first_feasible_time_s(double lo, double hi, int halvings,
-                                            const Infeasibility& infeasibility) {
+                                            const Infeasibility& infeasibility,
+                                            const Bound& surely_infeasible) {
   constexpr int kGrid = 24;
   const double step = (hi - lo) / kGrid;
   const double tolerance = std::ldexp(step, -halvings);
   double infeasible = lo;
-  double f_infeasible = 0.0;
+  std::optional<double> f_infeasible;
   for (int i = 1; i <= kGrid; ++i) {
     const double t = lo + step * i;
+    if (surely_infeasible(t)) {
+      infeasible = t;
+      f_infeasible.reset();
+      continue;
+    }
     const double f = infeasibility(t);
     if (f > 0.0) {
       infeasible = t;
       f_infeasible = f;
       continue;
     }
-    if (i == 1) f_infeasible = infeasibility(lo);
-    return narrow_to_feasible(infeasible, f_infeasible, t, f, tolerance, infeasibility);
+    if (!f_infeasible) f_infeasible = infeasibility(infeasible);
+    return narrow_to_feasible(infeasible, *f_infeasible, t, f, tolerance, infeasibility);
   }
   return std::nullopt;
 }
@@ -217,7 +225,7 @@ std::optional<double> earliest_time_to_go_s(double speed_m_s, double yaw_rate_ra
            s;
   };
   // The excess need not be monotone: a turning UGV first comes closer, then recedes.
-  return first_feasible_time_s(tau_lo, tau_max_s, 30, excess);
+  return first_feasible_time_s(tau_lo, tau_max_s, 30, excess, [](double) { return false; });
 }
 
 namespace {
@@ -305,8 +313,19 @@ std::optional<StraightFlight> earliest_fastest_straight_flight(
   const auto shortfall = [&](double tau) {
     return fastest_straight_shortfall_m(u, w, a, p_m, s, tau, direction);
   };
+  // Simpson's weights are positive and sum to tau, so no flight of tau covers more than
+  // tau (s + the UGV's fastest speed by then): a target farther than that is surely not
+  // reached (the margin covers rounding), without the integral.
+  const auto surely_short = [&](double tau) {
+    // The UGV's speed u + a t stops at 0 driving forward (predicted_speed_m_s).
+    const double fastest_ugv =
+        u >= 0.0 ? std::max(u, u + a * tau) : std::abs(u) + std::abs(a) * tau;
+    const double reach = tau * (s + fastest_ugv) * (1.0 + 1e-9);
+    return (ugv_mean_velocity(u, w, tau, a) * tau - p_m).norm() > reach;
+  };
   // The grid's cell (<= 0.25 s) narrowed 2^20 times: to 2.4e-7 s.
-  const std::optional<double> tau = first_feasible_time_s(tau_lo, tau_max_s, 20, shortfall);
+  const std::optional<double> tau =
+      first_feasible_time_s(tau_lo, tau_max_s, 20, shortfall, surely_short);
   if (!tau) return std::nullopt;
   shortfall(*tau);  // the direction at the answer
   return StraightFlight{*tau, direction};
