@@ -86,7 +86,12 @@ Eigen::Matrix<double, NX, 1> rk4_with_sensitivities(
     next += weights[i] * k;
     Sens k_sens;
     if (want_jacobians) {
-      model.sensitivity(stage_point, u, offsets[i], stage_sens, k_sens);
+      // The first stage starts at x itself: dx/dz = [I 0], so dk/dz is the Jacobian.
+      if (i == 0) {
+        model.jacobian(stage_point, u, offsets[i], k_sens);
+      } else {
+        model.sensitivity(stage_point, u, offsets[i], stage_sens, k_sens);
+      }
       next_sens += weights[i] * k_sens;
     }
     if (i < 3) {
@@ -124,6 +129,9 @@ struct FullModel {
     dk_dz.noalias() = dfdx * dx_dz;
     dk_dz.rightCols<kInputSize>() += dfdu;
   }
+  void jacobian(const State& x, const Input& u, double t, Sens& dk_dz) const {
+    sensitivity(x, u, t, Sens::Identity(), dk_dz);
+  }
 };
 
 // The UAV model sees Omega(t) = Omega0 + beta t inside the step.
@@ -140,28 +148,59 @@ struct UavModel {
   // mostly zeros (p' = v; v' couples 3x3 and 3x4 blocks; q' depends on q only), which
   // halves the cost of the loop's most expensive product.
   using Sens = Eigen::Matrix<double, kUavStateSize, kUavStateSize + kInputSize>;
-  void sensitivity(const UavState& x, const Input& u, double t, const Sens& dx_dz,
-                   Sens& dk_dz) const {
+
+  // df/dx's non-zero blocks at (x, u, t).
+  struct Blocks {
+    Eigen::Matrix3d dv_dp;
+    Eigen::Matrix3d dv_dv;
+    Eigen::Matrix<double, 3, 4> dv_dq;
+    Eigen::Matrix4d dq_dq;
+  };
+  Blocks blocks(const UavState& x, const Input& u, double t) const {
     const Vector3d omega = ugv.angular_velocity_rad_s + t * ugv.angular_acceleration_rad_s2;
     const Vector3d& beta = ugv.angular_acceleration_rad_s2;
     const QuaternionWxyz q = x.segment<4>(idx::kQuaternion);
     const Eigen::Matrix3d omega_skew = skew(omega);
-    const Eigen::Matrix3d dv_dp = -skew(beta) - omega_skew * omega_skew;
-    const Eigen::Matrix3d dv_dv = -2.0 * omega_skew;
-    const Eigen::Matrix<double, 3, 4> dv_dq = thrust_direction_jacobian(q) * u(input_idx::kThrust);
-    const Eigen::Matrix4d dq_dq =
-        0.5 * (right_product_matrix(Eigen::Vector4d(0.0, u(1), u(2), u(3))) -
-               left_product_matrix(Eigen::Vector4d(0.0, omega.x(), omega.y(), omega.z())));
+    Blocks b;
+    b.dv_dp = -skew(beta) - omega_skew * omega_skew;
+    b.dv_dv = -2.0 * omega_skew;
+    b.dv_dq = thrust_direction_jacobian(q) * u(input_idx::kThrust);
+    b.dq_dq = 0.5 * (right_product_matrix(Eigen::Vector4d(0.0, u(1), u(2), u(3))) -
+                     left_product_matrix(Eigen::Vector4d(0.0, omega.x(), omega.y(), omega.z())));
+    return b;
+  }
 
+  // df/du's columns: thrust moves v along the thrust direction, body rates move q.
+  static void add_input_columns(const QuaternionWxyz& q, Sens& dk_dz) {
+    dk_dz.middleRows<3>(idx::kVelocity).col(kUavStateSize + input_idx::kThrust) +=
+        thrust_direction(q);
+    dk_dz.middleRows<4>(idx::kQuaternion).rightCols<3>() +=
+        0.5 * left_product_matrix(q).rightCols<3>();
+  }
+
+  void sensitivity(const UavState& x, const Input& u, double t, const Sens& dx_dz,
+                   Sens& dk_dz) const {
+    const Blocks b = blocks(x, u, t);
     dk_dz.middleRows<3>(idx::kPosition) = dx_dz.middleRows<3>(idx::kVelocity);
     auto dv = dk_dz.middleRows<3>(idx::kVelocity);
-    dv.noalias() = dv_dp.lazyProduct(dx_dz.middleRows<3>(idx::kPosition));
-    dv.noalias() += dv_dv.lazyProduct(dx_dz.middleRows<3>(idx::kVelocity));
-    dv.noalias() += dv_dq.lazyProduct(dx_dz.middleRows<4>(idx::kQuaternion));
-    dv.col(kUavStateSize + input_idx::kThrust) += thrust_direction(q);
-    auto dq = dk_dz.middleRows<4>(idx::kQuaternion);
-    dq.noalias() = dq_dq.lazyProduct(dx_dz.middleRows<4>(idx::kQuaternion));
-    dq.rightCols<3>() += 0.5 * left_product_matrix(q).rightCols<3>();
+    dv.noalias() = b.dv_dp.lazyProduct(dx_dz.middleRows<3>(idx::kPosition));
+    dv.noalias() += b.dv_dv.lazyProduct(dx_dz.middleRows<3>(idx::kVelocity));
+    dv.noalias() += b.dv_dq.lazyProduct(dx_dz.middleRows<4>(idx::kQuaternion));
+    dk_dz.middleRows<4>(idx::kQuaternion).noalias() =
+        b.dq_dq.lazyProduct(dx_dz.middleRows<4>(idx::kQuaternion));
+    add_input_columns(x.segment<4>(idx::kQuaternion), dk_dz);
+  }
+
+  // sensitivity() at dx_dz = [I 0]: the blocks written where they go, no products.
+  void jacobian(const UavState& x, const Input& u, double t, Sens& dk_dz) const {
+    const Blocks b = blocks(x, u, t);
+    dk_dz.setZero();
+    dk_dz.block<3, 3>(idx::kPosition, idx::kVelocity).setIdentity();
+    dk_dz.block<3, 3>(idx::kVelocity, idx::kPosition) = b.dv_dp;
+    dk_dz.block<3, 3>(idx::kVelocity, idx::kVelocity) = b.dv_dv;
+    dk_dz.block<3, 4>(idx::kVelocity, idx::kQuaternion) = b.dv_dq;
+    dk_dz.block<4, 4>(idx::kQuaternion, idx::kQuaternion) = b.dq_dq;
+    add_input_columns(x.segment<4>(idx::kQuaternion), dk_dz);
   }
 };
 
