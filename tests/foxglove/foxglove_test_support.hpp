@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "cover/test/wait_until.hpp"
 #include "recorder_support.hpp"  // scaled, find_node, decoded_form (tests/mcap)
 
 // What the bridge tests share: the bridge process on a port of the test range, the Node
@@ -33,14 +34,9 @@ inline std::string read_file(const std::string& path) {
   return s.str();
 }
 
-// Polls `condition` (a file, another process's output) until it holds or `timeout` passes.
+// Waits for `condition` on a file or another process's output, reading it every 20 ms.
 inline bool poll_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + scaled(timeout);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return condition();
+  return wait_until(condition, timeout, std::chrono::milliseconds(20));
 }
 
 // cover-foxglove-bridge on a port of 20000-32000 (another is tried when it is taken: exit 4).

@@ -15,6 +15,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -25,6 +26,7 @@
 #include "cover/sim/world_segment.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
 
@@ -167,12 +169,10 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
     ASSERT_TRUE(status.wait_for_sample(scaled(30s)));
 
     // Airborne under the agent's commands, then 3 s of hostile samples at ~500 Hz.
+    ASSERT_TRUE(system.wait_for_world(
+        [](const SharedWorld& w) { return w.uavs[0].state.position_m.z > 1.0; }, 30s))
+        << "the UAV never took off";
     auto copy = std::make_unique<SharedWorld>();
-    const auto airborne_by = Clock::now() + scaled(30s);
-    while (!(system.world().read(*copy) && copy->uavs[0].state.position_m.z > 1.0)) {
-      ASSERT_LT(Clock::now(), airborne_by) << "the UAV never took off";
-      std::this_thread::sleep_for(10ms);
-    }
     std::uint64_t sent = 0;
     const auto flood_end = Clock::now() + 3s;
     for (int i = 0; Clock::now() < flood_end; ++i) {
@@ -182,31 +182,34 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
       states[k].write(hostile_state(i % 7, k, now_ns));
       imus[k].write(hostile_imu(i % 4, k, now_ns));
       sent += 2;
-      std::this_thread::sleep_for(2ms);
+      std::this_thread::sleep_for(2ms);  // pacing the ~500 Hz flood, not synchronisation
     }
     ASSERT_GT(sent, 1000u);
     // The status (10 Hz) counts what was dropped: most of the flood (best-effort sensor
     // QoS may lose some; a future stamp is judged only if it is the newest at a step).
-    const auto counted_by = Clock::now() + scaled(5s);
     std::uint32_t rejected = 0;
-    while (Clock::now() < counted_by) {
-      rejected = status.latest()->sample.rejected_samples;
-      if (rejected >= sent / 2) break;
-      std::this_thread::sleep_for(50ms);
-    }
+    cover::test::wait_until(
+        [&] {
+          rejected = status.latest()->sample.rejected_samples;
+          return rejected >= sent / 2;
+        },
+        5s, 50ms);
     EXPECT_GE(rejected, sent / 2) << "sent " << sent;
     EXPECT_LE(rejected, sent);
     // Still the task it was flying: to the end, landed on G1.
-    const auto landed_by = Clock::now() + scaled(60s);
-    bool succeeded = false;
-    while (!succeeded && Clock::now() < landed_by) {
-      const auto latest = task_status.latest();
-      succeeded = latest && latest->sample.state == msg::TaskState::TASK_SUCCEEDED;
-      ASSERT_FALSE(latest && latest->sample.state == msg::TaskState::TASK_FAILED)
-          << latest->sample.message;
-      std::this_thread::sleep_for(50ms);
-    }
-    EXPECT_TRUE(succeeded);
+    std::optional<msg::TaskStatus> ended;
+    cover::test::wait_until(
+        [&] {
+          const auto latest = task_status.latest();
+          if (latest && (latest->sample.state == msg::TaskState::TASK_SUCCEEDED ||
+                         latest->sample.state == msg::TaskState::TASK_FAILED)) {
+            ended = latest->sample;
+          }
+          return ended.has_value();
+        },
+        60s, 50ms);
+    ASSERT_TRUE(ended) << "the task never ended";
+    EXPECT_EQ(ended->state, msg::TaskState::TASK_SUCCEEDED) << ended->message;
     std::cout << "hostile samples sent " << sent << ", rejected (agent's count) " << rejected
               << ", commands " << commands.count() << ", bad commands " << commands.bad() << "\n";
     EXPECT_GT(commands.count(), 1000u);

@@ -29,6 +29,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/wire/task.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
@@ -45,16 +46,7 @@ constexpr int kManagerDomain = 148;
 
 using cover::test::scaled;
 using cover::test::time_scale;
-
-// Polls `condition` every 20 ms until it holds or `timeout` (scaled) passes.
-bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto give_up = std::chrono::steady_clock::now() + scaled(timeout);
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() >= give_up) return condition();
-    std::this_thread::sleep_for(20ms);
-  }
-  return true;
-}
+using cover::test::wait_until;
 
 // UGV agent 1 of `system`, started again with its clock shifted by `offset_ms` ("": not).
 void restart_ugv1(SimSystem& system, const std::string& offset_ms, const std::string& log) {
@@ -147,7 +139,7 @@ void hold_with_the_offset_named_then_fly() {
       << refused;
   // Still held a while later (the re-sent request included): nothing flies.
   requests.write(cover::wire::to_msg(task, 0.0));
-  std::this_thread::sleep_for(500ms);  // a window in which nothing may happen: not a sync
+  std::this_thread::sleep_for(scaled(500ms));  // a window in which nothing may happen: not a sync
   // Its status reports the held task as its own, pending: not an idle agent.
   EXPECT_EQ(latest_status().task_id, task.task_id);
   EXPECT_EQ(latest_status().task_state, cover::msg::TaskState::TASK_PENDING);
@@ -168,7 +160,7 @@ void hold_with_the_offset_named_then_fly() {
       [&](const cover::sim::SharedWorld& w) {
         return w.uavs[0].state.position_m.z > start_z_m + 0.1;
       },
-      scaled(20s)));
+      20s));
   // Every peer now within a millisecond: same host, loopback.
   ASSERT_TRUE(wait_until([&] { return std::abs(latest_status().max_clock_offset_ms) < 1.0; }, 10s))
       << latest_status().max_clock_offset_ms << " ms to " << latest_status().max_offset_peer;

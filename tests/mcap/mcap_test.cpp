@@ -9,12 +9,12 @@
 #include <fstream>
 #include <iterator>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cover/mcap/reader.hpp"
 #include "cover/mcap/writer.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/wait_until.hpp"
 
 namespace cover::mcap {
 namespace {
@@ -112,11 +112,13 @@ TEST(McapWriter, ClosesAChunkOnceItIsOlderThanItsDuration) {
   const auto data = payload(1);
   ASSERT_TRUE(writer.write({channel, 1, 1, 1}, data.data(), data.size()));
   EXPECT_EQ(writer.statistics().chunk_count, 0U);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (writer.statistics().chunk_count == 0 && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    writer.flush_due();
-  }
+  // flush_due() is what the recorder calls between samples: it closes the chunk once aged.
+  test::wait_until(
+      [&] {
+        writer.flush_due();
+        return writer.statistics().chunk_count != 0;
+      },
+      std::chrono::seconds(5));
   EXPECT_EQ(writer.statistics().chunk_count, 1U);
   // Already on disk, before close(): what a SIGKILL would leave.
   Reader reader(path);

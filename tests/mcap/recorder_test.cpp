@@ -70,16 +70,17 @@ class Recording : public ::testing::Test {
   // `topics` topics, so every reader of the recorder has received from its writer.
   void warm_up(const std::string& file, std::size_t topics,
                const std::function<void(std::int64_t)>& publish) {
-    const auto deadline = std::chrono::steady_clock::now() + scaled(30s);
-    for (std::int64_t n = 1; std::chrono::steady_clock::now() < deadline; ++n) {
-      publish(n);
-      const Output info = run({COVER_CLI, "bag", "info", file, "--json"}, "bag_info_warm.stderr");
-      if (!info.lines.empty() && nlohmann::json::parse(info.lines[0])["topics"].size() == topics) {
-        return;
-      }
-      std::this_thread::sleep_for(20ms);  // polling a file
-    }
-    FAIL() << "the recorder wrote no sample of every topic within the deadline";
+    std::int64_t n = 0;
+    const bool every_topic = wait_until(
+        [&] {
+          publish(++n);
+          const Output info =
+              run({COVER_CLI, "bag", "info", file, "--json"}, "bag_info_warm.stderr");
+          return !info.lines.empty() &&
+                 nlohmann::json::parse(info.lines[0])["topics"].size() == topics;
+        },
+        30s, 20ms);
+    ASSERT_TRUE(every_topic) << "the recorder wrote no sample of every topic within the deadline";
   }
 
   std::string node_;
@@ -226,12 +227,12 @@ TEST_F(Recording, AKilledRecorderLeavesAFileTheStreamReaderOpensWithAllButItsLas
   // Every sample is on disk once the recorder has closed the chunk holding it (0.2 s after
   // its first sample): wait for the last one, then kill the recorder before its summary.
   const std::string last_stamp = std::to_string(task_sample(kSamples - 1).stamp_ns);
-  const auto deadline = std::chrono::steady_clock::now() + scaled(20s);
-  while (std::chrono::steady_clock::now() < deadline) {
-    const auto lines = read_with_node(file, "stream");
-    if (lines.size() >= 2 && lines[lines.size() - 2]["value"]["stamp_ns"] == last_stamp) break;
-    std::this_thread::sleep_for(50ms);  // polling a file
-  }
+  wait_until(
+      [&] {
+        const auto lines = read_with_node(file, "stream");
+        return lines.size() >= 2 && lines[lines.size() - 2]["value"]["stamp_ns"] == last_stamp;
+      },
+      20s, 50ms);
   EXPECT_EQ(recorder.terminate(scaled(5s), SIGKILL), 128 + SIGKILL);
 
   const auto lines = read_with_node(file, "stream");

@@ -24,6 +24,7 @@
 #include "cover/sim/mocap/mocap_feed.hpp"
 #include "cover/sim/mocap/vrpn_server.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "process_support.hpp"
 #include "scripted_motion.hpp"
 #include "spec_bytes.hpp"

@@ -50,7 +50,12 @@ bool PlanWorker::take(std::uint64_t id, planner::PlanResult& result, bool wait) 
   std::unique_lock<std::mutex> lock(mutex_);
   // Ids only grow: a done id beyond `id` means the thread skipped or finished it and moved
   // on, and a newer request supersedes it either way.
-  if (wait) done_cv_.wait(lock, [&] { return done_id_ >= id || requested_id_ > id; });
+  const auto settled = [&] { return done_id_ >= id || requested_id_ > id; };
+  if (wait && !settled()) {
+    waiting_.store(true);
+    done_cv_.wait(lock, settled);
+    waiting_.store(false);
+  }
   if (done_id_ != id || taken_) return false;
   std::swap(result, done_);
   taken_ = true;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -46,6 +47,9 @@ class PlanWorker {
   bool take(std::uint64_t id, planner::PlanResult& result, bool wait);
   // True when request `id`'s result is done and not taken.
   bool ready(std::uint64_t id);
+  // True while a take() is blocked waiting for its result (what another thread, a test or a
+  // watchdog, can see of a lockstep step held up by its plan).
+  bool waiting() const { return waiting_.load(); }
 
  private:
   void run();
@@ -60,6 +64,7 @@ class PlanWorker {
   std::uint64_t done_id_ = 0;
   bool taken_ = false;
   bool stop_ = false;
+  std::atomic<bool> waiting_{false};
   planner::PlanResult done_;     // the last result, until taken
   planner::PlanResult working_;  // the thread's own, filled outside the lock
   std::thread thread_;           // last: starts once everything above exists
