@@ -1,7 +1,7 @@
 // Stage plans run off the control thread (mission::PlanWorker) and are flown from a fixed
 // step: a realtime step never waits for one, a lockstep step waits for the plan due at it,
 // so a lockstep run is bit-identical with the machine under load (the control thread's
-// allocations through a replan: plan_allocation_test.cpp).
+// and the worker's allocations through a replan: plan_allocation_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>

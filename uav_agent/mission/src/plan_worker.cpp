@@ -20,11 +20,25 @@ PlanWorker::PlanFunction stage_plan_function(planner::PlannerParams params) {
   // shared_ptr, used by the worker thread alone.
   auto planner = std::make_shared<planner::StagePlanner>(std::move(params));
   return [planner](const planner::StageProblem& problem, planner::PlanResult& result) {
-    result = planner->plan(problem);
+    planner->plan(problem, result);
   };
 }
 
-PlanWorker::PlanWorker(PlanFunction plan) : plan_(std::move(plan)), thread_([this] { run(); }) {}
+namespace {
+
+planner::PlanResult sized_result(int pieces) {
+  planner::PlanResult result;
+  result.trajectory.reserve(pieces);
+  return result;
+}
+
+}  // namespace
+
+PlanWorker::PlanWorker(PlanFunction plan, int result_pieces)
+    : plan_(std::move(plan)),
+      done_(sized_result(result_pieces)),
+      working_(sized_result(result_pieces)),
+      thread_([this] { run(); }) {}
 
 PlanWorker::~PlanWorker() {
   {

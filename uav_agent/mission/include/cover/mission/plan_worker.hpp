@@ -28,13 +28,16 @@ const char* to_string(PlanClock clock);
 // Plans stages on a thread of its own, so a control step never runs the optimiser. One
 // request is in flight at a time: a newer request supersedes an older one not yet taken.
 // request() and take() are what the control thread calls: they copy a fixed-size problem
-// and swap results, never allocate, and block only when take() is told to wait.
+// and swap results, never allocate, and block only when take() is told to wait. The thread
+// plans into its results in place: with their trajectories sized once (result_pieces, and
+// the caller's result likewise, since take() swaps storage), no plan allocates.
 class PlanWorker {
  public:
   // What the thread runs for each request (a StagePlanner's plan(); tests put a gated one).
   using PlanFunction = std::function<void(const planner::StageProblem&, planner::PlanResult&)>;
 
-  explicit PlanWorker(PlanFunction plan);
+  // `result_pieces`: the most trajectory pieces a plan writes (PlannerParams::pieces).
+  explicit PlanWorker(PlanFunction plan, int result_pieces = 1);
   ~PlanWorker();  // finishes the plan under way, then joins
   PlanWorker(const PlanWorker&) = delete;
   PlanWorker& operator=(const PlanWorker&) = delete;
@@ -70,8 +73,8 @@ class PlanWorker {
   std::thread thread_;           // last: starts once everything above exists
 };
 
-// A StagePlanner on `params` as a PlanFunction (throws config::ConfigError when they are
-// invalid).
+// A StagePlanner on `params` as a PlanFunction, planning into the result it is given
+// (throws config::ConfigError when they are invalid).
 PlanWorker::PlanFunction stage_plan_function(planner::PlannerParams params);
 
 }  // namespace cover::mission
