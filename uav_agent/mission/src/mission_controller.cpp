@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "cover/mission/ladder_level.hpp"
 #include "cover/mission/radial_approach.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 
