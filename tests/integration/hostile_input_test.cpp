@@ -24,6 +24,7 @@
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
@@ -42,6 +43,7 @@ constexpr int kDomain = 130;  // apart from every other test and benchmark
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+using cover::test::read_text;
 using cover::test::scaled;
 
 // Every command the agent sends, checked as it arrives.
@@ -132,11 +134,6 @@ msg::UgvImu hostile_imu(int kind, std::uint32_t ugv, std::int64_t now_ns) {
   return s;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 std::size_t count_of(const std::string& text, const std::string& needle) {
   std::size_t n = 0;
   for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
@@ -220,7 +217,7 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
   for (auto& ugv : system.ugvs()) ugv->wait(scaled(10s));
   // Named by reason and topic, at most one line per reason per second (4 reasons here
   // per topic kind, ~40 s of flight at most): a flood of samples is not a flood of lines.
-  const std::string log = read_file(system.log_path("uav"));
+  const std::string log = read_text(system.log_path("uav"));
   for (const char* reason : {"non-finite", "out-of-range", "unknown-id"}) {
     EXPECT_NE(log.find(std::string(": ") + reason + " (rejected so far"), std::string::npos)
         << reason << "\n"

@@ -28,6 +28,7 @@
 #include "cover/mission/task.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
 #include "cover/wire/task.hpp"
@@ -44,6 +45,7 @@ using namespace std::chrono_literals;
 constexpr int kDomain = 147;
 constexpr int kManagerDomain = 148;
 
+using cover::test::read_text;
 using cover::test::scaled;
 using cover::test::time_scale;
 using cover::test::wait_until;
@@ -199,11 +201,6 @@ nlohmann::json record_of(SimSystem& system, const std::string& task_id) {
   return reply["tasks"][0];
 }
 
-std::string file_text(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 // Through the task manager: the record shows why the agent holds the task, the manager
 // does not fail it for not starting (the agent reports it as its pending task), and it
 // flies once the clock is right; the manager logs its own offsets to the agents.
@@ -277,7 +274,7 @@ void task_manager_shows_the_hold() {
   EXPECT_EQ(manager->terminate(scaled(10s), SIGINT), 0);
   EXPECT_EQ(uav->terminate(scaled(10s), SIGINT), 0);
   system.stop(scaled(10s));
-  const std::string log = file_text(system.log_path("manager"));
+  const std::string log = read_text(system.log_path("manager"));
   EXPECT_NE(log.find("clock offset to "), std::string::npos) << "the manager logs its offsets";
   EXPECT_NE(log.find("/cover-ugv-agent-1 +"), std::string::npos) << log;
   EXPECT_NE(log.find("beyond the 20 ms limit"), std::string::npos) << log;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "cover/process/child_process.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
@@ -40,12 +41,7 @@ struct LaunchResult {
   nlohmann::json json() const { return nlohmann::json::parse(out); }
 };
 
-inline std::string read_text(const fs::path& path) {
-  std::ifstream stream(path);
-  std::stringstream text;
-  text << stream.rdbuf();
-  return text.str();
-}
+using cover::test::read_text;
 
 inline bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;

@@ -13,11 +13,15 @@
 
 #include "cover/mcap/reader.hpp"
 #include "cover/mcap/writer.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/wait_until.hpp"
 
 namespace cover::mcap {
 namespace {
+
+using test::read_bytes;
+using test::write_bytes;
 
 struct Recorded {
   std::string topic;
@@ -54,16 +58,6 @@ std::vector<Recorded> read_all(Reader& reader) {
     return true;
   });
   return out;
-}
-
-std::vector<char> file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const std::string& path, const std::vector<char>& bytes) {
-  std::ofstream(path, std::ios::binary)
-      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
 class McapRoundTrip : public ::testing::TestWithParam<Compression> {};
@@ -131,7 +125,7 @@ TEST(McapReader, AFileCutAnywhereGivesItsCompleteChunksAndSaysWhere) {
   WriterOptions options;
   options.chunk_size_bytes = 2048;
   write_file(path, options, 600);
-  const auto bytes = file_bytes(path);
+  const auto bytes = read_bytes(path);
   const std::string cut = test::scratch_path("cut.mcap");
   std::size_t previous = 0;
   for (std::size_t length = 0; length < bytes.size(); length += 97) {
@@ -154,7 +148,7 @@ TEST(McapReader, CorruptBytesAreReportedWithTheirOffsetAndSkipped) {
   options.chunk_size_bytes = 2048;
   options.compression = Compression::Zstd;
   write_file(path, options, 600);
-  auto bytes = file_bytes(path);
+  auto bytes = read_bytes(path);
   Reader clean(path);
   read_all(clean);
   ASSERT_GT(clean.chunks().size(), 3U);
