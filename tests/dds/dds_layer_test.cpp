@@ -212,7 +212,7 @@ TEST_P(OnEachVendor, DeadlineMissesRiseWhenTheWriterStops) {
   for (std::uint32_t i = 0; i < 30; ++i) {
     imu.seq = i;
     writer.write(imu);
-    std::this_thread::sleep_for(10ms);
+    std::this_thread::sleep_for(10ms);  // pacing a 100 Hz writer, not synchronisation
   }
   ASSERT_TRUE(cover::test::wait_until([&] { return reader.received_count() >= 20; }, 5s))
       << reader.received_count() << " of 30 samples arrived";

@@ -3,16 +3,15 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <exception>
 #include <fstream>
 #include <functional>
 #include <string>
-#include <thread>
 
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant_options.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/wait_until.hpp"
 
 namespace cover::test {
 
@@ -56,16 +55,6 @@ inline std::string write_temp_yaml(const std::string& name, const std::string& t
   const std::string path = cover::test::scratch_path(name);
   std::ofstream(path) << text;
   return path;
-}
-
-// Polls `condition` every millisecond until it holds or `timeout` passes; its final value.
-inline bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto give_up = std::chrono::steady_clock::now() + timeout;
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() >= give_up) return condition();
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return true;
 }
 
 }  // namespace cover::test

@@ -1,29 +1,11 @@
-// The latency path must not touch the heap: count every global allocation while the
-// bridge turns agent commands into setpoints in flight.
+// The latency path must not touch the heap: count every allocation (malloc:
+// cover/test/malloc_counter.hpp; its own executable) while the bridge turns agent commands
+// into setpoints in flight.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 #include "cover/fc_bridge/bridge.hpp"
+#include "cover/test/malloc_counter.hpp"
 #include "fake_autopilot.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace cover::fc_bridge {
 namespace {
@@ -31,6 +13,7 @@ namespace {
 namespace mav = cover::mavlink;
 
 TEST(FcBridgeAllocation, CommandsInFlightDoNotAllocate) {
+  if (!cover::test::malloc_counted()) GTEST_SKIP() << "malloc belongs to the sanitizer";
   BridgeConfig config;
   Bridge bridge(config);
   test::FakeAutopilot autopilot(5, mav::mav_autopilot::kPx4);
@@ -54,9 +37,11 @@ TEST(FcBridgeAllocation, CommandsInFlightDoNotAllocate) {
   std::size_t frames = 0;
   for (int i = 200; i < 1200; ++i) {
     if (i % 100 == 0) bridge.on_frame(autopilot.heartbeat(true, offboard), t);  // uncounted
-    const long before = g_allocations.load();
+    const long before = cover::test::counted_allocations();
+    cover::test::count_this_thread(true);
     frames += step(i);
-    allocations += g_allocations.load() - before;
+    cover::test::count_this_thread(false);
+    allocations += cover::test::counted_allocations() - before;
   }
   EXPECT_EQ(frames, 1000U);
   EXPECT_EQ(allocations, 0);

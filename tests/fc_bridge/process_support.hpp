@@ -23,6 +23,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 
 // What the bridge's process tests share: deadlines scaled by COVER_TEST_TIME_SCALE, the
 // bridge started on a domain, and an agent's command stream published over DDS.

@@ -192,7 +192,7 @@ TEST(FcBridgeProcess, CommandToWireLatency) {
     c.armed = true;
     sent_ns[seq] = clock::system_ns();
     writer.write(c);
-    std::this_thread::sleep_for(5ms);
+    std::this_thread::sleep_for(5ms);  // pacing a 200 Hz agent, not synchronisation
   }
   ASSERT_TRUE(wait_until(
       [&] {

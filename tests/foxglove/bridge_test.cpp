@@ -21,6 +21,7 @@
 #include "cover/dds/topics.hpp"
 #include "fleet_topics.hpp"
 #include "foxglove_test_support.hpp"
+#include "published_samples.hpp"
 
 namespace cover::test {
 namespace {
@@ -55,51 +56,6 @@ class FoxgloveBridge : public ::testing::Test {
   std::optional<dds::DomainClaim> claim_;
   std::optional<dds::Participant> participant_;
 };
-
-msg::UgvImu imu_sample(std::uint32_t i) {
-  msg::UgvImu s;
-  s.ugv_id = 1;
-  s.stamp_ns = 1'764'000'000'123'456'789 + i * 5'000'000LL;  // beyond 2^53
-  s.seq = i;
-  s.specific_force_m_s2 = {0.1 * i, -1.0 / 3.0, 9.80665};
-  s.angular_velocity_rad_s = {1e-9 * i, 0.25, -0.5};
-  s.speed_m_s = 2.5 + 0.01 * i;
-  s.speed_source = msg::SpeedSource::SPEED_SOURCE_IMU;
-  return s;
-}
-
-msg::ReferenceTrajectory reference_sample(std::uint32_t i, std::uint32_t points) {
-  msg::ReferenceTrajectory s;
-  s.uav_id = 0;
-  s.stamp_ns = 1'764'000'000'000'000'000 + i;
-  s.reference_ugv = 1;
-  s.stage = msg::Stage::STAGE_TRANSITION;
-  s.dt_s = 0.1;
-  for (std::uint32_t k = 0; k < points; ++k) s.positions_m.push_back({1.0 * k, 2.0 * i, -0.5});
-  s.velocities_m_s.push_back({0.0, 0.0, 1.0 * i});
-  return s;
-}
-
-msg::TransitionTask task_sample(std::uint32_t i) {
-  msg::TransitionTask s;
-  s.task_id = "task-" + std::to_string(i) + " \xc3\xa9";  // UTF-8 survives
-  s.uav_id = 0;
-  s.stamp_ns = 1'764'000'000'000'000'000 + 1000 * i;
-  msg::TransitionProcess p;
-  p.from_ugv = 0;
-  p.to_ugv = 1;
-  p.initial_point_m = {1, 2, 3};
-  p.final_action = msg::FinalAction::FINAL_ACTION_DELIVER;
-  p.method = i % 2 ? "cover" : "";
-  s.processes.assign(i % 3, p);
-  return s;
-}
-
-template <typename T>
-T warm(T sample, std::int64_t stamp_ns) {
-  sample.stamp_ns = stamp_ns;
-  return sample;
-}
 
 std::size_t fleet_topic_count(std::uint32_t uavs, std::uint32_t ugvs) {
   std::size_t n = 0;
@@ -200,7 +156,7 @@ TEST_F(FoxgloveBridge, AdvertisesTheFleetAndStreamsSamplesDecodedToThePublishedV
   EXPECT_TRUE(client.events("error").empty()) << client.events("error")[0].dump();
 
   EXPECT_EQ(bridge->child().terminate(scaled(10s), SIGINT), 0);
-  EXPECT_NE(read_file(bridge->log()).find("bridge CPU"), std::string::npos);
+  EXPECT_NE(read_text(bridge->log()).find("bridge CPU"), std::string::npos);
 }
 
 TEST_F(FoxgloveBridge, ShowsTheUgvFramesTheUavAndItsReferenceIn3d) {
@@ -365,11 +321,11 @@ TEST_F(FoxgloveBridge, AClientThatStopsReadingDelaysNeitherTheOtherClientNorTheP
     subscriptions.push_back({{"id", id}, {"channelId", id}});
   slow.send_text(json{{"op", "subscribe"}, {"subscriptions", subscriptions}}.dump());
   ASSERT_TRUE(poll_until(
-      [&] { return read_file(bridge->log()).find("is not keeping up") != std::string::npos; }, 20s))
+      [&] { return read_text(bridge->log()).find("is not keeping up") != std::string::npos; }, 20s))
       << "the slow client's queue never filled: see " << bridge->log();
   ASSERT_TRUE(poll_until(
       [&] {
-        return read_file(bridge->log()).find("disconnected: its queue was full") !=
+        return read_text(bridge->log()).find("disconnected: its queue was full") !=
                std::string::npos;
       },
       20s))
@@ -473,7 +429,7 @@ TEST(FoxgloveBridgeProcess, HelpAndATakenPortExitAsDocumented) {
                             std::to_string(claim.domain()), "--uavs", "1", "--ugvs", "1"},
                            "taken.stderr");
   EXPECT_EQ(taken.code, 4);
-  EXPECT_NE(read_file(scratch_path("taken.stderr")).find("cannot listen"), std::string::npos);
+  EXPECT_NE(read_text(scratch_path("taken.stderr")).find("cannot listen"), std::string::npos);
   ::close(listener);
 }
 

@@ -20,27 +20,17 @@
 #include <thread>
 #include <vector>
 
+#include "cover/test/file_contents.hpp"
+#include "cover/test/wait_until.hpp"
 #include "recorder_support.hpp"  // scaled, find_node, decoded_form (tests/mcap)
 
 // What the bridge tests share: the bridge process on a port of the test range, the Node
 // Foxglove client whose JSON lines are collected as they come, and a raw WebSocket client.
 namespace cover::test {
 
-inline std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Polls `condition` (a file, another process's output) until it holds or `timeout` passes.
+// Waits for `condition` on a file or another process's output, reading it every 20 ms.
 inline bool poll_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + scaled(timeout);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return condition();
+  return wait_until(condition, timeout, std::chrono::milliseconds(20));
 }
 
 // cover-foxglove-bridge on a port of 20000-32000 (another is tried when it is taken: exit 4).
@@ -59,12 +49,12 @@ class BridgeProcess {
       child_ = std::make_unique<process::ChildProcess>(argv, options);
       const bool up = poll_until(
           [&] {
-            return read_file(log_).find("serving") != std::string::npos ||
+            return read_text(log_).find("serving") != std::string::npos ||
                    child_->wait(std::chrono::milliseconds(0)).has_value();
           },
           std::chrono::seconds(20));
       if (up && !child_->exit_code().has_value() &&
-          read_file(log_).find("serving") != std::string::npos) {
+          read_text(log_).find("serving") != std::string::npos) {
         return;
       }
       if (child_->exit_code() != 4) break;  // not a taken port: a real failure

@@ -3,7 +3,6 @@
 // dies; a process of the file already named `foxglove` is refused; a non-boolean value is
 // an error.
 #include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
 
 #include <stdexcept>
 #include <string>
@@ -12,13 +11,13 @@
 #include "cover/launch/launch_plan.hpp"
 #include "cover/launch/live_view.hpp"
 #include "cover/launch/recording.hpp"
+#include "launch_plan_support.hpp"
 
 namespace cover::launch {
 namespace {
 
-LaunchFile parse(const std::string& yaml) {
-  return LaunchFile::parse(YAML::Load(yaml), "test.yaml", "/launch");
-}
+using cover::launch::testing::options_in;
+using cover::launch::testing::parse;
 
 const char* const kLaunch = R"(launch:
   name: live
@@ -26,13 +25,6 @@ const char* const kLaunch = R"(launch:
   processes:
     - {name: sim, executable: cover-sim, ends_run: true}
 )";
-
-LaunchOptions options_in(const std::string& run_dir) {
-  LaunchOptions options;
-  options.run_dir = run_dir;
-  options.domain_id = 7;
-  return options;
-}
 
 TEST(LaunchLiveView, FoxgloveKeyStartsTheBridgeBeforeTheRunBehindTheRecorder) {
   LaunchFile file = parse(std::string(kLaunch) + "  foxglove: true\n  record: true\n");

@@ -25,6 +25,7 @@
 #include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/wire/task.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
@@ -260,14 +261,16 @@ TEST(AgentsAndSimulator, ALockstepTickPublishedAgainIsAnsweredAgain) {
     t.relative_stamp_ns = -1;
     return t;
   };
-  // Publishes tick `n` every 20 ms until `answered` holds (10 s at most), as the simulator does.
+  // Publishes tick `n` every 20 ms (the simulator's republish period) until `answered`
+  // holds (10 s at most, scaled), as the simulator does.
   auto publish_until = [&](std::uint64_t n, const std::function<bool()>& answered) {
-    const auto deadline = std::chrono::steady_clock::now() + 10s;
-    while (!answered() && std::chrono::steady_clock::now() < deadline) {
-      clock.write(tick(n));
-      std::this_thread::sleep_for(20ms);  // the simulator's republish period, not a sync
-    }
-    return answered();
+    return cover::test::wait_until(
+        [&] {
+          if (answered()) return true;
+          clock.write(tick(n));
+          return false;
+        },
+        10s, 20ms);
   };
   auto stamped = [](const auto& reader, std::int64_t stamp_ns) {
     const auto last = reader.latest();

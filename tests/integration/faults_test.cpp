@@ -25,6 +25,7 @@
 #include "cover/sim/world_segment.hpp"
 #include "cover/task_manager/task_store.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/wait_until.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
 
@@ -34,6 +35,7 @@ using cover::test::bin;
 using cover::test::quiet;
 using cover::test::shm_entries;
 using cover::test::SimSystem;
+using cover::test::wait_until;
 
 using namespace std::chrono_literals;
 using cover::msg::FailsafeState;
@@ -82,7 +84,8 @@ Touchdown watch_touchdown(SimSystem& system,
   return t;
 }
 
-// Every failsafe the UAV agent reported on its trace (100 Hz), with the step's stamp.
+// Every failsafe the UAV agent reported on its trace (100 Hz), with the step's stamp, and
+// how far it has flown the current stage.
 class TraceLog {
  public:
   explicit TraceLog(cover::dds::Participant& p)
@@ -92,15 +95,23 @@ class TraceLog {
                                 if (entries_.empty() || entries_.back().second != t.failsafe) {
                                   entries_.push_back({t.stamp_ns * 1e-9, t.failsafe});
                                 }
-                                stage_ = t.stage;
+                                if (t.stage != stage_) {
+                                  stage_ = t.stage;
+                                  stage_since_s_ = t.stamp_ns * 1e-9;
+                                  stage_planned_ = false;
+                                }
+                                stage_planned_ = stage_planned_ || t.planned;
+                                latest_s_ = t.stamp_ns * 1e-9;
                               })) {}
   std::vector<std::pair<double, FailsafeState>> changes() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return entries_;
   }
-  cover::msg::Stage stage() const {
+  // How long the agent's steps have flown `stage` on that stage's own plan; < 0: it is not
+  // the current stage, or its plan has not been adopted yet.
+  double flown_on_plan_s(cover::msg::Stage stage) const {
     std::lock_guard<std::mutex> lock(mutex_);
-    return stage_;
+    return stage_ == stage && stage_planned_ ? latest_s_ - stage_since_s_ : -1.0;
   }
   // The first change to `state` at or after `after_s`; < 0: none.
   double first(FailsafeState state, double after_s = 0.0) const {
@@ -114,6 +125,9 @@ class TraceLog {
   mutable std::mutex mutex_;
   std::vector<std::pair<double, FailsafeState>> entries_;
   cover::msg::Stage stage_ = cover::msg::Stage::STAGE_IDLE;
+  double stage_since_s_ = 0.0;  // the step that entered stage_
+  bool stage_planned_ = false;  // a plan of stage_ adopted since
+  double latest_s_ = 0.0;       // the latest step
   cover::dds::Reader<cover::msg::ControlTrace> reader_;
 };
 
@@ -122,15 +136,6 @@ cover::dds::ParticipantOptions on_domain(int domain) {
   options.vendor = cover::dds::Vendor::Cyclone;
   options.domain_id = domain;
   return options;
-}
-
-bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto deadline = Clock::now() + timeout;
-  while (Clock::now() < deadline) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(10ms);
-  }
-  return condition();
 }
 
 // Nothing of this run is left in /dev/shm (other sessions' entries come and go there).
@@ -157,9 +162,9 @@ TEST(Faults, UavAgentKilledMidTransitionIsLandedAndItsTaskFails) {
   cover::process::SpawnOptions o = quiet("cyclone", system.domain(), system.log_name("cover"));
   ChildProcess cli({COVER_CLI, "submit", kTask, "--json", "--timeout", "20"}, o);
   ASSERT_EQ(cli.wait(60s), std::optional<int>(0));
-  ASSERT_TRUE(
-      wait_until([&] { return trace.stage() == cover::msg::Stage::STAGE_TRANSITION; }, 60s));
-  std::this_thread::sleep_for(500ms);  // well into the transition
+  // Well into the transition: half a second of it flown on its plan, by the agent's steps.
+  ASSERT_TRUE(wait_until(
+      [&] { return trace.flown_on_plan_s(cover::msg::Stage::STAGE_TRANSITION) >= 0.5; }, 60s));
   kill(uav->pid(), SIGKILL);
   const auto killed = Clock::now();
   const double killed_unix_s =

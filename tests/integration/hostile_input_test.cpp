@@ -15,6 +15,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -23,8 +24,10 @@
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
 
@@ -40,6 +43,7 @@ constexpr int kDomain = 130;  // apart from every other test and benchmark
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+using cover::test::read_text;
 using cover::test::scaled;
 
 // Every command the agent sends, checked as it arrives.
@@ -130,11 +134,6 @@ msg::UgvImu hostile_imu(int kind, std::uint32_t ugv, std::int64_t now_ns) {
   return s;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 std::size_t count_of(const std::string& text, const std::string& needle) {
   std::size_t n = 0;
   for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
@@ -167,12 +166,10 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
     ASSERT_TRUE(status.wait_for_sample(scaled(30s)));
 
     // Airborne under the agent's commands, then 3 s of hostile samples at ~500 Hz.
+    ASSERT_TRUE(system.wait_for_world(
+        [](const SharedWorld& w) { return w.uavs[0].state.position_m.z > 1.0; }, 30s))
+        << "the UAV never took off";
     auto copy = std::make_unique<SharedWorld>();
-    const auto airborne_by = Clock::now() + scaled(30s);
-    while (!(system.world().read(*copy) && copy->uavs[0].state.position_m.z > 1.0)) {
-      ASSERT_LT(Clock::now(), airborne_by) << "the UAV never took off";
-      std::this_thread::sleep_for(10ms);
-    }
     std::uint64_t sent = 0;
     const auto flood_end = Clock::now() + 3s;
     for (int i = 0; Clock::now() < flood_end; ++i) {
@@ -182,31 +179,34 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
       states[k].write(hostile_state(i % 7, k, now_ns));
       imus[k].write(hostile_imu(i % 4, k, now_ns));
       sent += 2;
-      std::this_thread::sleep_for(2ms);
+      std::this_thread::sleep_for(2ms);  // pacing the ~500 Hz flood, not synchronisation
     }
     ASSERT_GT(sent, 1000u);
     // The status (10 Hz) counts what was dropped: most of the flood (best-effort sensor
     // QoS may lose some; a future stamp is judged only if it is the newest at a step).
-    const auto counted_by = Clock::now() + scaled(5s);
     std::uint32_t rejected = 0;
-    while (Clock::now() < counted_by) {
-      rejected = status.latest()->sample.rejected_samples;
-      if (rejected >= sent / 2) break;
-      std::this_thread::sleep_for(50ms);
-    }
+    cover::test::wait_until(
+        [&] {
+          rejected = status.latest()->sample.rejected_samples;
+          return rejected >= sent / 2;
+        },
+        5s, 50ms);
     EXPECT_GE(rejected, sent / 2) << "sent " << sent;
     EXPECT_LE(rejected, sent);
     // Still the task it was flying: to the end, landed on G1.
-    const auto landed_by = Clock::now() + scaled(60s);
-    bool succeeded = false;
-    while (!succeeded && Clock::now() < landed_by) {
-      const auto latest = task_status.latest();
-      succeeded = latest && latest->sample.state == msg::TaskState::TASK_SUCCEEDED;
-      ASSERT_FALSE(latest && latest->sample.state == msg::TaskState::TASK_FAILED)
-          << latest->sample.message;
-      std::this_thread::sleep_for(50ms);
-    }
-    EXPECT_TRUE(succeeded);
+    std::optional<msg::TaskStatus> ended;
+    cover::test::wait_until(
+        [&] {
+          const auto latest = task_status.latest();
+          if (latest && (latest->sample.state == msg::TaskState::TASK_SUCCEEDED ||
+                         latest->sample.state == msg::TaskState::TASK_FAILED)) {
+            ended = latest->sample;
+          }
+          return ended.has_value();
+        },
+        60s, 50ms);
+    ASSERT_TRUE(ended) << "the task never ended";
+    EXPECT_EQ(ended->state, msg::TaskState::TASK_SUCCEEDED) << ended->message;
     std::cout << "hostile samples sent " << sent << ", rejected (agent's count) " << rejected
               << ", commands " << commands.count() << ", bad commands " << commands.bad() << "\n";
     EXPECT_GT(commands.count(), 1000u);
@@ -217,7 +217,7 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
   for (auto& ugv : system.ugvs()) ugv->wait(scaled(10s));
   // Named by reason and topic, at most one line per reason per second (4 reasons here
   // per topic kind, ~40 s of flight at most): a flood of samples is not a flood of lines.
-  const std::string log = read_file(system.log_path("uav"));
+  const std::string log = read_text(system.log_path("uav"));
   for (const char* reason : {"non-finite", "out-of-range", "unknown-id"}) {
     EXPECT_NE(log.find(std::string(": ") + reason + " (rejected so far"), std::string::npos)
         << reason << "\n"

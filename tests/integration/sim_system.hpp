@@ -17,6 +17,7 @@
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/wait_until.hpp"
 #include "process_support.hpp"
 
 namespace cover::test {
@@ -57,16 +58,12 @@ class SimSystem {
   std::string log_name(const std::string& name) const { return run_id_ + "_" + name + ".log"; }
   std::string log_path(const std::string& name) const { return scratch_path(log_name(name)); }
 
-  // Polls the world until `condition` holds or `timeout` passes.
+  // Reads the world every 2 ms until `condition` holds or `timeout` (scaled) passes.
   bool wait_for_world(const std::function<bool(const sim::SharedWorld&)>& condition,
                       std::chrono::milliseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
     auto copy = std::make_unique<sim::SharedWorld>();
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (world_->read(*copy) && condition(*copy)) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    return false;
+    return wait_until([&] { return world_->read(*copy) && condition(*copy); }, timeout,
+                      std::chrono::milliseconds(2));
   }
   shm::SeqlockReader<sim::SharedWorld>& world() { return *world_; }
   // Lets go of the world before the simulator is killed or stopped.

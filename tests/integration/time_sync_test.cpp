@@ -28,7 +28,9 @@
 #include "cover/mission/task.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/wire/task.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
@@ -43,18 +45,10 @@ using namespace std::chrono_literals;
 constexpr int kDomain = 147;
 constexpr int kManagerDomain = 148;
 
+using cover::test::read_text;
 using cover::test::scaled;
 using cover::test::time_scale;
-
-// Polls `condition` every 20 ms until it holds or `timeout` (scaled) passes.
-bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto give_up = std::chrono::steady_clock::now() + scaled(timeout);
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() >= give_up) return condition();
-    std::this_thread::sleep_for(20ms);
-  }
-  return true;
-}
+using cover::test::wait_until;
 
 // UGV agent 1 of `system`, started again with its clock shifted by `offset_ms` ("": not).
 void restart_ugv1(SimSystem& system, const std::string& offset_ms, const std::string& log) {
@@ -147,7 +141,7 @@ void hold_with_the_offset_named_then_fly() {
       << refused;
   // Still held a while later (the re-sent request included): nothing flies.
   requests.write(cover::wire::to_msg(task, 0.0));
-  std::this_thread::sleep_for(500ms);  // a window in which nothing may happen: not a sync
+  std::this_thread::sleep_for(scaled(500ms));  // a window in which nothing may happen: not a sync
   // Its status reports the held task as its own, pending: not an idle agent.
   EXPECT_EQ(latest_status().task_id, task.task_id);
   EXPECT_EQ(latest_status().task_state, cover::msg::TaskState::TASK_PENDING);
@@ -168,7 +162,7 @@ void hold_with_the_offset_named_then_fly() {
       [&](const cover::sim::SharedWorld& w) {
         return w.uavs[0].state.position_m.z > start_z_m + 0.1;
       },
-      scaled(20s)));
+      20s));
   // Every peer now within a millisecond: same host, loopback.
   ASSERT_TRUE(wait_until([&] { return std::abs(latest_status().max_clock_offset_ms) < 1.0; }, 10s))
       << latest_status().max_clock_offset_ms << " ms to " << latest_status().max_offset_peer;
@@ -205,11 +199,6 @@ nlohmann::json record_of(SimSystem& system, const std::string& task_id) {
   const auto [code, reply] = cover_cli(system, {"status", task_id});
   if (code != 0 || !reply.contains("tasks") || reply["tasks"].empty()) return {};
   return reply["tasks"][0];
-}
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // Through the task manager: the record shows why the agent holds the task, the manager
@@ -285,7 +274,7 @@ void task_manager_shows_the_hold() {
   EXPECT_EQ(manager->terminate(scaled(10s), SIGINT), 0);
   EXPECT_EQ(uav->terminate(scaled(10s), SIGINT), 0);
   system.stop(scaled(10s));
-  const std::string log = file_text(system.log_path("manager"));
+  const std::string log = read_text(system.log_path("manager"));
   EXPECT_NE(log.find("clock offset to "), std::string::npos) << "the manager logs its offsets";
   EXPECT_NE(log.find("/cover-ugv-agent-1 +"), std::string::npos) << log;
   EXPECT_NE(log.find("beyond the 20 ms limit"), std::string::npos) << log;

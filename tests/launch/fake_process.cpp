@@ -104,7 +104,7 @@ void wait_for_files(const std::vector<std::string>& paths) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kGiveUpSeconds);
   for (const auto& path : paths) {
     while (access(path.c_str(), F_OK) != 0 && std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));  // polling, with a give-up
     }
   }
 }
@@ -151,12 +151,13 @@ int main(int argc, char** argv) {
   if (options.mode == "signal") raise(SIGUSR1);
   if (options.mode == "exit") {
     wait_for_files(options.await);
+    // Ends late on purpose: the behaviour a test asks of this stand-in, not a synchronisation.
     std::this_thread::sleep_for(std::chrono::milliseconds(options.after_ms));
     std::printf("exiting with %d\n", options.code);
     return options.code;
   }
   if (options.mode == "ignore") {
-    std::this_thread::sleep_for(std::chrono::seconds(kGiveUpSeconds));
+    std::this_thread::sleep_for(std::chrono::seconds(kGiveUpSeconds));  // deaf until killed
     return 1;
   }
   return wait_for_signal();

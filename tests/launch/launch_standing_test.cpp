@@ -124,17 +124,17 @@ class PtyLauncher {
     close(master_);
     master_ = -1;
   }
-  // The exit status once the launcher has ended, nullopt on timeout.
+  // The exit status once the launcher has ended, nullopt on timeout (scaled).
   std::optional<int> wait_exit(std::chrono::milliseconds timeout) {
-    const auto deadline = steady_clock::now() + timeout;
-    while (!status_ && steady_clock::now() < deadline) {
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      } else {
-        std::this_thread::sleep_for(milliseconds(5));
-      }
-    }
+    cover::test::wait_until(
+        [&] {
+          int status = 0;
+          if (!status_ && waitpid(pid_, &status, WNOHANG) == pid_) {
+            status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+          }
+          return status_.has_value();
+        },
+        timeout);
     return status_;
   }
 
@@ -156,8 +156,7 @@ TEST_F(LaunchStanding, ClosingTheLaunchersTerminalStopsNothing) {
   for (const int pid : pids) EXPECT_TRUE(process_alive(pid)) << pid;
 
   kill(launcher.pid(), SIGINT);
-  EXPECT_EQ(launcher.wait_exit(scaled(milliseconds(8000))), std::optional<int>(130))
-      << launch_log();
+  EXPECT_EQ(launcher.wait_exit(milliseconds(8000)), std::optional<int>(130)) << launch_log();
   for (const int pid : pids) EXPECT_TRUE(eventually([&] { return pid_gone(pid); })) << pid;
   for (const char* name : {"sim", "ugv0", "uav0"}) {
     EXPECT_TRUE(contains(log_of(name), "got SIGINT")) << log_of(name);

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -19,8 +20,10 @@
 #include <vector>
 
 #include "cover/process/child_process.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 
 namespace cover::launch::testing {
 
@@ -38,26 +41,16 @@ struct LaunchResult {
   nlohmann::json json() const { return nlohmann::json::parse(out); }
 };
 
-inline std::string read_text(const fs::path& path) {
-  std::ifstream stream(path);
-  std::stringstream text;
-  text << stream.rdbuf();
-  return text.str();
-}
+using cover::test::read_text;
 
 inline bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-// Polls `condition` every few milliseconds until it holds or `timeout` passes.
-template <typename Condition>
-bool eventually(Condition condition, milliseconds timeout = milliseconds(5000)) {
-  const auto deadline = steady_clock::now() + scaled(timeout);
-  while (!condition()) {
-    if (steady_clock::now() >= deadline) return false;
-    std::this_thread::sleep_for(milliseconds(2));
-  }
-  return true;
+// Waits for `condition` (polled every 2 ms) until it holds or `timeout` (scaled) passes.
+inline bool eventually(const std::function<bool()>& condition,
+                       milliseconds timeout = milliseconds(5000)) {
+  return cover::test::wait_until(condition, timeout, milliseconds(2));
 }
 
 inline bool pid_gone(int pid) {

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cover/process/scoped_setup.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 
 namespace {
@@ -22,12 +23,7 @@ namespace fs = std::filesystem;
 const std::string kUnit = std::string(COVER_SOURCE_DIR) + "/config/systemd/cover-vehicle@.service";
 constexpr const char* kInstalledLauncher = "/opt/cover/bin/cover-launch";
 
-std::string read_text(const std::string& path) {
-  std::ifstream stream(path);
-  std::stringstream text;
-  text << stream.rdbuf();
-  return text.str();
-}
+using cover::test::read_text;
 
 bool has_line(const std::string& text, const std::string& line) {
   std::istringstream lines(text);

@@ -18,6 +18,7 @@
 #include "cover/dds/topics.hpp"
 #include "cover/mcap/writer.hpp"
 #include "cover/msg/idl_schema.hpp"
+#include "cover/test/file_contents.hpp"
 #include "recorder_support.hpp"
 
 namespace cover::test {
@@ -58,25 +59,10 @@ void write_recording(const std::string& path) {
   ASSERT_TRUE(writer.close());
 }
 
-std::vector<char> bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const std::string& path, const std::vector<char>& bytes) {
-  std::ofstream(path, std::ios::binary)
-      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
 std::string joined(const Output& out) {
   std::string text;
   for (const auto& line : out.lines) text += line + "\n";
   return text;
-}
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // play's --delay, the wait for discovery before the first sample: discovery took over
@@ -136,7 +122,7 @@ class Play : public ::testing::Test {
 
 TEST_F(Play, RepublishesEverySampleAtTheRecordedPaceScaledByRate) {
   const Output out = play(file_, {"--rate", "2", "--delay", discovery_s()});
-  ASSERT_EQ(out.code, 0) << file_text(scratch_path("play.stderr"));
+  ASSERT_EQ(out.code, 0) << read_text(scratch_path("play.stderr"));
   ASSERT_EQ(wait_received(kSamples), kSamples);
   std::lock_guard<std::mutex> lock(mutex_);
   for (std::uint32_t i = 0; i < kSamples; ++i) EXPECT_EQ(received_[i], task(i));
@@ -157,11 +143,11 @@ TEST_F(Play, StartSkipsTheFirstSecondsAndTopicsSelects) {
   }
   out = play(file_, {"--topics", "cover/uav/*", "--delay", "0"});
   EXPECT_EQ(out.code, 0);
-  EXPECT_NE(file_text(scratch_path("play.stderr")).find("published 0 samples"), std::string::npos);
+  EXPECT_NE(read_text(scratch_path("play.stderr")).find("published 0 samples"), std::string::npos);
 }
 
 TEST_F(Play, ACutFileIsReportedWhereAndWhatAndItsReadablePartPlayed) {
-  const auto whole = bytes_of(file_);
+  const auto whole = read_bytes(file_);
   const std::string cut = scratch_path("cut.mcap");
   write_bytes(cut, {whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(whole.size() / 2)});
 
@@ -174,7 +160,7 @@ TEST_F(Play, ACutFileIsReportedWhereAndWhatAndItsReadablePartPlayed) {
 
   const Output out = play(cut, {"--rate", "10", "--delay", discovery_s()});
   EXPECT_EQ(out.code, 1);
-  const std::string log = file_text(scratch_path("play.stderr"));
+  const std::string log = read_text(scratch_path("play.stderr"));
   EXPECT_NE(log.find(cut + ": at byte "), std::string::npos) << log;
   const std::size_t played = wait_received(1);
   EXPECT_GT(played, 5U);
@@ -182,7 +168,7 @@ TEST_F(Play, ACutFileIsReportedWhereAndWhatAndItsReadablePartPlayed) {
 }
 
 TEST_F(Play, CorruptAndForeignFilesAreReportedNeverACrash) {
-  auto bytes = bytes_of(file_);
+  auto bytes = read_bytes(file_);
   const std::string corrupt = scratch_path("corrupt.mcap");
   bytes[bytes.size() / 3] ^= 0x40;  // inside a chunk's records
   bytes[bytes.size() / 3 + 1] ^= 0x11;

@@ -2,7 +2,6 @@
 // into the run folder first (so it is stopped last), never respawned, on the vendor --dds
 // gives it; a process of the file already named `recorder` is refused.
 #include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -12,13 +11,13 @@
 #include "cover/launch/dds_override.hpp"
 #include "cover/launch/launch_plan.hpp"
 #include "cover/launch/recording.hpp"
+#include "launch_plan_support.hpp"
 
 namespace cover::launch {
 namespace {
 
-LaunchFile parse(const std::string& yaml) {
-  return LaunchFile::parse(YAML::Load(yaml), "test.yaml", "/launch");
-}
+using cover::launch::testing::options_in;
+using cover::launch::testing::parse;
 
 const char* const kMission = R"(launch:
   name: recorded
@@ -27,13 +26,6 @@ const char* const kMission = R"(launch:
     - {name: sim, executable: cover-sim, ends_run: true}
     - {name: uav0, executable: cover-uav-agent}
 )";
-
-LaunchOptions options_in(const std::string& run_dir) {
-  LaunchOptions options;
-  options.run_dir = run_dir;
-  options.domain_id = 7;
-  return options;
-}
 
 TEST(LaunchRecord, RecordKeyStartsTheRecorderFirstIntoTheRunFolder) {
   LaunchFile file = parse(std::string(kMission) + "  record: true\n");

@@ -9,15 +9,19 @@
 #include <fstream>
 #include <iterator>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cover/mcap/reader.hpp"
 #include "cover/mcap/writer.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/wait_until.hpp"
 
 namespace cover::mcap {
 namespace {
+
+using test::read_bytes;
+using test::write_bytes;
 
 struct Recorded {
   std::string topic;
@@ -54,16 +58,6 @@ std::vector<Recorded> read_all(Reader& reader) {
     return true;
   });
   return out;
-}
-
-std::vector<char> file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const std::string& path, const std::vector<char>& bytes) {
-  std::ofstream(path, std::ios::binary)
-      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
 class McapRoundTrip : public ::testing::TestWithParam<Compression> {};
@@ -112,11 +106,13 @@ TEST(McapWriter, ClosesAChunkOnceItIsOlderThanItsDuration) {
   const auto data = payload(1);
   ASSERT_TRUE(writer.write({channel, 1, 1, 1}, data.data(), data.size()));
   EXPECT_EQ(writer.statistics().chunk_count, 0U);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (writer.statistics().chunk_count == 0 && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    writer.flush_due();
-  }
+  // flush_due() is what the recorder calls between samples: it closes the chunk once aged.
+  test::wait_until(
+      [&] {
+        writer.flush_due();
+        return writer.statistics().chunk_count != 0;
+      },
+      std::chrono::seconds(5));
   EXPECT_EQ(writer.statistics().chunk_count, 1U);
   // Already on disk, before close(): what a SIGKILL would leave.
   Reader reader(path);
@@ -129,7 +125,7 @@ TEST(McapReader, AFileCutAnywhereGivesItsCompleteChunksAndSaysWhere) {
   WriterOptions options;
   options.chunk_size_bytes = 2048;
   write_file(path, options, 600);
-  const auto bytes = file_bytes(path);
+  const auto bytes = read_bytes(path);
   const std::string cut = test::scratch_path("cut.mcap");
   std::size_t previous = 0;
   for (std::size_t length = 0; length < bytes.size(); length += 97) {
@@ -152,7 +148,7 @@ TEST(McapReader, CorruptBytesAreReportedWithTheirOffsetAndSkipped) {
   options.chunk_size_bytes = 2048;
   options.compression = Compression::Zstd;
   write_file(path, options, 600);
-  auto bytes = file_bytes(path);
+  auto bytes = read_bytes(path);
   Reader clean(path);
   read_all(clean);
   ASSERT_GT(clean.chunks().size(), 3U);

@@ -17,6 +17,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 
 // What the recorder tests share: running `cover` and the node readers, and a sample as the
 // independent decoder prints it.

@@ -19,6 +19,7 @@
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
+#include "published_samples.hpp"
 #include "recorder_support.hpp"
 
 namespace cover::test {
@@ -70,16 +71,17 @@ class Recording : public ::testing::Test {
   // `topics` topics, so every reader of the recorder has received from its writer.
   void warm_up(const std::string& file, std::size_t topics,
                const std::function<void(std::int64_t)>& publish) {
-    const auto deadline = std::chrono::steady_clock::now() + scaled(30s);
-    for (std::int64_t n = 1; std::chrono::steady_clock::now() < deadline; ++n) {
-      publish(n);
-      const Output info = run({COVER_CLI, "bag", "info", file, "--json"}, "bag_info_warm.stderr");
-      if (!info.lines.empty() && nlohmann::json::parse(info.lines[0])["topics"].size() == topics) {
-        return;
-      }
-      std::this_thread::sleep_for(20ms);  // polling a file
-    }
-    FAIL() << "the recorder wrote no sample of every topic within the deadline";
+    std::int64_t n = 0;
+    const bool every_topic = wait_until(
+        [&] {
+          publish(++n);
+          const Output info =
+              run({COVER_CLI, "bag", "info", file, "--json"}, "bag_info_warm.stderr");
+          return !info.lines.empty() &&
+                 nlohmann::json::parse(info.lines[0])["topics"].size() == topics;
+        },
+        30s, 20ms);
+    ASSERT_TRUE(every_topic) << "the recorder wrote no sample of every topic within the deadline";
   }
 
   std::string node_;
@@ -90,55 +92,8 @@ class Recording : public ::testing::Test {
 constexpr std::int64_t kWarmUpEndNs = 1'000'000'000;
 
 template <typename T>
-T warm(T sample, std::int64_t stamp_ns) {
-  sample.stamp_ns = stamp_ns;
-  return sample;
-}
-
-template <typename T>
 bool wait_matched(dds::Writer<T>& writer) {
   return writer.wait_for_readers(1, scaled(20s));
-}
-
-msg::UgvImu imu_sample(std::uint32_t i) {
-  msg::UgvImu s;
-  s.ugv_id = 1;
-  s.stamp_ns = 1'764'000'000'123'456'789 + i * 5'000'000LL;  // beyond 2^53
-  s.seq = i;
-  s.specific_force_m_s2 = {0.1 * i, -1.0 / 3.0, 9.80665};
-  s.angular_velocity_rad_s = {1e-9 * i, 0.25, -0.5};
-  s.angular_acceleration_rad_s2 = {3.0, 2.0, 1.0 + i};
-  s.speed_m_s = 2.5 + 0.01 * i;
-  s.speed_source = msg::SpeedSource::SPEED_SOURCE_IMU;
-  return s;
-}
-
-msg::ReferenceTrajectory reference_sample(std::uint32_t i) {
-  msg::ReferenceTrajectory s;
-  s.uav_id = 0;
-  s.stamp_ns = 1'764'000'000'000'000'000 + i;
-  s.reference_ugv = 1;
-  s.stage = msg::Stage::STAGE_TRANSITION;
-  s.dt_s = 0.1;
-  for (std::uint32_t k = 0; k < 3 + i; ++k) s.positions_m.push_back({1.0 * k, 2.0 * i, -0.5});
-  s.velocities_m_s.push_back({0.0, 0.0, 1.0 * i});
-  return s;
-}
-
-msg::TransitionTask task_sample(std::uint32_t i) {
-  msg::TransitionTask s;
-  s.task_id = "task-" + std::to_string(i) + " \xc3\xa9";  // UTF-8 survives
-  s.uav_id = 0;
-  s.stamp_ns = 1'764'000'000'000'000'000 + 1000 * i;
-  msg::TransitionProcess p;
-  p.from_ugv = 0;
-  p.to_ugv = 1;
-  p.initial_point_m = {1, 2, 3};
-  p.final_action = msg::FinalAction::FINAL_ACTION_DELIVER;
-  p.vmax_m_s = 1.5;
-  p.method = i % 2 ? "cover" : "";
-  s.processes.assign(i % 3, p);
-  return s;
 }
 
 TEST_F(Recording, EverySampleDecodesInTheIndependentReadersToThePublishedValues) {
@@ -156,7 +111,7 @@ TEST_F(Recording, EverySampleDecodesInTheIndependentReadersToThePublishedValues)
     ASSERT_TRUE(wait_matched(imu) && wait_matched(reference) && wait_matched(task));
     warm_up(file, 3, [&](std::int64_t stamp_ns) {
       imu.write(warm(imu_sample(0), stamp_ns));
-      reference.write(warm(reference_sample(0), stamp_ns));
+      reference.write(warm(reference_sample(0, 3), stamp_ns));
       task.write(warm(task_sample(0), stamp_ns));
     });
 
@@ -164,11 +119,11 @@ TEST_F(Recording, EverySampleDecodesInTheIndependentReadersToThePublishedValues)
     constexpr std::uint32_t kSamples = 60;
     for (std::uint32_t i = 0; i < kSamples; ++i) {
       imu.write(imu_sample(i));
-      reference.write(reference_sample(i));
+      reference.write(reference_sample(i, 3 + i));
       task.write(task_sample(i));
       published["imu" + std::to_string(imu_sample(i).stamp_ns)] = decoded_form(imu_sample(i));
-      published["ref" + std::to_string(reference_sample(i).stamp_ns)] =
-          decoded_form(reference_sample(i));
+      published["ref" + std::to_string(reference_sample(i, 3 + i).stamp_ns)] =
+          decoded_form(reference_sample(i, 3 + i));
       published["task" + std::to_string(task_sample(i).stamp_ns)] = decoded_form(task_sample(i));
       std::this_thread::sleep_for(2ms);  // pacing a 500 Hz publisher, not synchronisation
     }
@@ -226,12 +181,12 @@ TEST_F(Recording, AKilledRecorderLeavesAFileTheStreamReaderOpensWithAllButItsLas
   // Every sample is on disk once the recorder has closed the chunk holding it (0.2 s after
   // its first sample): wait for the last one, then kill the recorder before its summary.
   const std::string last_stamp = std::to_string(task_sample(kSamples - 1).stamp_ns);
-  const auto deadline = std::chrono::steady_clock::now() + scaled(20s);
-  while (std::chrono::steady_clock::now() < deadline) {
-    const auto lines = read_with_node(file, "stream");
-    if (lines.size() >= 2 && lines[lines.size() - 2]["value"]["stamp_ns"] == last_stamp) break;
-    std::this_thread::sleep_for(50ms);  // polling a file
-  }
+  wait_until(
+      [&] {
+        const auto lines = read_with_node(file, "stream");
+        return lines.size() >= 2 && lines[lines.size() - 2]["value"]["stamp_ns"] == last_stamp;
+      },
+      20s, 50ms);
   EXPECT_EQ(recorder.terminate(scaled(5s), SIGKILL), 128 + SIGKILL);
 
   const auto lines = read_with_node(file, "stream");

@@ -34,6 +34,7 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/mcap/reader.hpp"
+#include "cover/test/file_contents.hpp"
 #include "recorder_support.hpp"
 
 namespace cover::test {
@@ -46,11 +47,6 @@ const fs::path kPeerDir = COVER_MCAP_PEER_DIR;
 
 std::string bin(const std::string& name) {
   return std::string(COVER_BIN_DIR) + "/" + name;
-}
-
-std::string text_of(const std::string& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // The recording's messages of `topic`, decoded with our own reader and codec.
@@ -173,7 +169,7 @@ TEST(Replay, AScenario2RecordingReplayedIntoAFreshAgentGivesItsCommands) {
     if (command.stamp_ns <= last_tick_ns) original[command.stamp_ns] = command;
   }
   // The agent answered every tick (the player waited for each answer)...
-  const std::string play_log = text_of(scratch_path("play.stderr"));
+  const std::string play_log = read_text(scratch_path("play.stderr"));
   EXPECT_NE(play_log.find("agent answers awaited, 0 not heard"), std::string::npos) << play_log;
   // ... and every command heard here equals the recorded one. (A reliable keep-last-1
   // writer may replace a command before a late reader has it: a few may be unheard.)

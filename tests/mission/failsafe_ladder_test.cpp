@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "cover/mission/ladder_level.hpp"
 #include "cover/test/scratch_dir.hpp"
 
 using cover::mission::assess_inputs;

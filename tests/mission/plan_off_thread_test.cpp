@@ -1,7 +1,7 @@
 // Stage plans run off the control thread (mission::PlanWorker) and are flown from a fixed
 // step: a realtime step never waits for one, a lockstep step waits for the plan due at it,
 // so a lockstep run is bit-identical with the machine under load (the control thread's
-// allocations through a replan: plan_allocation_test.cpp).
+// and the worker's allocations through a replan: plan_allocation_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +17,7 @@
 #include "cover/mission/plan_worker.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/uav/controller_config.hpp"
 
 namespace {
@@ -132,14 +133,19 @@ TEST(PlanOffThread, ALockstepStepWaitsForThePlanDueAtIt) {
   feed_at_rest(controller, 0.0);
   EXPECT_FALSE(controller.step(0.0).status.planned);  // requested; due at step 1
   ASSERT_TRUE(gate.wait_entered(1));
-  // Opened from another thread while step 1 waits: step 1 flies the plan, however late.
+  // Opened from another thread once step 1 is seen waiting: step 1 flies the plan, however
+  // late. (A step that did not wait returns unplanned, and is never seen waiting.)
+  bool seen_waiting = false;
   std::thread opener([&] {
-    std::this_thread::sleep_for(20ms);  // long enough for the step to be waiting
+    seen_waiting =
+        cover::test::wait_until([&] { return controller.waiting_for_plan(); }, 10000ms, 1ms);
     gate.open();
   });
   feed_at_rest(controller, 0.01);
   const auto& out = controller.step(0.01);
   opener.join();
+  EXPECT_TRUE(seen_waiting) << "step 1 never waited for its plan";
+  EXPECT_FALSE(controller.waiting_for_plan());
   EXPECT_TRUE(out.status.planned);
   EXPECT_EQ(out.status.plan_late_steps, 0);
   EXPECT_GT(out.status.plan_wait_ms, 0.0);

@@ -23,7 +23,9 @@
 #include "cover/dds/topics.hpp"
 #include "cover/sim/mocap/mocap_feed.hpp"
 #include "cover/sim/mocap/vrpn_server.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "process_support.hpp"
 #include "scripted_motion.hpp"
 #include "spec_bytes.hpp"
@@ -35,6 +37,7 @@ namespace mocap = cover::sim::mocap;
 namespace motion = cover::test::mocap_motion;
 using cover::process::ChildProcess;
 
+using cover::test::read_text;
 using cover::test::scaled;
 using cover::test::time_scale;
 bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
@@ -44,12 +47,6 @@ double percentile(std::vector<double> v, double q) {
   if (v.empty()) return NAN;
   std::sort(v.begin(), v.end());
   return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
-}
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 struct Sample {
@@ -108,7 +105,7 @@ class RelayRun {
     std::lock_guard<std::mutex> lock(mutex_);
     return samples_;
   }
-  std::string log() const { return read_file(log_); }
+  std::string log() const { return read_text(log_); }
   ChildProcess& relay() { return *relay_; }
   int stop() {
     const int code = relay_->terminate(scaled(10s), SIGINT);

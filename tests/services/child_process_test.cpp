@@ -19,6 +19,7 @@
 
 #include "cover/test/process_alive.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/wait_until.hpp"
 
 namespace {
 
@@ -26,14 +27,9 @@ using cover::process::ChildProcess;
 using cover::process::SpawnOptions;
 using namespace std::chrono_literals;
 
-// Polls `pid` until it no longer runs or `timeout` passes; whether it ended.
+// Whether `pid` no longer runs within `timeout` (scaled).
 bool ends_within(pid_t pid, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (!cover::test::process_alive(pid)) return true;
-    std::this_thread::sleep_for(5ms);
-  }
-  return !cover::test::process_alive(pid);
+  return cover::test::wait_until([&] { return !cover::test::process_alive(pid); }, timeout);
 }
 
 // Reads one pid from `fd` within `timeout`; -1 if none came.

@@ -9,7 +9,7 @@
 
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/shm/seqlock_writer.hpp"
-#include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "shm_test_support.hpp"
 
 namespace {

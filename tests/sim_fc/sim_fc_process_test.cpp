@@ -231,7 +231,7 @@ TEST(SimFcProcess, LockstepTickWaitsForTheSetpointNamingIt) {
   std::int64_t expected_ns = 0;
   int answered = 0;
   while (answered < 150) {
-    const auto tick = companion.next_tick(scaled(20s));
+    const auto tick = companion.next_tick(20s);
     ASSERT_TRUE(tick) << "no tick after " << answered;
     if (*tick < expected_ns) continue;  // a tick published again before our answer arrived
     ASSERT_EQ(*tick, expected_ns);
@@ -241,15 +241,15 @@ TEST(SimFcProcess, LockstepTickWaitsForTheSetpointNamingIt) {
     ++answered;
   }
   // A setpoint naming another time does not answer the tick: it is published again.
-  const auto tick = companion.next_tick(scaled(5s));
+  const auto tick = companion.next_tick(5s);
   ASSERT_EQ(tick, std::optional<std::int64_t>(expected_ns));
   companion.answer(*tick, static_cast<std::uint32_t>(*tick / 1'000'000) - 10, 0.0F);
-  const auto again = companion.next_tick(scaled(5s));
+  const auto again = companion.next_tick(5s);
   EXPECT_EQ(again, tick);
   companion.answer(*tick, static_cast<std::uint32_t>(*tick / 1'000'000), 0.0F);
   std::optional<std::int64_t> next;
   do {
-    next = companion.next_tick(scaled(5s));
+    next = companion.next_tick(5s);
   } while (next && *next == *tick);
   EXPECT_EQ(next, std::optional<std::int64_t>(*tick + 10'000'000));
 
@@ -323,7 +323,7 @@ TEST(SimFcProcess, UgvAgentReadsTheImuTheSimulatorServesOverMavlink) {
   ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2"},
                    on_domain(domain.domain(), "uav.log"));
 
-  ASSERT_TRUE(wait_until([&] { return observer.samples().size() >= 400; }, scaled(20s)));
+  ASSERT_TRUE(wait_until([&] { return observer.samples().size() >= 400; }, 20s));
   const auto samples = observer.samples();
   std::int64_t previous_ns = -1;
   int distinct = 0;
@@ -351,7 +351,7 @@ TEST(SimFcProcess, UgvAgentReadsTheImuTheSimulatorServesOverMavlink) {
         const auto status = observer.status();
         return status && status->samples > 0;
       },
-      scaled(5s)));
+      5s));
   EXPECT_EQ(observer.status()->source, "mavlink:" + url);
   EXPECT_EQ(observer.status()->rejected_samples, 0u);
 

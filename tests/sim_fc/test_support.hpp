@@ -12,20 +12,12 @@
 #include <stdexcept>
 #include <thread>
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 
 namespace cover::sim::fc::test {
 
 using cover::test::scaled;
-
-// Polls `condition` until it holds or `timeout` passes.
-inline bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() >= deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
-}
+using cover::test::wait_until;
 
 inline bool udp_port_free(std::uint16_t port) {
   const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);

@@ -19,6 +19,7 @@
 #include "cover/dds/participant.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
 
 namespace cover::time_sync {
@@ -28,6 +29,7 @@ using namespace std::chrono_literals;
 
 using cover::test::scaled;
 using cover::test::time_scale;
+using cover::test::wait_until;
 
 // Domains 140..144 (the integration test takes 147); the monitor and its peers share one.
 struct Fixture {
@@ -79,30 +81,21 @@ MonitorOptions fast_monitor(std::vector<std::string> peers) {
 // the best of several exchanges); its estimate.
 std::optional<PeerOffset> settled(const OffsetMonitor& monitor, const std::string& process,
                                   std::chrono::milliseconds timeout) {
-  const auto give_up = std::chrono::steady_clock::now() + scaled(timeout);
   const auto started = std::chrono::steady_clock::now();
   std::optional<PeerOffset> found;
-  while (std::chrono::steady_clock::now() < give_up) {
-    for (const PeerOffset& p : monitor.offsets()) {
-      if (p.peer.size() >= process.size() &&
-          p.peer.compare(p.peer.size() - process.size(), process.size(), process) == 0) {
-        found = p;
-      }
-    }
-    // 16 burst exchanges take 0.8 s: by 1.5 s the window is the burst's best 8.
-    if (found && std::chrono::steady_clock::now() - started > 1500ms) return found;
-    std::this_thread::sleep_for(20ms);
-  }
+  wait_until(
+      [&] {
+        for (const PeerOffset& p : monitor.offsets()) {
+          if (p.peer.size() >= process.size() &&
+              p.peer.compare(p.peer.size() - process.size(), process.size(), process) == 0) {
+            found = p;
+          }
+        }
+        // 16 burst exchanges take 0.8 s: by 1.5 s the window is the burst's best 8.
+        return found && std::chrono::steady_clock::now() - started > 1500ms;
+      },
+      timeout, 20ms);
   return found;
-}
-
-bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto give_up = std::chrono::steady_clock::now() + timeout;
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() >= give_up) return condition();
-    std::this_thread::sleep_for(10ms);
-  }
-  return true;
 }
 
 void report(const char* what, const PeerOffset& p) {
@@ -187,7 +180,7 @@ TEST(TimeSyncProcess, InjectedOffsetIsMeasuredNamedAndGoneAfterARestart) {
   // The same process restarted without the offset: a new session, a new filter.
   EXPECT_EQ(shifted->terminate(), 0);
   shifted = f.peer("fastdds", "cover-ugv-agent-1");
-  ASSERT_TRUE(wait_until([&] { return !monitor.limit_reason(); }, scaled(10s)));
+  ASSERT_TRUE(wait_until([&] { return !monitor.limit_reason(); }, 10s));
   p = settled(monitor, "/cover-ugv-agent-1", 20s);
   ASSERT_TRUE(p);
   report("after the restart", *p);

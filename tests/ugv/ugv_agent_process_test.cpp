@@ -187,7 +187,7 @@ TEST_P(UgvAgentProcess, PublishesExactlyWhatTheFilterComputesAndStopsOnSigint) {
     feed(i, expected);
     if (expected.size() == before) continue;  // rejected: nothing to wait for
     const auto seq = static_cast<std::uint32_t>(expected.size() - 1);
-    if (!wait_until([&] { return observer.has_seq(seq); }, 2s)) ++missed;
+    if (!wait_until([&] { return observer.has_seq(seq); }, 2s, 1ms)) ++missed;
   }
   // A burst, as when the agent is descheduled: it must catch up with every sample.
   constexpr int kBurst = 40;

@@ -2,17 +2,15 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
-#include <functional>
 #include <string>
-#include <thread>
 
 #include "cover/shm/seqlock_writer.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/ugv/imu_filter.hpp"
 
 namespace cover::test {
@@ -46,15 +44,6 @@ inline void append_sample(shm::SeqlockWriter<sim::SharedWorld>& writer, int ugv,
         ++ring.written;
       },
       static_cast<std::int64_t>(sample.stamp_s * 1e9));
-}
-
-inline bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-  const auto give_up = std::chrono::steady_clock::now() + timeout;
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() >= give_up) return condition();
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return true;
 }
 
 inline std::string write_temp_file(const std::string& name, const std::string& text) {

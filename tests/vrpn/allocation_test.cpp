@@ -1,37 +1,20 @@
 // The VRPN session parses without allocating once the remote names are known, lost
-// samples, pings (outgoing capacity reserved) and refused messages included: every global
-// operator new is counted while it parses. Its own binary: it replaces operator new.
+// samples, pings (outgoing capacity reserved) and refused messages included: every
+// allocation is counted while it parses (cover/test/malloc_counter.hpp; its own binary).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
 #include <limits>
-#include <new>
 
+#include "cover/test/malloc_counter.hpp"
 #include "cover/vrpn/client_session.hpp"
 #include "spec_bytes.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace {
 
 using namespace cover::test::vrpn_spec;
 
 TEST(VrpnAllocation, TheSessionDoesNotAllocatePerMessage) {
+  if (!cover::test::malloc_counted()) GTEST_SKIP() << "malloc belongs to the sanitizer";
   cover::vrpn::SessionOptions options;
   options.bodies = {"UAV_A", "Truck_2"};
   cover::vrpn::ClientSession session(options);
@@ -47,12 +30,15 @@ TEST(VrpnAllocation, TheSessionDoesNotAllocatePerMessage) {
   const cover::vrpn::ReportHandler on = [&](const cover::vrpn::TrackerReport&) { ++reports; };
   ASSERT_TRUE(session.feed(warm_up.data(), warm_up.size(), on));
   session.consume_outgoing(session.outgoing_bytes());
-  const long before = g_allocations.load();
-  for (std::size_t at = 0; at < stream.size(); at += 61) {
-    ASSERT_TRUE(
-        session.feed(stream.data() + at, std::min<std::size_t>(61, stream.size() - at), on));
+  const long before = cover::test::counted_allocations();
+  bool fed = true;
+  cover::test::count_this_thread(true);
+  for (std::size_t at = 0; at < stream.size() && fed; at += 61) {
+    fed = session.feed(stream.data() + at, std::min<std::size_t>(61, stream.size() - at), on);
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  cover::test::count_this_thread(false);
+  ASSERT_TRUE(fed);
+  EXPECT_EQ(cover::test::counted_allocations() - before, 0);
   EXPECT_EQ(reports, 1000u);
   EXPECT_EQ(session.stats().unknown_sender, 500u);
 }

@@ -15,6 +15,7 @@
 #include "cover/sim/mocap/mocap_feed.hpp"
 #include "cover/sim/mocap/vrpn_server.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/vrpn/tracker_client.hpp"
 #include "spec_bytes.hpp"
 
@@ -99,10 +100,7 @@ TEST(VrpnServer, RefusesAForeignCookie) {
   RawPeer peer(server.port());
   peer.read(24);
   peer.send(text("GET / HTTP/1.1\r\nHost: a\r\n\r\n"));
-  const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
-  while (server.stats().dropped == 0 && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(1ms);  // polling a condition with a deadline
-  }
+  cover::test::wait_until([&] { return server.stats().dropped != 0; }, 5s, 1ms);
   EXPECT_EQ(server.stats().dropped, 1u);
   EXPECT_EQ(server.ready_clients(), 0u);
 }

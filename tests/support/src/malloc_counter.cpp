@@ -16,10 +16,18 @@
 
 namespace {
 thread_local bool t_counting = false;
+// The test's own threads: those that control counting, never "other" threads.
+thread_local bool t_controls = false;
+std::atomic<bool> g_count_others{false};
 std::atomic<long> g_counted{0};
+std::atomic<long> g_others{0};
 
 void count() {
-  if (t_counting) g_counted.fetch_add(1, std::memory_order_relaxed);
+  if (t_counting) {
+    g_counted.fetch_add(1, std::memory_order_relaxed);
+  } else if (!t_controls && g_count_others.load(std::memory_order_relaxed)) {
+    g_others.fetch_add(1, std::memory_order_relaxed);
+  }
 }
 }  // namespace
 
@@ -29,10 +37,18 @@ bool malloc_counted() {
   return COVER_COUNT_MALLOC != 0;
 }
 void count_this_thread(bool on) {
+  t_controls = true;
   t_counting = on;
 }
 long counted_allocations() {
   return g_counted.load();
+}
+void count_other_threads(bool on) {
+  t_controls = true;
+  g_count_others.store(on);
+}
+long other_thread_allocations() {
+  return g_others.load();
 }
 
 }  // namespace cover::test

@@ -27,22 +27,6 @@ const char* to_string(FailsafeCause cause) {
   return "unknown";
 }
 
-const char* to_string(LadderLevel level) {
-  switch (level) {
-    case LadderLevel::Nominal:
-      return "nominal";
-    case LadderLevel::ImuHold:
-      return "imu-hold";
-    case LadderLevel::EmergencyHover:
-      return "emergency-hover";
-    case LadderLevel::EmergencyLanding:
-      return "emergency-landing";
-    case LadderLevel::Disarmed:
-      return "emergency-landed";
-  }
-  return "unknown";
-}
-
 namespace {
 
 bool state_finite(const model::RelativeState& m) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "cover/mission/ladder_level.hpp"
 #include "cover/mission/radial_approach.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 
@@ -50,7 +51,11 @@ MissionController::MissionController(Task task, int ugv_count, MissionParams mis
                 mission.control_period_s, mission.observer_time_constant_s),
       ladder_(mission),
       plan_clock_(clock),
-      plan_worker_(plan ? std::move(plan) : stage_plan_function(std::move(planner))) {
+      plan_worker_(plan ? std::move(plan) : stage_plan_function(planner), planner.pieces) {
+  // The four trajectories that take turns (flown, adopted, the worker's two) are sized once
+  // here: no plan and no adoption allocates on either thread.
+  trajectory_.reserve(planner.pieces);
+  adopted_.trajectory.reserve(planner.pieces);
   output_.status.stage = machine_.decision();
   idle(Failsafe::WaitingForInputs);
 }
@@ -239,7 +244,7 @@ void MissionController::hold_current_point(double now_s) {
   plan_pending_ = false;
   plan_request_id_ = 0;  // a plan still in flight is never adopted
   coasting_ = false;
-  trajectory_ = planner::Trajectory::hold(inputs_[machine_.reference_ugv()].state.position_m);
+  trajectory_.assign_hold(inputs_[machine_.reference_ugv()].state.position_m);
   stage_start_s_ = now_s;
 }
 
@@ -253,7 +258,7 @@ void MissionController::run_abort_action(const RelativeMeasurement& state, doubl
     piece.duration_s = depth_m / params_.abort_descent_rate_m_s;
     piece.coefficients.row(0) = trajectory_.position(now_s - stage_start_s_).transpose();
     piece.coefficients(1, 2) = -params_.abort_descent_rate_m_s;
-    trajectory_ = planner::Trajectory({piece});
+    trajectory_.assign(&piece, 1);
     stage_start_s_ = now_s;
     descending_ = true;
     return;

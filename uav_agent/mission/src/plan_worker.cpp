@@ -20,11 +20,25 @@ PlanWorker::PlanFunction stage_plan_function(planner::PlannerParams params) {
   // shared_ptr, used by the worker thread alone.
   auto planner = std::make_shared<planner::StagePlanner>(std::move(params));
   return [planner](const planner::StageProblem& problem, planner::PlanResult& result) {
-    result = planner->plan(problem);
+    planner->plan(problem, result);
   };
 }
 
-PlanWorker::PlanWorker(PlanFunction plan) : plan_(std::move(plan)), thread_([this] { run(); }) {}
+namespace {
+
+planner::PlanResult sized_result(int pieces) {
+  planner::PlanResult result;
+  result.trajectory.reserve(pieces);
+  return result;
+}
+
+}  // namespace
+
+PlanWorker::PlanWorker(PlanFunction plan, int result_pieces)
+    : plan_(std::move(plan)),
+      done_(sized_result(result_pieces)),
+      working_(sized_result(result_pieces)),
+      thread_([this] { run(); }) {}
 
 PlanWorker::~PlanWorker() {
   {
@@ -50,7 +64,12 @@ bool PlanWorker::take(std::uint64_t id, planner::PlanResult& result, bool wait) 
   std::unique_lock<std::mutex> lock(mutex_);
   // Ids only grow: a done id beyond `id` means the thread skipped or finished it and moved
   // on, and a newer request supersedes it either way.
-  if (wait) done_cv_.wait(lock, [&] { return done_id_ >= id || requested_id_ > id; });
+  const auto settled = [&] { return done_id_ >= id || requested_id_ > id; };
+  if (wait && !settled()) {
+    waiting_.store(true);
+    done_cv_.wait(lock, settled);
+    waiting_.store(false);
+  }
   if (done_id_ != id || taken_) return false;
   std::swap(result, done_);
   taken_ = true;

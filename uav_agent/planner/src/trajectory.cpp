@@ -55,6 +55,12 @@ void Trajectory::assign_hold(const Eigen::Vector3d& point_m) {
   assign(&piece, 1);
 }
 
+void Trajectory::reserve(int pieces) {
+  const auto count = static_cast<std::size_t>(std::max(pieces, 1));
+  pieces_.reserve(count);
+  piece_start_s_.reserve(count);
+}
+
 Eigen::Vector3d Trajectory::derivative(double t_s, int order) const {
   if (order < 0 || order > 5) return Eigen::Vector3d::Zero();
   const double t = std::isnan(t_s) ? 0.0 : std::clamp(t_s, 0.0, duration_s_);

@@ -2,7 +2,8 @@
 // Counts heap allocations for the "allocates nothing" tests. Eigen allocates with malloc
 // directly, not operator new, so the executable that links cover_malloc_counter replaces
 // malloc, calloc and realloc themselves (operator new ends there too); such a test lives in
-// its own executable. Only the allocations of a thread that turned counting on are counted.
+// its own executable. Only the allocations of a thread that turned counting on are counted,
+// and, apart, those of the threads the code under test starts (count_other_threads).
 
 namespace cover::test {
 
@@ -14,5 +15,13 @@ void count_this_thread(bool on);
 
 // Allocations counted so far, every thread.
 long counted_allocations();
+
+// Counting of the allocations of every thread but the calling one (a worker the code under
+// test runs), kept apart from counted_allocations(); off by default. The calling thread, and
+// any thread that called count_this_thread(), is never counted here.
+void count_other_threads(bool on);
+
+// Allocations counted so far on other threads (count_other_threads).
+long other_thread_allocations();
 
 }  // namespace cover::test

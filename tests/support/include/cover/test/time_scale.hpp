@@ -1,13 +1,12 @@
 #pragma once
 // Wall-clock deadlines of the tests, stretched by COVER_TEST_TIME_SCALE for a slow or
 // loaded machine (scripts/test --sanitize sets 3). Every deadline a test waits on goes
-// through scaled(): a deadline is how long a test is willing to wait for something that
-// should happen, never a measurement, so stretching it cannot hide a failure.
+// through scaled() (wait_until.hpp waits on a condition with one): a deadline is how long a
+// test is willing to wait for something that should happen, never a measurement, so
+// stretching it cannot hide a failure.
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <functional>
-#include <thread>
 
 namespace cover::test {
 
@@ -26,18 +25,6 @@ inline int whole_time_scale() {
 inline std::chrono::milliseconds scaled(std::chrono::milliseconds deadline) {
   return std::chrono::milliseconds(
       static_cast<long long>(static_cast<double>(deadline.count()) * time_scale()));
-}
-
-// Polls `condition` every `poll` until it holds (true) or scaled(timeout) passes (false,
-// after one last look).
-inline bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout,
-                       std::chrono::milliseconds poll = std::chrono::milliseconds(5)) {
-  const auto deadline = std::chrono::steady_clock::now() + scaled(timeout);
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() >= deadline) return condition();
-    std::this_thread::sleep_for(poll);  // polling a condition with a deadline
-  }
-  return true;
 }
 
 }  // namespace cover::test

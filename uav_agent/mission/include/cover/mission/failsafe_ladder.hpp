@@ -6,6 +6,7 @@
 
 #include "cover/mission/control_command.hpp"
 #include "cover/mission/failsafe_ladder_hover_thrust.hpp"
+#include "cover/mission/ladder_level.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/model/relative_state.hpp"
 #include "cover/model/state.hpp"
@@ -25,17 +26,6 @@ enum class FailsafeCause : std::uint8_t {
   ImuStale = 7,  // UGV IMU older than imu_timeout_s (held up to imu_hold_s more)
 };
 const char* to_string(FailsafeCause cause);
-
-// The rungs, in the order a lost input climbs them. Landing and Disarmed are latched: the
-// task has failed and only a new task starts a new ladder.
-enum class LadderLevel : std::uint8_t {
-  Nominal = 0,           // SAMPC flies the stage
-  ImuHold = 1,           // SAMPC flies on the reference UGV's last IMU
-  EmergencyHover = 2,    // level attitude, hover thrust, no position control
-  EmergencyLanding = 3,  // level attitude, controlled sink, disarm on contact
-  Disarmed = 4,          // touched down after an emergency landing: motors off
-};
-const char* to_string(LadderLevel level);
 
 // The reference frame's inputs on one step, judged against the timeouts.
 struct InputHealth {

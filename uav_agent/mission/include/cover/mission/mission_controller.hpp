@@ -40,7 +40,7 @@ struct ControllerStatus {
   sampc::SolveStatus solve_status = sampc::SolveStatus::Ok;
   double solve_us = 0.0;      // SAMPC time of this step (wall clock)
   double solve_cpu_us = 0.0;  // the same in this thread's CPU time (preemption excluded)
-  bool planned = false;   // a stage reference was adopted this step (planned off-thread)
+  bool planned = false;       // a stage reference was adopted this step (planned off-thread)
   planner::PlanStatus plan_status = planner::PlanStatus::Ok;  // of the last plan
   double plan_ms = 0.0;                                       // of the last plan (worker)
   // Of the last plan: how long this thread waited for it at its adoption step (lockstep; 0
@@ -109,6 +109,8 @@ class MissionController {
   const planner::Trajectory& reference_trajectory() const { return trajectory_; }
   // A plan requested and not adopted yet.
   bool plan_in_flight() const { return plan_request_id_ != 0; }
+  // A step is blocked waiting for its plan (lockstep), as another thread sees it.
+  bool waiting_for_plan() const { return plan_worker_.waiting(); }
   PlanClock plan_clock() const { return plan_clock_; }
   // When reference_trajectory()'s t = 0 was (same clock as step's now_s).
   double reference_start_s() const { return stage_start_s_; }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -27,13 +28,16 @@ const char* to_string(PlanClock clock);
 // Plans stages on a thread of its own, so a control step never runs the optimiser. One
 // request is in flight at a time: a newer request supersedes an older one not yet taken.
 // request() and take() are what the control thread calls: they copy a fixed-size problem
-// and swap results, never allocate, and block only when take() is told to wait.
+// and swap results, never allocate, and block only when take() is told to wait. The thread
+// plans into its results in place: with their trajectories sized once (result_pieces, and
+// the caller's result likewise, since take() swaps storage), no plan allocates.
 class PlanWorker {
  public:
   // What the thread runs for each request (a StagePlanner's plan(); tests put a gated one).
   using PlanFunction = std::function<void(const planner::StageProblem&, planner::PlanResult&)>;
 
-  explicit PlanWorker(PlanFunction plan);
+  // `result_pieces`: the most trajectory pieces a plan writes (PlannerParams::pieces).
+  explicit PlanWorker(PlanFunction plan, int result_pieces = 1);
   ~PlanWorker();  // finishes the plan under way, then joins
   PlanWorker(const PlanWorker&) = delete;
   PlanWorker& operator=(const PlanWorker&) = delete;
@@ -46,6 +50,9 @@ class PlanWorker {
   bool take(std::uint64_t id, planner::PlanResult& result, bool wait);
   // True when request `id`'s result is done and not taken.
   bool ready(std::uint64_t id);
+  // True while a take() is blocked waiting for its result (what another thread, a test or a
+  // watchdog, can see of a lockstep step held up by its plan).
+  bool waiting() const { return waiting_.load(); }
 
  private:
   void run();
@@ -60,13 +67,14 @@ class PlanWorker {
   std::uint64_t done_id_ = 0;
   bool taken_ = false;
   bool stop_ = false;
+  std::atomic<bool> waiting_{false};
   planner::PlanResult done_;     // the last result, until taken
   planner::PlanResult working_;  // the thread's own, filled outside the lock
   std::thread thread_;           // last: starts once everything above exists
 };
 
-// A StagePlanner on `params` as a PlanFunction (throws config::ConfigError when they are
-// invalid).
+// A StagePlanner on `params` as a PlanFunction, planning into the result it is given
+// (throws config::ConfigError when they are invalid).
 PlanWorker::PlanFunction stage_plan_function(planner::PlannerParams params);
 
 }  // namespace cover::mission

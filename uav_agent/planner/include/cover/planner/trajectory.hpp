@@ -25,6 +25,9 @@ class Trajectory {
   // as many pieces.
   void assign(const TrajectoryPiece* pieces, int count);
   void assign_hold(const Eigen::Vector3d& point_m);
+  // Room for `pieces` pieces: assign() of at most that many allocates nothing from now on
+  // (the storage moves with the trajectory when it is swapped).
+  void reserve(int pieces);
 
   double duration_s() const { return duration_s_; }
   int piece_count() const { return static_cast<int>(pieces_.size()); }
