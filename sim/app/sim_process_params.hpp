@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
 
 namespace cover::sim {
@@ -19,6 +20,24 @@ struct SimProcessParams {
   // then, s (discovery can take a while; later ticks get stall_timeout_s).
   double startup_timeout_s = 30.0;
   double control_rate_hz = 100.0;
+
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("offboard_timeout_s", self.offboard_timeout_s,
+          Field("s", "no fresh command for this long: the simulated FC levels, descends, disarms")
+              .above(0.0));
+    visit("loss_descent_rate_m_s", self.loss_descent_rate_m_s,
+          Field("m/s", "descent rate after the offboard loss").above(0.0).at_most(3.0));
+    visit("stall_timeout_s", self.stall_timeout_s,
+          Field("s", "lockstep: a tick's commands missing this long stop the run").above(0.0));
+    visit("startup_timeout_s", self.startup_timeout_s,
+          Field("s", "every UAV agent must have answered the first tick by then").above(0.0));
+    visit("control_rate_hz", self.control_rate_hz,
+          Field("Hz", "the agents' control rate, one tick each").above(0.0).at_most(1000.0));
+  }
 
   static SimProcessParams load_file(const std::string& path);
   // The same from a document already parsed (config::parse_yaml); `source` names it.

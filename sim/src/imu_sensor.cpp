@@ -9,32 +9,13 @@ namespace cover::sim {
 
 ImuSensorParams ImuSensorParams::load(cover::config::YamlReader& reader) {
   ImuSensorParams p;
-  reader.optional("rate_hz", p.rate_hz);
-  reader.optional("specific_force_noise_m_s2", p.specific_force_noise_m_s2);
-  reader.optional("angular_velocity_noise_rad_s", p.angular_velocity_noise_rad_s);
-  reader.optional("specific_force_bias_sigma_m_s2", p.specific_force_bias_sigma_m_s2);
-  reader.optional("angular_velocity_bias_sigma_rad_s", p.angular_velocity_bias_sigma_rad_s);
-  reader.optional("fault_probability", p.fault_probability);
-  reader.reject_unknown_keys();
+  cover::config::load_fields(p, reader);
   p.validate(reader.context());
   return p;
 }
 
 void ImuSensorParams::validate(const std::string& context) const {
-  using cover::config::check;
-  auto in_range = [](double value, double lo, double hi) {
-    return std::isfinite(value) && value >= lo && value <= hi;
-  };
-  check(in_range(rate_hz, 1.0, 10000.0), context + ".rate_hz", "must be in [1, 10000] Hz");
-  check(in_range(specific_force_noise_m_s2, 0.0, 10.0), context + ".specific_force_noise_m_s2",
-        "must be in [0, 10] m/s^2");
-  check(in_range(angular_velocity_noise_rad_s, 0.0, 1.0), context + ".angular_velocity_noise_rad_s",
-        "must be in [0, 1] rad/s");
-  check(in_range(specific_force_bias_sigma_m_s2, 0.0, 2.0),
-        context + ".specific_force_bias_sigma_m_s2", "must be in [0, 2] m/s^2");
-  check(in_range(angular_velocity_bias_sigma_rad_s, 0.0, 0.5),
-        context + ".angular_velocity_bias_sigma_rad_s", "must be in [0, 0.5] rad/s");
-  check(in_range(fault_probability, 0.0, 1.0), context + ".fault_probability", "must be in [0, 1]");
+  cover::config::check_fields(*this, context);
 }
 
 ugv::ImuSample true_imu_sample(const UgvState& ugv, double gravity_m_s2, double stamp_s) {

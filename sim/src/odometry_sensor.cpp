@@ -8,23 +8,13 @@ namespace cover::sim {
 
 OdometrySensorParams OdometrySensorParams::load(cover::config::YamlReader& reader) {
   OdometrySensorParams p;
-  reader.optional("rate_hz", p.rate_hz);
-  reader.optional("speed_noise_m_s", p.speed_noise_m_s);
-  reader.optional("scale_error_sigma", p.scale_error_sigma);
-  reader.reject_unknown_keys();
+  cover::config::load_fields(p, reader);
   p.validate(reader.context());
   return p;
 }
 
 void OdometrySensorParams::validate(const std::string& context) const {
-  using cover::config::check;
-  auto in_range = [](double value, double lo, double hi) {
-    return std::isfinite(value) && value >= lo && value <= hi;
-  };
-  check(in_range(rate_hz, 1.0, 10000.0), context + ".rate_hz", "must be in [1, 10000] Hz");
-  check(in_range(speed_noise_m_s, 0.0, 1.0), context + ".speed_noise_m_s", "must be in [0, 1] m/s");
-  check(in_range(scale_error_sigma, 0.0, 0.2), context + ".scale_error_sigma",
-        "must be in [0, 0.2]");
+  cover::config::check_fields(*this, context);
 }
 
 double true_forward_speed_m_s(const UgvState& ugv) {

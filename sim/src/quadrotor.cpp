@@ -69,44 +69,15 @@ StateVector derivative(const StateVector& x, const PlantInputs& in, const Quadro
 
 QuadrotorParams QuadrotorParams::load(cover::config::YamlReader& reader) {
   QuadrotorParams p;
-  reader.optional("mass_nominal_kg", p.mass_nominal_kg);
-  reader.optional("mass_true_kg", p.mass_true_kg);
-  reader.optional("drag_coefficients_1_s", p.drag_coefficients_1_s);
-  reader.optional("rate_time_constant_s", p.rate_time_constant_s);
-  reader.optional("thrust_time_constant_s", p.thrust_time_constant_s);
-  reader.optional("min_thrust_m_s2", p.min_thrust_m_s2);
-  reader.optional("max_thrust_m_s2", p.max_thrust_m_s2);
-  reader.optional("max_roll_pitch_rate_rad_s", p.max_roll_pitch_rate_rad_s);
-  reader.optional("max_yaw_rate_rad_s", p.max_yaw_rate_rad_s);
-  reader.reject_unknown_keys();
+  cover::config::load_fields(p, reader);
   p.validate(reader.context());
   return p;
 }
 
 void QuadrotorParams::validate(const std::string& context) const {
-  using cover::config::check;
-  auto key = [&](const char* name) { return context + "." + name; };
-  auto in_range = [](double value, double lo, double hi) {
-    return std::isfinite(value) && value >= lo && value <= hi;
-  };
-  check(in_range(mass_nominal_kg, 0.01, 100.0), key("mass_nominal_kg"),
-        "must be in [0.01, 100] kg");
-  check(in_range(mass_true_kg, 0.01, 100.0), key("mass_true_kg"), "must be in [0.01, 100] kg");
-  check(drag_coefficients_1_s.allFinite() && drag_coefficients_1_s.minCoeff() >= 0.0 &&
-            drag_coefficients_1_s.maxCoeff() <= 10.0,
-        key("drag_coefficients_1_s"), "must be three numbers in [0, 10] 1/s");
-  // The lags must be resolved by a 1 kHz RK4 step; below 2 ms they would be stiff.
-  check(in_range(rate_time_constant_s, 0.002, 1.0), key("rate_time_constant_s"),
-        "must be in [0.002, 1] s");
-  check(in_range(thrust_time_constant_s, 0.002, 1.0), key("thrust_time_constant_s"),
-        "must be in [0.002, 1] s");
-  check(in_range(min_thrust_m_s2, 0.0, 100.0), key("min_thrust_m_s2"), "must be in [0, 100]");
-  check(in_range(max_thrust_m_s2, min_thrust_m_s2, 100.0) && max_thrust_m_s2 > min_thrust_m_s2,
-        key("max_thrust_m_s2"), "must exceed min_thrust_m_s2 and be <= 100");
-  check(in_range(max_roll_pitch_rate_rad_s, 0.1, 50.0), key("max_roll_pitch_rate_rad_s"),
-        "must be in [0.1, 50] rad/s");
-  check(in_range(max_yaw_rate_rad_s, 0.1, 50.0), key("max_yaw_rate_rad_s"),
-        "must be in [0.1, 50] rad/s");
+  cover::config::check_fields(*this, context);
+  cover::config::check(max_thrust_m_s2 > min_thrust_m_s2, context + ".max_thrust_m_s2",
+                       "must exceed min_thrust_m_s2");
 }
 
 Quadrotor::Quadrotor(const QuadrotorParams& params) : params_(params) {}

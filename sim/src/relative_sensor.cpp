@@ -6,31 +6,13 @@ namespace cover::sim {
 
 RelativeSensorParams RelativeSensorParams::load(cover::config::YamlReader& reader) {
   RelativeSensorParams p;
-  reader.optional("rate_hz", p.rate_hz);
-  reader.optional("latency_s", p.latency_s);
-  reader.optional("position_noise_m", p.position_noise_m);
-  reader.optional("velocity_noise_m_s", p.velocity_noise_m_s);
-  reader.optional("attitude_noise_rad", p.attitude_noise_rad);
-  reader.optional("dropout_probability", p.dropout_probability);
-  reader.reject_unknown_keys();
+  cover::config::load_fields(p, reader);
   p.validate(reader.context());
   return p;
 }
 
 void RelativeSensorParams::validate(const std::string& context) const {
-  using cover::config::check;
-  auto in_range = [](double value, double lo, double hi) {
-    return std::isfinite(value) && value >= lo && value <= hi;
-  };
-  check(in_range(rate_hz, 1.0, 10000.0), context + ".rate_hz", "must be in [1, 10000] Hz");
-  check(in_range(latency_s, 0.0, 1.0), context + ".latency_s", "must be in [0, 1] s");
-  check(in_range(position_noise_m, 0.0, 1.0), context + ".position_noise_m", "must be in [0, 1] m");
-  check(in_range(velocity_noise_m_s, 0.0, 5.0), context + ".velocity_noise_m_s",
-        "must be in [0, 5] m/s");
-  check(in_range(attitude_noise_rad, 0.0, 0.5), context + ".attitude_noise_rad",
-        "must be in [0, 0.5] rad");
-  check(in_range(dropout_probability, 0.0, 1.0), context + ".dropout_probability",
-        "must be in [0, 1]");
+  cover::config::check_fields(*this, context);
 }
 
 RelativeState true_relative_state(const QuadrotorState& uav, const UgvState& ugv, double stamp_s) {

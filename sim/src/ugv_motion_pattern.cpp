@@ -59,63 +59,21 @@ std::optional<MotionPatternKind> parse_motion_pattern_kind(const std::string& na
 
 UgvMotionPatternParams UgvMotionPatternParams::load(cover::config::YamlReader& reader) {
   UgvMotionPatternParams p;
-  std::string kind_name = to_string(p.kind);
-  reader.require("kind", kind_name);
-  const auto kind = parse_motion_pattern_kind(kind_name);
-  cover::config::check(kind.has_value(), reader.context() + ".kind",
-                       "unknown pattern '" + kind_name +
-                           "' (stationary, circle, figure_eight, star, s_curve, back_and_forth)");
-  p.kind = *kind;
-  reader.optional("origin_m", p.origin_m);
-  reader.optional("orientation_rad", p.orientation_rad);
-  reader.optional("speed_m_s", p.speed_m_s);
-  reader.optional("yaw_rate_rad_s", p.yaw_rate_rad_s);
-  reader.optional("half_length_m", p.half_length_m);
-  reader.optional("half_width_m", p.half_width_m);
-  reader.optional("wavelength_m", p.wavelength_m);
-  reader.optional("radius_m", p.radius_m);
-  reader.optional("star_points", p.star_points);
-  reader.optional("star_depth", p.star_depth);
-  reader.optional("phase_rad", p.phase_rad);
-  reader.reject_unknown_keys();
+  cover::config::load_fields(p, reader);
   p.validate(reader.context());
   return p;
 }
 
 void UgvMotionPatternParams::validate(const std::string& context) const {
-  using cover::config::check;
-  auto key = [&](const char* name) { return context + "." + name; };
-  check(origin_m.allFinite(), key("origin_m"), "must be finite");
-  check(std::isfinite(orientation_rad), key("orientation_rad"), "must be finite");
-  check(std::isfinite(phase_rad), key("phase_rad"), "must be finite");
-  if (kind == MotionPatternKind::Stationary) return;
-  // 5 m/s is far beyond the paper's UGVs (<= 1 m/s): anything above is a unit error.
-  check(std::isfinite(speed_m_s) && speed_m_s > 0.0 && speed_m_s <= 5.0, key("speed_m_s"),
-        "must be in (0, 5] m/s");
-  switch (kind) {
-    case MotionPatternKind::Circle:
-      check(std::isfinite(yaw_rate_rad_s) && std::abs(yaw_rate_rad_s) >= 1e-3 &&
-                std::abs(yaw_rate_rad_s) <= 5.0,
-            key("yaw_rate_rad_s"), "must be non-zero with |w| in [0.001, 5] rad/s");
-      break;
-    case MotionPatternKind::FigureEight:
-      check(half_length_m > 0.0 && half_length_m < 1e3, key("half_length_m"), "must be > 0");
-      check(half_width_m > 0.0 && half_width_m < 1e3, key("half_width_m"), "must be > 0");
-      break;
-    case MotionPatternKind::Star:
-      check(radius_m > 0.0 && radius_m < 1e3, key("radius_m"), "must be > 0");
-      check(star_points >= 2 && star_points <= 20, key("star_points"), "must be in [2, 20]");
-      check(star_depth > 0.0 && star_depth <= 0.9, key("star_depth"), "must be in (0, 0.9]");
-      break;
-    case MotionPatternKind::SCurve:
-      check(half_width_m >= 0.0 && half_width_m < 1e3, key("half_width_m"), "must be >= 0");
-      check(wavelength_m > 0.0 && wavelength_m < 1e4, key("wavelength_m"), "must be > 0");
-      break;
-    case MotionPatternKind::BackAndForth:
-      check(half_length_m > 0.0 && half_length_m < 1e3, key("half_length_m"), "must be > 0");
-      break;
-    case MotionPatternKind::Stationary:
-      break;
+  cover::config::check_fields(*this, context);
+  // What a kind needs beyond the bounds every kind keeps.
+  if (kind == MotionPatternKind::Circle) {
+    cover::config::check(std::abs(yaw_rate_rad_s) >= 1e-3, context + ".yaw_rate_rad_s",
+                         "must be non-zero on a circle, |w| >= 0.001");
+  }
+  if (kind == MotionPatternKind::FigureEight) {
+    cover::config::check(half_width_m > 0.0, context + ".half_width_m",
+                         "must be > 0 on a figure_eight");
   }
 }
 

@@ -12,6 +12,7 @@
 #include "cover/mocap/relative_estimator.hpp"
 #include "cover/mocap/relay_params.hpp"
 #include "cover/mocap/server_clock.hpp"
+#include "cover/test/shipped_params.hpp"
 #include "scripted_motion.hpp"
 
 namespace {
@@ -38,26 +39,14 @@ TEST(MocapParams, ServerAndBodiesAloneWork) {
   EXPECT_EQ(p.filter.accel_noise_m_s2, defaults.filter.accel_noise_m_s2);
 }
 
+// Every field (RelayParams::fields) is written at its default; `server` is required, so
+// the file's is an example, not a default.
 TEST(MocapParams, TheShippedFileHoldsTheDefaults) {
-  const auto p = mocap::RelayParams::load_file(std::string(COVER_CONFIG_DIR) + "/mocap.yaml");
-  const mocap::RelayParams d;
-  EXPECT_EQ(p.up_axis, d.up_axis);
-  EXPECT_EQ(p.units, d.units);
-  EXPECT_EQ(p.filter.accel_noise_m_s2, d.filter.accel_noise_m_s2);
-  EXPECT_EQ(p.filter.position_noise_m, d.filter.position_noise_m);
-  EXPECT_EQ(p.filter.yaw_jerk_noise_rad_s3, d.filter.yaw_jerk_noise_rad_s3);
-  EXPECT_EQ(p.filter.yaw_noise_rad, d.filter.yaw_noise_rad);
-  EXPECT_EQ(p.jump_gate_m, d.jump_gate_m);
-  EXPECT_EQ(p.jump_reset_s, d.jump_reset_s);
-  EXPECT_EQ(p.lost_after_s, d.lost_after_s);
-  EXPECT_EQ(p.warmup_updates, d.warmup_updates);
-  EXPECT_EQ(p.frame_timeout_s, d.frame_timeout_s);
-  EXPECT_EQ(p.time_source, d.time_source);
-  EXPECT_EQ(p.offset_window_s, d.offset_window_s);
-  EXPECT_EQ(p.connect_timeout_s, d.connect_timeout_s);
-  EXPECT_EQ(p.backoff_min_s, d.backoff_min_s);
-  EXPECT_EQ(p.backoff_max_s, d.backoff_max_s);
-  EXPECT_EQ(p.silence_timeout_s, d.silence_timeout_s);
+  const std::string path = std::string(COVER_CONFIG_DIR) + "/mocap.yaml";
+  mocap::RelayParams shipped = mocap::RelayParams::load_file(path);
+  EXPECT_EQ(shipped.server, "127.0.0.1:3883");
+  shipped.server = mocap::RelayParams{}.server;
+  cover::test::expect_shipped_file_holds_defaults(shipped, path, "mocap");
 }
 
 TEST(MocapParams, ErrorsNameTheKey) {
@@ -71,6 +60,14 @@ TEST(MocapParams, ErrorsNameTheKey) {
       {"mocap: {server: h, units: cm, bodies: {uav0: A, ugv0: B}}", "mocap.units"},
       {"mocap: {server: h, bodies: {uav0: A, ugv0: B}, filter: {acel: 1}}", "acel"},
       {"mocap: {server: h, bodies: {uav0: A, ugv0: B}, gate: 1}", "gate"},
+      {"mocap: {server: h, bodies: {uav0: A, ugv0: B}, time_source: gps}",
+       "test.yaml.mocap.time_source: 'gps' is not one of server, offset"},
+      {"mocap: {server: h, bodies: {uav0: A, ugv0: B}, warmup_updates: 1}",
+       "mocap.warmup_updates: must be in [2, 100]"},
+      {"mocap: {server: h, bodies: {uav0: A, ugv0: B}, filter: {position_noise_m: 2}}",
+       "mocap.filter.position_noise_m: must be in [1e-06, 1]"},
+      {"mocap: {server: h, bodies: {uav0: A, ugv0: B}, backoff_min_s: 3}",
+       "mocap.backoff_max_s: must be >= backoff_min_s"},
   };
   for (const auto& [yaml, key] : cases) {
     try {

@@ -1,10 +1,12 @@
-// config/sim/sim_fc.yaml: the shipped file is the defaults, every key is checked by name.
+// config/sim/sim_fc.yaml: the shipped file writes every field (SimFcParams::fields) at its
+// default; errors name the key and the bounds.
 #include <gtest/gtest.h>
 
 #include "cover/config/config_error.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sim/fc/autopilot_mode.hpp"
 #include "cover/sim/fc/sim_fc_params.hpp"
+#include "cover/test/shipped_params.hpp"
 
 namespace {
 
@@ -23,42 +25,28 @@ std::string error_of(const std::string& text) {
   return "";
 }
 
-TEST(SimFcParams, ShippedFileHoldsTheDefaults) {
-  const SimFcParams shipped =
-      SimFcParams::load_file(cover::config::default_config_dir() + "/sim/sim_fc.yaml");
-  const SimFcParams defaults;
-  EXPECT_EQ(shipped.system_id_base, defaults.system_id_base);
-  EXPECT_EQ(shipped.ugv_system_id_base, defaults.ugv_system_id_base);
-  EXPECT_EQ(shipped.heartbeat_rate_hz, defaults.heartbeat_rate_hz);
-  EXPECT_EQ(shipped.attitude_rate_hz, defaults.attitude_rate_hz);
-  EXPECT_EQ(shipped.highres_imu_rate_hz, defaults.highres_imu_rate_hz);
-  EXPECT_EQ(shipped.attitude_target_rate_hz, defaults.attitude_target_rate_hz);
-  EXPECT_EQ(shipped.extended_sys_state_rate_hz, defaults.extended_sys_state_rate_hz);
-  EXPECT_EQ(shipped.sys_status_rate_hz, defaults.sys_status_rate_hz);
-  EXPECT_EQ(shipped.com_of_loss_t_s, defaults.com_of_loss_t_s);
-  EXPECT_EQ(shipped.guid_timeout_s, defaults.guid_timeout_s);
-  EXPECT_EQ(shipped.guid_level_hold_s, defaults.guid_level_hold_s);
-  EXPECT_EQ(shipped.land_speed_m_s, defaults.land_speed_m_s);
-  EXPECT_EQ(shipped.offboard_stream_min_rate_hz, defaults.offboard_stream_min_rate_hz);
-  EXPECT_EQ(shipped.offboard_stream_min_s, defaults.offboard_stream_min_s);
-  EXPECT_EQ(shipped.battery.cells, defaults.battery.cells);
-  EXPECT_EQ(shipped.battery.capacity_mah, defaults.battery.capacity_mah);
-  EXPECT_EQ(shipped.battery.cell_full_v, defaults.battery.cell_full_v);
-  EXPECT_EQ(shipped.battery.cell_empty_v, defaults.battery.cell_empty_v);
-  EXPECT_EQ(shipped.battery.hover_current_a, defaults.battery.hover_current_a);
-  EXPECT_EQ(shipped.battery.idle_current_a, defaults.battery.idle_current_a);
-  EXPECT_EQ(shipped.battery.internal_resistance_ohm, defaults.battery.internal_resistance_ohm);
+TEST(SimFcParams, ShippedFileHoldsEveryFieldAtItsDefault) {
+  const std::string path = cover::config::default_config_dir() + "/sim/sim_fc.yaml";
+  cover::test::expect_shipped_file_holds_defaults(SimFcParams::load_file(path), path, "sim_fc");
 }
 
 TEST(SimFcParams, BadValuesAndUnknownKeysAreNamed) {
-  EXPECT_NE(error_of("sim_fc: {com_of_loss_t_s: 0}").find("sim_fc.com_of_loss_t_s"),
+  EXPECT_EQ(error_of("sim_fc: {com_of_loss_t_s: 0}"),
+            "sim_fc.com_of_loss_t_s: must be in [0.01, 60]");
+  EXPECT_EQ(
+      error_of("sim_fc: {system_id_base: 0}"),
+      "sim_fc.system_id_base: must be in [1, 247] (UAVs 0..3 take system_id_base + u <= 250)");
+  EXPECT_EQ(error_of("sim_fc: {ugv_system_id_base: 2}"),
+            "sim_fc.ugv_system_id_base: must not overlap the UAVs' system ids");
+  EXPECT_EQ(error_of("sim_fc: {attitude_rate_hz: 0}"),
+            "sim_fc.attitude_rate_hz: must be in [0.1, 1000]");
+  EXPECT_EQ(error_of("sim_fc: {battery: {cell_full_v: 3.0}}"),
+            "sim_fc.battery.cell_full_v: must exceed cell_empty_v");
+  EXPECT_EQ(error_of("sim_fc: {battery: {cells: 11}}"), "sim_fc.battery.cells: must be in [1, 10]");
+  EXPECT_NE(error_of("sim_fc: {com_of_loss_s: 1}").find("unknown key 'com_of_loss_s'"),
             std::string::npos);
-  EXPECT_NE(error_of("sim_fc: {system_id_base: 0}").find("sim_fc.system_id_base"),
+  EXPECT_NE(error_of("sim_fc: {battery: {cell: 4}}").find("sim_fc.battery: unknown key 'cell'"),
             std::string::npos);
-  EXPECT_NE(error_of("sim_fc: {ugv_system_id_base: 2}").find("overlap"), std::string::npos);
-  EXPECT_NE(error_of("sim_fc: {battery: {cell_full_v: 3.0}}").find("sim_fc.battery.cell_full_v"),
-            std::string::npos);
-  EXPECT_NE(error_of("sim_fc: {com_of_loss_s: 1}").find("com_of_loss_s"), std::string::npos);
   EXPECT_EQ(parse("sim_fc: {com_of_loss_t_s: 0.5}").com_of_loss_t_s, 0.5);
 }
 

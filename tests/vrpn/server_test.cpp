@@ -12,8 +12,11 @@
 #include <memory>
 #include <optional>
 
+#include "cover/config/config_error.hpp"
 #include "cover/sim/mocap/mocap_feed.hpp"
+#include "cover/sim/mocap/mocap_server_params.hpp"
 #include "cover/sim/mocap/vrpn_server.hpp"
+#include "cover/test/shipped_params.hpp"
 #include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
 #include "cover/vrpn/tracker_client.hpp"
@@ -178,6 +181,27 @@ TEST(VrpnClientServer, ReconnectsWhenTheServerComesBack) {
       client, reports, [&] { return !reports.empty(); }, 5s));
   EXPECT_EQ(reports.back().time.to_ns(), 5'000'000'000);
   EXPECT_EQ(client.stats().connections, 2u);
+}
+
+// config/sim/mocap.yaml writes every field (MocapServerParams::fields) at its default.
+TEST(MocapServerParams, ShippedFileHoldsEveryFieldAtItsDefault) {
+  const std::string path = cover::config::default_config_dir() + "/sim/mocap.yaml";
+  cover::test::expect_shipped_file_holds_defaults(mocap::MocapServerParams::load_file(path), path,
+                                                  "mocap");
+  const auto error = [](const std::string& yaml) {
+    try {
+      mocap::MocapServerParams::from_yaml(YAML::Load(yaml), "test.yaml");
+    } catch (const cover::config::ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error("mocap: {latency_s: 0.6}"), "mocap.latency_s: must be in [0, 0.5]");
+  EXPECT_NE(error("mocap: {up_axis: x}").find("test.yaml.mocap.up_axis: 'x' is not one of z, y"),
+            std::string::npos);
+  EXPECT_EQ(error("mocap: {ugv_prefix: uav}"),
+            "mocap.uav_prefix: the prefixes must be non-empty and differ");
+  EXPECT_NE(error("mocap: {rate: 100}").find("unknown key 'rate'"), std::string::npos);
 }
 
 TEST(MocapFeed, RateLatencyDropoutsAndFrames) {

@@ -1,6 +1,5 @@
 #include "cover/sim/scenario.hpp"
 
-#include <cmath>
 #include <filesystem>
 
 #include "cover/fleet/fleet_size.hpp"
@@ -15,10 +14,6 @@ Scenario Scenario::load_file(const std::string& path) {
 Scenario Scenario::from_yaml(const YAML::Node& document, const std::string& path) {
   config::YamlReader root(document, path);
   Scenario scenario;
-  root.optional("name", scenario.name);
-  root.optional("description", scenario.description);
-  root.optional("max_duration_s", scenario.max_duration_s);
-  root.optional("settle_time_s", scenario.settle_time_s);
   config::YamlReader world = root.child("sim");
   scenario.world = WorldParams::load(world);
   if (root.has("task_file")) {
@@ -40,16 +35,14 @@ Scenario Scenario::from_yaml(const YAML::Node& document, const std::string& path
       ExtraUav extra;
       std::string task_file;
       entry.require("task_file", task_file);
-      entry.optional("start_on_ugv", extra.start_on_ugv);
-      entry.optional("payload_attached", extra.payload_attached);
-      entry.reject_unknown_keys();
+      config::load_fields(extra, entry);
       const auto resolved = std::filesystem::path(path).parent_path() / task_file;
       extra.task =
           mission::load_task_file(resolved.string(), static_cast<int>(scenario.world.ugvs.size()));
       scenario.extra_uavs.push_back(extra);
     }
   }
-  root.reject_unknown_keys();
+  config::load_fields(scenario, root);
   scenario.validate();
   return scenario;
 }
@@ -70,22 +63,21 @@ WorldParams Scenario::world_of(int uav) const {
 }
 
 void Scenario::validate() const {
+  config::check_fields(*this, "scenario '" + name + "'");
   world.validate("scenario '" + name + "'.sim");
   task.validate(static_cast<int>(world.ugvs.size()));
   config::check(uav_count() <= fleet::kMaxUavs, "scenario '" + name + "'.extra_uavs",
                 "at most " + std::to_string(fleet::kMaxUavs - 1) + " (" +
                     std::to_string(fleet::kMaxUavs) + " UAVs)");
   for (int u = 1; u < uav_count(); ++u) {
+    config::check_fields(extra_uavs[static_cast<std::size_t>(u - 1)],
+                         "scenario '" + name + "'.extra_uavs[" + std::to_string(u - 1) + "]");
     task_of(u).validate(static_cast<int>(world.ugvs.size()));
     config::check(
         task_of(u).uav_id == u, "scenario '" + name + "'.extra_uavs",
         "entry " + std::to_string(u - 1) + " must fly a task with uav_id " + std::to_string(u));
     world_of(u).validate("scenario '" + name + "'.extra_uavs");
   }
-  config::check(std::isfinite(max_duration_s) && max_duration_s > 0.0 && max_duration_s <= 3600.0,
-                "scenario '" + name + "'.max_duration_s", "must be in (0, 3600]");
-  config::check(std::isfinite(settle_time_s) && settle_time_s >= 0.0 && settle_time_s <= 60.0,
-                "scenario '" + name + "'.settle_time_s", "must be in [0, 60]");
 }
 
 std::string scenario_path(const std::string& name) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <random>
 
+#include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/world_state.hpp"
@@ -26,7 +27,35 @@ struct ImuSensorParams {
   // rejection path end to end. 0 by default.
   double fault_probability = 0.0;
 
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("rate_hz", self.rate_hz,
+          Field("Hz", "sample rate; must divide world.physics_rate_hz")
+              .at_least(1.0)
+              .at_most(10000.0));
+    visit("specific_force_noise_m_s2", self.specific_force_noise_m_s2,
+          Field("m/s^2", "accelerometer white noise 1-sigma").at_least(0.0).at_most(10.0));
+    visit("angular_velocity_noise_rad_s", self.angular_velocity_noise_rad_s,
+          Field("rad/s", "gyro white noise 1-sigma").at_least(0.0).at_most(1.0));
+    visit("specific_force_bias_sigma_m_s2", self.specific_force_bias_sigma_m_s2,
+          Field("m/s^2", "1-sigma of the constant accelerometer bias drawn per UGV")
+              .at_least(0.0)
+              .at_most(2.0));
+    visit("angular_velocity_bias_sigma_rad_s", self.angular_velocity_bias_sigma_rad_s,
+          Field("rad/s", "1-sigma of the constant gyro bias drawn per UGV")
+              .at_least(0.0)
+              .at_most(0.5));
+    visit("fault_probability", self.fault_probability,
+          Field("", "probability that a sample is corrupted (NaN), to test rejection")
+              .at_least(0.0)
+              .at_most(1.0));
+  }
+
   static ImuSensorParams load(cover::config::YamlReader& reader);
+  // Throws config::ConfigError naming "<context>.<key>".
   void validate(const std::string& context = "imu") const;
 };
 

@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sim/world_state.hpp"
 
@@ -20,7 +21,25 @@ struct OdometrySensorParams {
   // 1-sigma of the relative scale error (a wheel radius off by 1 % reads 1 % fast).
   double scale_error_sigma = 0.01;
 
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("rate_hz", self.rate_hz,
+          Field("Hz", "sample rate; must divide imu.rate_hz (delivered with an IMU sample)")
+              .at_least(1.0)
+              .at_most(10000.0));
+    visit("speed_noise_m_s", self.speed_noise_m_s,
+          Field("m/s", "white noise 1-sigma").at_least(0.0).at_most(1.0));
+    visit("scale_error_sigma", self.scale_error_sigma,
+          Field("", "1-sigma of the per-UGV relative scale error (wheel radius)")
+              .at_least(0.0)
+              .at_most(0.2));
+  }
+
   static OdometrySensorParams load(cover::config::YamlReader& reader);
+  // Throws config::ConfigError naming "<context>.<key>".
   void validate(const std::string& context = "odometry") const;
 };
 

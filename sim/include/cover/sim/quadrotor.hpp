@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 
+#include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sim/quadrotor_state.hpp"
 
@@ -23,7 +24,42 @@ struct QuadrotorParams {
   double max_roll_pitch_rate_rad_s = 6.0;
   double max_yaw_rate_rad_s = 3.0;
 
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("mass_nominal_kg", self.mass_nominal_kg,
+          Field("kg", "mass the controller assumes (F = thrust / this)")
+              .at_least(0.01)
+              .at_most(100.0));
+    visit("mass_true_kg", self.mass_true_kg,
+          Field("kg", "the plant's real mass").at_least(0.01).at_most(100.0));
+    visit("drag_coefficients_1_s", self.drag_coefficients_1_s,
+          Field("1/s", "linear drag per unit mass in body x, y, z").at_least(0.0).at_most(10.0));
+    // The lags must be resolved by a 1 kHz RK4 step; below 2 ms they would be stiff.
+    visit("rate_time_constant_s", self.rate_time_constant_s,
+          Field("s", "first-order body-rate loop time constant").at_least(0.002).at_most(1.0));
+    visit("thrust_time_constant_s", self.thrust_time_constant_s,
+          Field("s", "first-order motor/thrust lag").at_least(0.002).at_most(1.0));
+    visit("min_thrust_m_s2", self.min_thrust_m_s2,
+          Field("m/s^2", "lowest collective thrust command per nominal mass")
+              .at_least(0.0)
+              .at_most(100.0));
+    visit(
+        "max_thrust_m_s2", self.max_thrust_m_s2,
+        Field("m/s^2", "highest collective thrust command per nominal mass, above min_thrust_m_s2")
+            .at_least(0.0)
+            .at_most(100.0));
+    visit(
+        "max_roll_pitch_rate_rad_s", self.max_roll_pitch_rate_rad_s,
+        Field("rad/s", "body roll/pitch rate limit of the rate loop").at_least(0.1).at_most(50.0));
+    visit("max_yaw_rate_rad_s", self.max_yaw_rate_rad_s,
+          Field("rad/s", "body yaw rate limit").at_least(0.1).at_most(50.0));
+  }
+
   static QuadrotorParams load(cover::config::YamlReader& reader);
+  // Throws config::ConfigError naming "<context>.<key>".
   void validate(const std::string& context = "uav") const;
 };
 

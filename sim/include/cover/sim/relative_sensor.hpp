@@ -7,6 +7,7 @@
 #include <deque>
 #include <random>
 
+#include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/model/relative_state.hpp"
 #include "cover/sim/world_state.hpp"
@@ -25,7 +26,33 @@ struct RelativeSensorParams {
   // an older stamp. 0 by default; raise it to test the controller's staleness handling.
   double dropout_probability = 0.0;
 
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("rate_hz", self.rate_hz,
+          Field("Hz", "sample rate; must divide world.physics_rate_hz")
+              .at_least(1.0)
+              .at_most(10000.0));
+    visit("latency_s", self.latency_s,
+          Field("s", "delay from sampling to availability, rounded to the physics step")
+              .at_least(0.0)
+              .at_most(1.0));
+    visit("position_noise_m", self.position_noise_m,
+          Field("m", "white noise 1-sigma per axis").at_least(0.0).at_most(1.0));
+    visit("velocity_noise_m_s", self.velocity_noise_m_s,
+          Field("m/s", "white noise 1-sigma per axis").at_least(0.0).at_most(5.0));
+    visit("attitude_noise_rad", self.attitude_noise_rad,
+          Field("rad", "small-rotation noise 1-sigma per axis").at_least(0.0).at_most(0.5));
+    visit("dropout_probability", self.dropout_probability,
+          Field("", "probability that a sample is lost (occlusion, radio loss)")
+              .at_least(0.0)
+              .at_most(1.0));
+  }
+
   static RelativeSensorParams load(cover::config::YamlReader& reader);
+  // Throws config::ConfigError naming "<context>.<key>".
   void validate(const std::string& context = "relative_sensor") const;
 };
 

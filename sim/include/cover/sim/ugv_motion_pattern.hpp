@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
 
 namespace cover::sim {
@@ -32,6 +33,9 @@ namespace cover::sim {
 //
 // Heading is along the velocity for every pattern except stationary and back_and_forth.
 enum class MotionPatternKind { Stationary, Circle, FigureEight, Star, SCurve, BackAndForth };
+inline constexpr MotionPatternKind kMotionPatternKinds[] = {
+    MotionPatternKind::Stationary, MotionPatternKind::Circle, MotionPatternKind::FigureEight,
+    MotionPatternKind::Star,       MotionPatternKind::SCurve, MotionPatternKind::BackAndForth};
 
 const char* to_string(MotionPatternKind kind);
 std::optional<MotionPatternKind> parse_motion_pattern_kind(const std::string& name);
@@ -50,7 +54,52 @@ struct UgvMotionPatternParams {
   double star_depth = 0.2;       // star: relative radius modulation, in (0, 0.9]
   double phase_rad = 0.0;        // start value of the curve parameter (th / ph)
 
+  // Each field once (config/param_fields.hpp). A pattern ignores the keys it does not use,
+  // but their bounds hold whatever the kind: a stray value is a mistake all the same.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("kind", self.kind, Field("", "the motion").one_of(kMotionPatternKinds).required());
+    visit("origin_m", self.origin_m,
+          Field("m", "world x, y of the pattern's centre (s_curve: its start)"));
+    visit("orientation_rad", self.orientation_rad,
+          Field("rad", "rotation of the pattern's local x axis from world x"));
+    // 5 m/s is far beyond the paper's UGVs (<= 1 m/s): anything above is a unit error.
+    visit("speed_m_s", self.speed_m_s,
+          Field("m/s", "circle: constant speed; other moving patterns: peak speed")
+              .above(0.0)
+              .at_most(5.0));
+    visit("yaw_rate_rad_s", self.yaw_rate_rad_s,
+          Field("rad/s",
+                "circle: turn rate, left positive (radius = speed / yaw rate); "
+                "|w| >= 0.001 on a circle")
+              .at_least(-5.0)
+              .at_most(5.0));
+    visit("half_length_m", self.half_length_m,
+          Field("m", "figure_eight: half extent along local x; back_and_forth: half stroke")
+              .above(0.0)
+              .below(1e3));
+    visit("half_width_m", self.half_width_m,
+          Field("m", "figure_eight: half extent along local y (> 0); s_curve: lateral amplitude")
+              .at_least(0.0)
+              .below(1e3));
+    visit("wavelength_m", self.wavelength_m,
+          Field("m", "s_curve: distance along local x of one full period (two bends)")
+              .above(0.0)
+              .below(1e4));
+    visit("radius_m", self.radius_m, Field("m", "star: mean radius").above(0.0).below(1e3));
+    visit("star_points", self.star_points,
+          Field("", "star: number of tips").at_least(2.0).at_most(20.0));
+    visit("star_depth", self.star_depth,
+          Field("", "star: relative radius modulation (< 1 keeps the speed above 0)")
+              .above(0.0)
+              .at_most(0.9));
+    visit("phase_rad", self.phase_rad,
+          Field("rad", "start value of the curve parameter (angle on the circle, etc.)"));
+  }
+
   static UgvMotionPatternParams load(cover::config::YamlReader& reader);
+  // Throws config::ConfigError naming "<context>.<key>".
   void validate(const std::string& context = "pattern") const;
 };
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <string>
 
+#include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
 
 namespace cover::fc_bridge {
@@ -29,6 +30,64 @@ struct FcBridgeParams {
   int component_id = 191;          // MAV_COMP_ID_ONBOARD_COMPUTER
   bool auto_arm = false;           // simulation only: arm without an operator
   double gravity_m_s2 = 9.81;
+
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("hover_thrust", self.hover_thrust,
+          Field("",
+                "normalised thrust that hovers: the estimator's start; in "
+                "[hover_thrust_min, hover_thrust_max]")
+              .at_least(0.01)
+              .at_most(0.99));
+    visit("hover_thrust_min", self.hover_thrust_min,
+          Field("", "lowest hover thrust estimate").at_least(0.01).at_most(0.99));
+    visit("hover_thrust_max", self.hover_thrust_max,
+          Field("", "highest hover thrust estimate, >= hover_thrust_min")
+              .at_least(0.01)
+              .at_most(0.99));
+    visit("hover_thrust_initial_std", self.hover_thrust_initial_std,
+          Field("", "1-sigma doubt about hover_thrust at start").at_least(1e-4).at_most(1.0));
+    visit("hover_thrust_noise_per_sqrt_s", self.hover_thrust_noise_per_sqrt_s,
+          Field("1/sqrt(s)", "random walk of the true hover thrust").at_least(0.0).at_most(1.0));
+    visit("accel_noise_m_s2", self.accel_noise_m_s2,
+          Field("m/s^2", "1-sigma of the body z specific force").at_least(0.01).at_most(50.0));
+    visit("estimator_min_thrust", self.estimator_min_thrust,
+          Field("", "below this commanded thrust the estimator rests").at_least(0.0).at_most(0.9));
+    visit("cmd_timeout_s", self.cmd_timeout_s,
+          Field("s", "armed in offboard with no agent command this long: land")
+              .at_least(0.01)
+              .at_most(1.0)
+              .hint("PX4's own offboard loss is 1 s"));
+    visit("heartbeat_timeout_s", self.heartbeat_timeout_s,
+          Field("s", "no autopilot HEARTBEAT this long: link lost")
+              .at_least(0.5)
+              .at_most(30.0)
+              .hint("autopilots send HEARTBEAT at 1 Hz"));
+    visit("ack_timeout_s", self.ack_timeout_s,
+          Field("s", "a COMMAND_LONG unanswered this long is sent again")
+              .at_least(0.01)
+              .at_most(5.0));
+    visit("command_retries", self.command_retries,
+          Field("", "resends before \"no answer\"").at_least(0.0).at_most(20.0));
+    visit("offboard_stream_s", self.offboard_stream_s,
+          Field("s", "setpoints stream this long before OFFBOARD").at_least(0.0).at_most(30.0));
+    visit("state_rate_hz", self.state_rate_hz,
+          Field("Hz", "rate of cover/uav/U/fc (and on every change)").at_least(5.0).at_most(100.0));
+    visit("system_id", self.system_id,
+          Field("", "the companion's MAVLink system id; 0: the autopilot's")
+              .at_least(0.0)
+              .at_most(255.0)
+              .hint("0: the autopilot's"));
+    visit("component_id", self.component_id,
+          Field("", "the companion's MAVLink component id (191: onboard computer)")
+              .at_least(1.0)
+              .at_most(255.0));
+    visit("auto_arm", self.auto_arm, Field("", "simulation only: arm without an operator"));
+    visit("gravity_m_s2", self.gravity_m_s2, Field("m/s^2", "gravity").at_least(9.0).at_most(10.5));
+  }
 
   static FcBridgeParams load_file(const std::string& path);
   // The same from a document already parsed (config::parse_yaml); `source` names it.

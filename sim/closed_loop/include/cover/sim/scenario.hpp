@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "cover/config/param_fields.hpp"
 #include "cover/mission/task.hpp"
 #include "cover/sim/world_params.hpp"
 
@@ -14,6 +15,17 @@ struct ExtraUav {
   mission::Task task;
   int start_on_ugv = 0;
   bool payload_attached = false;
+
+  // Its fields (config/param_fields.hpp) but for `task_file`, the task's path relative to
+  // the scenario file (required), which Scenario::from_yaml reads itself.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("start_on_ugv", self.start_on_ugv,
+          Field("", "index of the UGV whose deck it starts on; -1: at sim.uav.initial.position_m")
+              .at_least(-1.0));
+    visit("payload_attached", self.payload_attached, Field("", "it carries a parcel at start"));
+  }
 };
 
 // One closed-loop experiment: a simulated world (the sim's world YAML format, under `sim:`)
@@ -30,6 +42,23 @@ struct Scenario {
   double settle_time_s = 1.0;
   // UAVs 1.. (UAV 0 is `world` + `task`); the in-process harness flies UAV 0 only.
   std::vector<ExtraUav> extra_uavs;
+
+  // The scenario's own fields (config/param_fields.hpp); `sim`, `task` / `task_file` and
+  // `extra_uavs` are read by from_yaml itself.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("name", self.name, Field("", "label in reports and plots"));
+    visit("description", self.description, Field("", "what the scenario flies"));
+    visit("max_duration_s", self.max_duration_s,
+          Field("s", "run cut-off: unsuccessful if the task is not done by then")
+              .above(0.0)
+              .at_most(3600.0));
+    visit("settle_time_s", self.settle_time_s,
+          Field("s", "simulated time after completion before the landing error is measured")
+              .at_least(0.0)
+              .at_most(60.0));
+  }
 
   int uav_count() const { return 1 + static_cast<int>(extra_uavs.size()); }
   const mission::Task& task_of(int uav) const;
