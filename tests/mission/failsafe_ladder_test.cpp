@@ -9,6 +9,7 @@
 
 #include "cover/mission/ladder_level.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/shipped_params.hpp"
 
 using cover::mission::assess_inputs;
 using cover::mission::FailsafeCause;
@@ -283,13 +284,10 @@ TEST(FailsafeLadder, VerticalGainsAreTheParams) {
 }
 
 TEST(FailsafeLadder, VerticalGainsAreReadFromYamlAndChecked) {
-  const MissionParams shipped =
-      MissionParams::load_file(cover::config::default_config_dir() + "/mission.yaml");
-  const MissionParams defaults;
-  EXPECT_EQ(shipped.emergency_height_gain_1_s2, defaults.emergency_height_gain_1_s2);
-  EXPECT_EQ(shipped.emergency_speed_gain_1_s, defaults.emergency_speed_gain_1_s);
-  EXPECT_EQ(shipped.emergency_integral_gain_1_s3, defaults.emergency_integral_gain_1_s3);
-  EXPECT_EQ(shipped.emergency_integral_limit_m_s2, defaults.emergency_integral_limit_m_s2);
+  // Every field (MissionParams::fields), shipped with its default value.
+  const std::string shipped = cover::config::default_config_dir() + "/mission.yaml";
+  cover::test::expect_shipped_file_holds_defaults(MissionParams::load_file(shipped), shipped,
+                                                  "mission");
   const std::string path = cover::test::scratch_path("mission.yaml");
   std::ofstream(path) << "mission:\n  emergency_height_gain_1_s2: 3.0\n"
                          "  emergency_integral_gain_1_s3: 0\n";

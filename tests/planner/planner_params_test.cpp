@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/shipped_params.hpp"
 
 namespace cover::planner {
 namespace {
@@ -25,27 +27,12 @@ std::string load_error(const std::string& yaml) {
   return {};
 }
 
-// The shipped file documents the defaults: loading it must give the struct's defaults.
+// The shipped file documents the defaults: every field (PlannerParams::fields), shipped
+// with its default value.
 TEST(PlannerParams, ShippedFileMatchesDefaults) {
-  const PlannerParams shipped =
-      PlannerParams::load_file(config::default_config_dir() + "/planner.yaml");
-  const PlannerParams defaults;
-  EXPECT_EQ(shipped.pieces, defaults.pieces);
-  EXPECT_EQ(shipped.time_weight, defaults.time_weight);
-  EXPECT_EQ(shipped.speed_penalty_weight, defaults.speed_penalty_weight);
-  EXPECT_EQ(shipped.acc_penalty_weight, defaults.acc_penalty_weight);
-  EXPECT_EQ(shipped.samples_per_piece, defaults.samples_per_piece);
-  EXPECT_EQ(shipped.overspeed_decel_fraction, defaults.overspeed_decel_fraction);
-  EXPECT_EQ(shipped.relative_cost_tolerance, defaults.relative_cost_tolerance);
-  EXPECT_EQ(shipped.relative_step_tolerance, defaults.relative_step_tolerance);
-  EXPECT_EQ(shipped.max_evaluations, defaults.max_evaluations);
-  EXPECT_EQ(shipped.max_solve_time_s, defaults.max_solve_time_s);
-  EXPECT_EQ(shipped.lbfgs_memory, defaults.lbfgs_memory);
-  EXPECT_EQ(shipped.min_piece_duration_s, defaults.min_piece_duration_s);
-  EXPECT_EQ(shipped.max_abs_speed_m_s, defaults.max_abs_speed_m_s);
-  EXPECT_EQ(shipped.default_vmax_m_s, defaults.default_vmax_m_s);
-  EXPECT_EQ(shipped.default_amax_m_s2, defaults.default_amax_m_s2);
-  EXPECT_NO_THROW(defaults.validate());
+  const std::string path = config::default_config_dir() + "/planner.yaml";
+  cover::test::expect_shipped_file_holds_defaults(PlannerParams::load_file(path), path, "planner");
+  EXPECT_NO_THROW(PlannerParams{}.validate());
 }
 
 TEST(PlannerParams, ReadsValues) {

@@ -7,6 +7,7 @@
 #include "cover/model/dynamics.hpp"
 #include "cover/model/quaternion.hpp"
 #include "cover/sampc/horizon_cost.hpp"
+#include "cover/test/shipped_params.hpp"
 
 namespace cover::sampc {
 namespace {
@@ -324,23 +325,11 @@ TEST(HorizonCost, AttitudeCostIsSignInvariant) {
               cost.nodes[3].evaluate(flipped, model::hover_input()), 1e-12);
 }
 
+// Every field (SampcParams::fields, the weight sets' and intercept's by dotted keys), shipped
+// with its default value.
 TEST(SampcParams, ShippedConfigLoadsAndEqualsTheDefaults) {
-  const SampcParams loaded = SampcParams::load_file(config::default_config_dir() + "/sampc.yaml");
-  const SampcParams defaults;
-  EXPECT_EQ(loaded.mode, defaults.mode);
-  EXPECT_EQ(loaded.horizon_steps, defaults.horizon_steps);
-  EXPECT_EQ(loaded.step_s, defaults.step_s);
-  EXPECT_EQ(loaded.e2_per_m2, defaults.e2_per_m2);
-  EXPECT_EQ(loaded.transition_weights.velocity, defaults.transition_weights.velocity);
-  EXPECT_EQ(loaded.tracking_weights.input, defaults.tracking_weights.input);
-  EXPECT_EQ(loaded.yaw_rate_max_rad_s, defaults.yaw_rate_max_rad_s);
-  EXPECT_EQ(loaded.yaw_reference_rate_rad_s, defaults.yaw_reference_rate_rad_s);
-  EXPECT_EQ(loaded.custom_velocity_nodes, defaults.custom_velocity_nodes);
-  EXPECT_EQ(loaded.eq30_acceleration_limit_m_s2, defaults.eq30_acceleration_limit_m_s2);
-  EXPECT_EQ(loaded.frame_switch_iterations, defaults.frame_switch_iterations);
-  EXPECT_EQ(loaded.switch_smoothing_s, defaults.switch_smoothing_s);
-  EXPECT_EQ(loaded.switch_input_rate_weight, defaults.switch_input_rate_weight);
-  EXPECT_EQ(loaded.transition_input_rate_weight, defaults.transition_input_rate_weight);
+  const std::string path = config::default_config_dir() + "/sampc.yaml";
+  cover::test::expect_shipped_file_holds_defaults(SampcParams::load_file(path), path, "sampc");
 }
 
 TEST(SampcParams, RejectsBadValuesNamingTheKey) {

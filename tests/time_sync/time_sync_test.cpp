@@ -8,6 +8,7 @@
 
 #include "cover/config/config_error.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/shipped_params.hpp"
 #include "cover/time_sync/exchange.hpp"
 #include "cover/time_sync/offset_filter.hpp"
 #include "cover/time_sync/peer_name.hpp"
@@ -146,17 +147,12 @@ TEST(PeerName, HostSlashProcessAndPatterns) {
   EXPECT_TRUE(peer_matches("anything", {}));
 }
 
+// Every field (TimeSyncParams::fields), shipped with its default value.
 TEST(TimeSyncParams, ShippedFileHoldsTheDefaults) {
-  const TimeSyncParams shipped =
-      TimeSyncParams::load_file(std::string(COVER_CONFIG_DIR) + "/time_sync.yaml");
-  const TimeSyncParams defaults;
-  EXPECT_EQ(shipped.max_offset_ms, 20.0);
-  EXPECT_EQ(shipped.max_offset_ms, defaults.max_offset_ms);
-  EXPECT_EQ(shipped.request_period_s, defaults.request_period_s);
-  EXPECT_EQ(shipped.burst_count, defaults.burst_count);
-  EXPECT_EQ(shipped.burst_period_s, defaults.burst_period_s);
-  EXPECT_EQ(shipped.window_samples, defaults.window_samples);
-  EXPECT_EQ(shipped.peer_timeout_s, defaults.peer_timeout_s);
+  const std::string path = std::string(COVER_CONFIG_DIR) + "/time_sync.yaml";
+  cover::test::expect_shipped_file_holds_defaults(TimeSyncParams::load_file(path), path,
+                                                  "time_sync");
+  EXPECT_EQ(TimeSyncParams::load_file(path).max_offset_ms, 20.0);
 }
 
 TEST(TimeSyncParams, BadKeysAndValuesAreNamed) {

@@ -173,18 +173,6 @@ TEST(SpeedEstimator, PipelineFeedsOdometryThenFilterThenImu) {
   EXPECT_EQ(pipeline.speed().estimate().speed_m_s, 0.8);
 }
 
-TEST(SpeedEstimatorParams, ShippedFileMatchesTheStructDefaults) {
-  const SpeedEstimatorParams shipped = SpeedEstimatorParams::load_default();
-  const SpeedEstimatorParams defaults;
-  EXPECT_EQ(shipped.odometry_cutoff_hz, defaults.odometry_cutoff_hz);
-  EXPECT_EQ(shipped.odometry_timeout_s, defaults.odometry_timeout_s);
-  EXPECT_EQ(shipped.max_speed_m_s, defaults.max_speed_m_s);
-  EXPECT_EQ(shipped.imu_min_yaw_rate_rad_s, defaults.imu_min_yaw_rate_rad_s);
-  EXPECT_EQ(shipped.imu_speed_cutoff_hz, defaults.imu_speed_cutoff_hz);
-  EXPECT_EQ(shipped.imu_settle_s, defaults.imu_settle_s);
-  EXPECT_EQ(shipped.imu_max_spread_m_s, defaults.imu_max_spread_m_s);
-}
-
 TEST(SpeedEstimatorParams, LoadRejectsUnknownKeysAndValidateNamesTheKey) {
   YAML::Node node = YAML::Load("{odometry_timeout_s: 0.3, imu_settle: 1}");
   config::YamlReader reader(node, "test");

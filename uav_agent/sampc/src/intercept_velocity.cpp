@@ -7,43 +7,6 @@
 
 namespace cover::sampc {
 
-InterceptParams InterceptParams::load(config::YamlReader reader) {
-  InterceptParams p;
-  reader.optional("min_ugv_speed_m_s", p.min_ugv_speed_m_s);
-  reader.optional("max_ugv_yaw_rate_rad_s", p.max_ugv_yaw_rate_rad_s);
-  reader.optional("max_time_to_go_s", p.max_time_to_go_s);
-  reader.optional("max_predicted_turn_rad", p.max_predicted_turn_rad);
-  reader.optional("velocity_nodes", p.velocity_nodes);
-  reader.optional("solve_time_to_go", p.solve_time_to_go);
-  reader.optional("fastest_straight_flight", p.fastest_straight_flight);
-  reader.optional("fastest_flight_max_yaw_acceleration_rad_s2",
-                  p.fastest_flight_max_yaw_acceleration_rad_s2);
-  reader.optional("use_ugv_acceleration", p.use_ugv_acceleration);
-  reader.optional("max_ugv_acceleration_m_s2", p.max_ugv_acceleration_m_s2);
-  reader.reject_unknown_keys();
-  return p;
-}
-
-void InterceptParams::validate(const std::string& context) const {
-  config::check(std::isfinite(min_ugv_speed_m_s) && min_ugv_speed_m_s >= 0.0,
-                context + ".min_ugv_speed_m_s", "must be finite and >= 0");
-  config::check(std::isfinite(max_ugv_yaw_rate_rad_s) && max_ugv_yaw_rate_rad_s > 0.0,
-                context + ".max_ugv_yaw_rate_rad_s", "must be finite and > 0");
-  config::check(
-      std::isfinite(max_time_to_go_s) && max_time_to_go_s > 0.0 && max_time_to_go_s <= 60.0,
-      context + ".max_time_to_go_s", "must be in (0, 60]");
-  // Up to a full circle, where the mean velocity is zero.
-  config::check(std::isfinite(max_predicted_turn_rad) && max_predicted_turn_rad > 0.0 &&
-                    max_predicted_turn_rad <= 6.3,
-                context + ".max_predicted_turn_rad", "must be in (0, 6.3]");
-  config::check(std::isfinite(fastest_flight_max_yaw_acceleration_rad_s2) &&
-                    fastest_flight_max_yaw_acceleration_rad_s2 >= 0.0,
-                context + ".fastest_flight_max_yaw_acceleration_rad_s2", "must be finite and >= 0");
-  config::check(std::isfinite(max_ugv_acceleration_m_s2) && max_ugv_acceleration_m_s2 >= 0.0 &&
-                    max_ugv_acceleration_m_s2 <= 10.0,
-                context + ".max_ugv_acceleration_m_s2", "must be in [0, 10]");
-}
-
 const char* to_string(InterceptFallback fallback) {
   switch (fallback) {
     case InterceptFallback::None:

@@ -8,13 +8,7 @@ namespace cover::ugv {
 
 ImuFilterParams ImuFilterParams::load(cover::config::YamlReader& reader) {
   ImuFilterParams p;
-  reader.optional("specific_force_cutoff_hz", p.specific_force_cutoff_hz);
-  reader.optional("angular_velocity_cutoff_hz", p.angular_velocity_cutoff_hz);
-  reader.optional("angular_acceleration_cutoff_hz", p.angular_acceleration_cutoff_hz);
-  reader.optional("max_sample_gap_s", p.max_sample_gap_s);
-  reader.optional("max_specific_force_m_s2", p.max_specific_force_m_s2);
-  reader.optional("max_angular_velocity_rad_s", p.max_angular_velocity_rad_s);
-  reader.reject_unknown_keys();
+  cover::config::load_fields(p, reader);
   p.validate(reader.context());
   return p;
 }
@@ -30,16 +24,7 @@ ImuFilterParams ImuFilterParams::load_default() {
 }
 
 void ImuFilterParams::validate(const std::string& context) const {
-  using cover::config::check;
-  auto positive = [&](double value, const char* key) {
-    check(std::isfinite(value) && value > 0.0, context + "." + key, "must be a positive number");
-  };
-  positive(specific_force_cutoff_hz, "specific_force_cutoff_hz");
-  positive(angular_velocity_cutoff_hz, "angular_velocity_cutoff_hz");
-  positive(angular_acceleration_cutoff_hz, "angular_acceleration_cutoff_hz");
-  positive(max_sample_gap_s, "max_sample_gap_s");
-  positive(max_specific_force_m_s2, "max_specific_force_m_s2");
-  positive(max_angular_velocity_rad_s, "max_angular_velocity_rad_s");
+  cover::config::check_fields(*this, context);
 }
 
 const char* to_string(ImuFilterStatus status) {

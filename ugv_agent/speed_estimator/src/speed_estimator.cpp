@@ -8,14 +8,7 @@ namespace cover::ugv {
 
 SpeedEstimatorParams SpeedEstimatorParams::load(cover::config::YamlReader& reader) {
   SpeedEstimatorParams p;
-  reader.optional("odometry_cutoff_hz", p.odometry_cutoff_hz);
-  reader.optional("odometry_timeout_s", p.odometry_timeout_s);
-  reader.optional("max_speed_m_s", p.max_speed_m_s);
-  reader.optional("imu_min_yaw_rate_rad_s", p.imu_min_yaw_rate_rad_s);
-  reader.optional("imu_speed_cutoff_hz", p.imu_speed_cutoff_hz);
-  reader.optional("imu_settle_s", p.imu_settle_s);
-  reader.optional("imu_max_spread_m_s", p.imu_max_spread_m_s);
-  reader.reject_unknown_keys();
+  cover::config::load_fields(p, reader);
   p.validate(reader.context());
   return p;
 }
@@ -31,18 +24,7 @@ SpeedEstimatorParams SpeedEstimatorParams::load_default() {
 }
 
 void SpeedEstimatorParams::validate(const std::string& context) const {
-  using cover::config::check;
-  auto in_range = [&](double value, double lo, double hi, const char* key, const char* what) {
-    check(std::isfinite(value) && value > lo && value <= hi, context + "." + key, what);
-  };
-  in_range(odometry_cutoff_hz, 0.0, 1000.0, "odometry_cutoff_hz", "must be in (0, 1000] Hz");
-  in_range(odometry_timeout_s, 0.0, 10.0, "odometry_timeout_s", "must be in (0, 10] s");
-  in_range(max_speed_m_s, 0.0, 100.0, "max_speed_m_s", "must be in (0, 100] m/s");
-  in_range(imu_min_yaw_rate_rad_s, 0.0, 10.0, "imu_min_yaw_rate_rad_s", "must be in (0, 10] rad/s");
-  in_range(imu_speed_cutoff_hz, 0.0, 100.0, "imu_speed_cutoff_hz", "must be in (0, 100] Hz");
-  check(std::isfinite(imu_settle_s) && imu_settle_s >= 0.0 && imu_settle_s <= 60.0,
-        context + ".imu_settle_s", "must be in [0, 60] s");
-  in_range(imu_max_spread_m_s, 0.0, 100.0, "imu_max_spread_m_s", "must be in (0, 100] m/s");
+  cover::config::check_fields(*this, context);
 }
 
 const char* to_string(SpeedSampleStatus status) {

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "cover/config/yaml_reader.hpp"
+#include "cover/config/param_fields.hpp"
 
 namespace cover::mission {
 
@@ -117,6 +117,134 @@ struct MissionParams {
   // (sampc.yaml's warm-start shift, cover-sim's tick rate, the harness's control rate) is
   // checked against it at load (check_control_period).
   double control_period_s = 0.01;
+
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    stage_fields(self, visit);
+    failsafe_fields(self, visit);
+    tracking_fields(self, visit);
+    abort_fields(self, visit);
+    approach_fields(self, visit);
+  }
+  template <typename Self, typename Visit>
+  static void stage_fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("reach_tolerance_m", self.reach_tolerance_m,
+          Field("m", "a stage ends within this of its end point ...").above(0.0));
+    visit("transition_reach_tolerance_m", self.transition_reach_tolerance_m,
+          Field("m", "the transition stage's own reach tolerance").above(0.0));
+    visit("speed_threshold_m_s", self.speed_threshold_m_s,
+          Field("m/s", "... and below this speed in the reference frame").above(0.0));
+    visit("action_tolerance_m", self.action_tolerance_m,
+          Field("m", "reach tolerance of a final action (land, deliver)").above(0.0));
+    visit("action_speed_threshold_m_s", self.action_speed_threshold_m_s,
+          Field("m/s", "speed threshold of a final action").above(0.0));
+    visit("initial_timeout_s", self.initial_timeout_s,
+          Field("s", "an initial stage not ended by then fails the mission").above(0.0));
+    visit("transition_timeout_s", self.transition_timeout_s,
+          Field("s", "a transition stage not ended by then fails the mission").above(0.0));
+    visit("final_timeout_s", self.final_timeout_s,
+          Field("s", "a final stage not ended by then fails the mission").above(0.0));
+  }
+  template <typename Self, typename Visit>
+  static void failsafe_fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("state_timeout_s", self.state_timeout_s,
+          Field("s", "an older relative state is stale: emergency hover").above(0.0));
+    visit("imu_timeout_s", self.imu_timeout_s, Field("s", "an older UGV IMU is stale").above(0.0));
+    visit("imu_hold_s", self.imu_hold_s,
+          Field("s", "flown on the last IMU this much longer, then emergency hover")
+              .at_least(0.0)
+              .at_most(1.0));
+    visit("emergency_hover_s", self.emergency_hover_s,
+          Field("s", "emergency hover this long without the inputs: emergency landing")
+              .above(0.0)
+              .at_most(30.0));
+    visit("emergency_descent_rate_m_s", self.emergency_descent_rate_m_s,
+          Field("m/s", "the emergency landing's sink rate").above(0.0).at_most(1.0));
+    visit("emergency_level_gain_1_s", self.emergency_level_gain_1_s,
+          Field("1/s", "the gain that levels the attitude").above(0.0).at_most(20.0));
+    visit("emergency_height_gain_1_s2", self.emergency_height_gain_1_s2,
+          Field("1/s^2", "vertical control: height error gain").above(0.0).at_most(20.0));
+    visit("emergency_speed_gain_1_s", self.emergency_speed_gain_1_s,
+          Field("1/s", "vertical control: vertical speed error gain").above(0.0).at_most(20.0));
+    visit("emergency_integral_gain_1_s3", self.emergency_integral_gain_1_s3,
+          Field("1/s^3", "vertical control: height error integral gain")
+              .at_least(0.0)
+              .at_most(10.0)
+              .hint("0 disables"));
+    visit("emergency_integral_limit_m_s2", self.emergency_integral_limit_m_s2,
+          Field("m/s^2", "vertical control: the integral's bound").at_least(0.0).at_most(5.0));
+    visit("emergency_blind_floor_m", self.emergency_blind_floor_m,
+          Field("m", "blind landing: disarm this far below the frame's origin (+ gap)")
+              .at_least(0.0)
+              .at_most(10.0));
+    visit("max_plan_attempts", self.max_plan_attempts,
+          Field("", "a stage not planned after this many attempts fails the mission")
+              .at_least(1.0)
+              .at_most(1000.0));
+    visit("plan_adopt_steps", self.plan_adopt_steps,
+          Field("", "a plan asked at step k is flown from step k + this")
+              .at_least(0.0)
+              .at_most(100.0));
+  }
+  template <typename Self, typename Visit>
+  static void tracking_fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("integral_gain_1_s3", self.integral_gain_1_s3,
+          Field("1/s^3", "offset-free tracking: integral gain")
+              .at_least(0.0)
+              .at_most(20.0)
+              .hint("0 disables"));
+    visit("integral_error_clip_m", self.integral_error_clip_m,
+          Field("m", "errors clipped to this before integrating").above(0.0));
+    visit("integral_limit_m_s2", self.integral_limit_m_s2,
+          Field("m/s^2", "the integral's bound").above(0.0).at_most(10.0));
+    visit("observer_window_s", self.observer_window_s,
+          Field("s", "disturbance observer's velocity-change window")
+              .at_least(0.0)
+              .at_most(5.0)
+              .hint("0 disables"));
+    visit("observer_time_constant_s", self.observer_time_constant_s,
+          Field("s", "disturbance observer's time constant").at_least(0.1).at_most(20.0));
+  }
+  template <typename Self, typename Visit>
+  static void abort_fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("abort_hold_s", self.abort_hold_s,
+          Field("s", "an aborted task holds its point this long ...").at_least(0.0));
+    visit("abort_action", self.abort_action,
+          Field("", "... then does this").one_of({AbortAction::Hover, AbortAction::Land}));
+    visit("abort_descent_rate_m_s", self.abort_descent_rate_m_s,
+          Field("m/s", "the abort landing's sink rate").above(0.0).at_most(2.0));
+    visit("land_detect_gap_m", self.land_detect_gap_m,
+          Field("m", "touched down: the reference this far below the UAV ...").above(0.0));
+    visit("land_detect_speed_m_s", self.land_detect_speed_m_s,
+          Field("m/s", "... no vertical speed above this ...").above(0.0));
+    visit("land_detect_time_s", self.land_detect_time_s,
+          Field("s", "... for this long: disarm").above(0.0));
+  }
+  template <typename Self, typename Visit>
+  static void approach_fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("transition_reference", self.transition_reference,
+          Field("", "the transition stage's horizontal reference")
+              .one_of({TransitionReference::Planned, TransitionReference::RadialApproach}));
+    visit("approach_brake_fraction", self.approach_brake_fraction,
+          Field("", "the radial approach brakes at this fraction of amax").above(0.0).at_most(1.0));
+    visit("approach_speed_up_ramp_s", self.approach_speed_up_ramp_s,
+          Field("s", "the approach's speed-up acceleration builds up over this")
+              .at_least(0.0)
+              .at_most(5.0));
+    visit("final_start_acceleration_fraction", self.final_start_acceleration_fraction,
+          Field("", "the final stage starts with this fraction of SAMPC's planned acceleration")
+              .at_least(0.0)
+              .at_most(1.0));
+    visit("control_period_s", self.control_period_s,
+          Field("s", "the control period (the one definition)").above(0.0).at_most(0.1));
+  }
 
   static MissionParams load(config::YamlReader& reader);
   static MissionParams load_file(const std::string& path);  // reads the `mission:` section

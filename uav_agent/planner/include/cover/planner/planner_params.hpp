@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "cover/config/yaml_reader.hpp"
+#include "cover/config/param_fields.hpp"
 
 namespace cover::planner {
 
@@ -47,6 +47,57 @@ struct PlannerParams {
   double max_abs_angular_rate_rad_s = 10.0;
   double max_limit_m_s = 30.0;    // vmax above this is absurd
   double max_limit_m_s2 = 100.0;  // amax above this is absurd
+
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list. Bounds against other fields are in validate().
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("pieces", self.pieces, Field("", "MINCO pieces M per stage").at_least(1.0).at_most(20.0));
+    visit("time_weight", self.time_weight,
+          Field("m^2/s^6", "rho: cost per second of duration").above(0.0));
+    visit("speed_penalty_weight", self.speed_penalty_weight,
+          Field("", "weight of the normalised speed excess penalty").above(0.0));
+    visit("acc_penalty_weight", self.acc_penalty_weight,
+          Field("", "weight of the normalised acceleration excess penalty").above(0.0));
+    visit("samples_per_piece", self.samples_per_piece,
+          Field("", "kappa: penalty samples per piece").at_least(2.0).at_most(200.0));
+    visit("overspeed_decel_fraction", self.overspeed_decel_fraction,
+          Field("", "an initial overspeed comes down at this fraction of amax")
+              .above(0.0)
+              .at_most(1.0));
+    visit("relative_cost_tolerance", self.relative_cost_tolerance,
+          Field("", "L-BFGS stops below this relative cost decrease").at_least(0.0));
+    visit("relative_step_tolerance", self.relative_step_tolerance,
+          Field("", "L-BFGS stops below this relative step per variable").at_least(0.0));
+    visit("max_evaluations", self.max_evaluations,
+          Field("", "L-BFGS evaluation budget").at_least(1.0));
+    visit("max_solve_time_s", self.max_solve_time_s,
+          Field("s", "wall-clock budget of a plan").at_least(0.0).hint("0: no wall-clock budget"));
+    visit("lbfgs_memory", self.lbfgs_memory,
+          Field("", "L-BFGS curvature pairs kept").at_least(1.0).at_most(50.0));
+    visit("min_piece_duration_s", self.min_piece_duration_s,
+          Field("s", "floor added to every piece duration").at_least(0.0).at_most(1.0));
+    visit("default_vmax_m_s", self.default_vmax_m_s,
+          Field("m/s", "speed limit when the caller gives none; <= max_limit_m_s").above(0.0));
+    visit("default_amax_m_s2", self.default_amax_m_s2,
+          Field("m/s^2", "acceleration limit when the caller gives none; <= max_limit_m_s2")
+              .above(0.0));
+    visit("at_goal_tolerance_m", self.at_goal_tolerance_m,
+          Field("m", "this close to the goal (and at rest) the plan holds the start").above(0.0));
+    visit("at_rest_tolerance_m_s", self.at_rest_tolerance_m_s,
+          Field("m/s", "this slow (and at the goal) the plan holds the start").above(0.0));
+    visit("max_abs_position_m", self.max_abs_position_m,
+          Field("m", "input sanity: |position| beyond is InvalidInput").above(0.0));
+    visit("max_abs_speed_m_s", self.max_abs_speed_m_s,
+          Field("m/s", "input sanity: |velocity| beyond is InvalidInput").above(0.0));
+    visit("max_abs_angular_rate_rad_s", self.max_abs_angular_rate_rad_s,
+          Field("rad/s", "input sanity: |rate| beyond is InvalidInput").above(0.0));
+    visit("max_limit_m_s", self.max_limit_m_s,
+          Field("m/s", "a vmax above this is absurd").above(0.0));
+    visit("max_limit_m_s2", self.max_limit_m_s2,
+          Field("m/s^2", "an amax above this is absurd").above(0.0));
+  }
 
   static PlannerParams load(config::YamlReader& reader);
   // Reads the `planner` section of a YAML file; throws config::ConfigError naming the key.

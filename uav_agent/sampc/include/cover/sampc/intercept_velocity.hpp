@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "cover/config/yaml_reader.hpp"
+#include "cover/config/param_fields.hpp"
 #include "cover/model/ugv_motion.hpp"
 
 namespace cover::sampc {
@@ -74,9 +74,37 @@ struct InterceptParams {
   // In [0, 10]. Default 1.0.
   double max_ugv_acceleration_m_s2 = 1.0;
 
-  static InterceptParams load(config::YamlReader reader);
-  // Throws config::ConfigError naming `context`.<key>.
-  void validate(const std::string& context) const;
+  // Each field once (config/param_fields.hpp): SampcParams loads, checks, tests and
+  // documents this list as its sub-section `intercept`. velocity_nodes' upper bound is the
+  // horizon, checked by SampcParams::validate.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("min_ugv_speed_m_s", self.min_ugv_speed_m_s,
+          Field("m/s", "below this forward speed (or reversing): eq. 30").at_least(0.0));
+    visit("max_ugv_yaw_rate_rad_s", self.max_ugv_yaw_rate_rad_s,
+          Field("rad/s", "above this |yaw rate|: eq. 30").above(0.0));
+    visit("max_time_to_go_s", self.max_time_to_go_s,
+          Field("s", "the time to go is capped at this").above(0.0).at_most(60.0));
+    // Up to a full circle, where the mean velocity is zero.
+    visit("max_predicted_turn_rad", self.max_predicted_turn_rad,
+          Field("rad", "... and so that the UGV turns at most this much over it")
+              .above(0.0)
+              .at_most(6.3));
+    visit("velocity_nodes", self.velocity_nodes,
+          Field("", "free nodes 1..n carrying the law; <= horizon_steps").at_least(1.0));
+    visit("solve_time_to_go", self.solve_time_to_go,
+          Field("", "solve for the earliest arrival rather than |p_xy| / s"));
+    visit("use_ugv_acceleration", self.use_ugv_acceleration,
+          Field("", "predict with the UGV's along-track acceleration too"));
+    visit("max_ugv_acceleration_m_s2", self.max_ugv_acceleration_m_s2,
+          Field("m/s^2", "|a| of the prediction clamped to this").at_least(0.0).at_most(10.0));
+    visit("fastest_straight_flight", self.fastest_straight_flight,
+          Field("", "aim at the fastest straight flight against the predicted velocity"));
+    visit("fastest_flight_max_yaw_acceleration_rad_s2",
+          self.fastest_flight_max_yaw_acceleration_rad_s2,
+          Field("rad/s^2", "... while the UGV's |yaw acceleration| is at most this").at_least(0.0));
+  }
 };
 
 // Why the law fell back to eq. 30 (none: it did not).

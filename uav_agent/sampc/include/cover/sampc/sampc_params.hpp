@@ -6,7 +6,8 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "cover/config/yaml_reader.hpp"
+#include "cover/config/param_fields.hpp"
+#include "cover/model/state.hpp"
 #include "cover/sampc/intercept_velocity.hpp"
 #include "cover/sampc/mode.hpp"
 
@@ -31,6 +32,19 @@ struct WeightSet {
   Eigen::Vector4d input;         // R   [F, wx, wy, wz], must be > 0
   double distance_gain = 0.0;    // q0 of Qd (xy-z-ref only), 1/m^4
   double distance_offset = 0.0;  // q1 of Qd (xy-z-ref only), 1/m^4
+
+  // The x-y-z-ref set (tracking_weights) is declared without the distance terms.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("position", self.position, Field("", "Qp [x, y, z]").at_least(0.0));
+    visit("velocity", self.velocity, Field("", "Qv [x, y, z]").at_least(0.0));
+    visit("attitude", self.attitude, Field("", "Qq [w, x, y, z]").at_least(0.0));
+    // R > 0 keeps every QP strictly convex in the inputs (the Riccati recursion needs it).
+    visit("input", self.input, Field("", "R [F, wx, wy, wz]").above(0.0));
+    visit("distance_gain", self.distance_gain, Field("1/m^4", "q0 of Qd").at_least(0.0));
+    visit("distance_offset", self.distance_offset, Field("1/m^4", "q1 of Qd").at_least(0.0));
+  }
 };
 
 // Parameters of SAMPC (paper sec. 4.3, eqs. 24-35). Defaults are those shipped in
@@ -138,6 +152,92 @@ struct SampcParams {
   double max_abs_position_m = 1000.0;
   double max_abs_speed_m_s = 50.0;
   double max_abs_angular_rate_rad_s = 20.0;
+
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list. Bounds against other fields are in validate().
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("mode", self.mode, Field("", "reference mode (the method)").one_of(kModes));
+    visit("horizon_steps", self.horizon_steps,
+          Field("", "N, shooting intervals").at_least(1.0).at_most(kMaxHorizon));
+    visit("step_s", self.step_s, Field("s", "dt of one shooting interval").above(0.0));
+    visit("control_period_s", self.control_period_s,
+          Field("s", "warm-start shift between calls; = mission.control_period_s").above(0.0));
+    visit("e0", self.e0, Field("", "Q decays by exp(-e0 k)").at_least(0.0));
+    visit("e1", self.e1, Field("", "Qd decays by exp(-e1 k)").at_least(0.0));
+    visit("e3", self.e3, Field("", "R decays by exp(-e3 k)").at_least(0.0));
+    visit("e2_per_m2", self.e2_per_m2,
+          Field("1/m^2", "Qd grows by exp(e2 d0) as the squared distance d0 shrinks")
+              .at_most(0.0)
+              .hint("Qd grows as the UAV nears the UGV"));
+    // The thrust bounds bracket hover (g).
+    visit("thrust_min_m_s2", self.thrust_min_m_s2,
+          Field("m/s^2", "lowest collective thrust, below hover (g)")
+              .above(0.0)
+              .below(model::kGravity_m_s2));
+    visit("thrust_max_m_s2", self.thrust_max_m_s2,
+          Field("m/s^2", "highest collective thrust, above hover (g)").above(model::kGravity_m_s2));
+    visit("roll_pitch_rate_max_rad_s", self.roll_pitch_rate_max_rad_s,
+          Field("rad/s", "|wx|, |wy| bound").above(0.0));
+    visit("yaw_rate_max_rad_s", self.yaw_rate_max_rad_s, Field("rad/s", "|wz| bound").above(0.0));
+    visit("transition_weights", self.transition_weights,
+          Field("", "xy-z-ref weight set (transition stage)"));
+    visit("tracking_weights", self.tracking_weights,
+          Field("", "x-y-z-ref weight set (initial and final stages)")
+              .without({"distance_gain", "distance_offset"}));
+    visit("tracking_feed_forward", self.tracking_feed_forward,
+          Field("", "x-y-z-ref thrust, attitude and rate references fly the plan"));
+    visit("terminal_weight_scale", self.terminal_weight_scale,
+          Field("", "node N's weights are node N's stage weights times this").above(0.0));
+    visit("yaw_hold_radius_m", self.yaw_hold_radius_m,
+          Field("m", "closer to the UGV the yaw reference is held").at_least(0.0));
+    visit("yaw_reference_rate_rad_s", self.yaw_reference_rate_rad_s,
+          Field("rad/s", "the yaw reference turns at most this fast; <= yaw_rate_max_rad_s")
+              .above(0.0));
+    visit("yaw_reference_max_lag_rad", self.yaw_reference_max_lag_rad,
+          Field("rad", "the yaw reference's start stays this close to the measured yaw")
+              .above(0.0)
+              .below(1.5));
+    visit("yaw_flip_hysteresis_rad", self.yaw_flip_hysteresis_rad,
+          Field("rad", "a yaw turn reverses only when the other way is this much shorter")
+              .at_least(0.0)
+              .below(3.14));
+    visit("custom_velocity_nodes", self.custom_velocity_nodes,
+          Field("", "free nodes 1..n carrying eq. 30; <= horizon_steps").at_least(1.0));
+    visit("eq30_acceleration_limit_m_s2", self.eq30_acceleration_limit_m_s2,
+          Field("m/s^2", "node k's eq. 30 reference within this * k * step_s of the velocity")
+              .at_least(0.0)
+              .hint("0 disables"));
+    visit("switch_smoothing_s", self.switch_smoothing_s,
+          Field("s", "input-rate cost ramp after a frame switch")
+              .at_least(0.0)
+              .at_most(10.0)
+              .hint("0 disables"));
+    visit("switch_input_rate_weight", self.switch_input_rate_weight,
+          Field("", "node 0's input-rate weight after a switch [F, wx, wy, wz]").at_least(0.0));
+    visit("transition_input_rate_weight", self.transition_input_rate_weight,
+          Field("", "node 0's input-rate weight in a transition [F, wx, wy, wz]")
+              .at_least(0.0)
+              .hint("0 disables"));
+    visit("max_sqp_iterations", self.max_sqp_iterations,
+          Field("", "SQP iterations per call").at_least(1.0));
+    visit("cold_start_iterations", self.cold_start_iterations,
+          Field("", "SQP iterations after reset()").at_least(1.0));
+    visit("frame_switch_iterations", self.frame_switch_iterations,
+          Field("", "SQP iterations after reset_frame()").at_least(1.0));
+    visit("sqp_step_tolerance", self.sqp_step_tolerance,
+          Field("", "stop iterating below this largest step component").above(0.0));
+    visit("max_qp_iterations", self.max_qp_iterations,
+          Field("", "active-set changes per QP").at_least(1.0));
+    visit("intercept", self.intercept, Field("", "the intercept method's law (mode intercept)"));
+    visit("max_abs_position_m", self.max_abs_position_m,
+          Field("m", "input sanity: |position| beyond is invalid_input").above(0.0));
+    visit("max_abs_speed_m_s", self.max_abs_speed_m_s,
+          Field("m/s", "input sanity: |velocity| beyond is invalid_input").above(0.0));
+    visit("max_abs_angular_rate_rad_s", self.max_abs_angular_rate_rad_s,
+          Field("rad/s", "input sanity: |rate| beyond is invalid_input").above(0.0));
+  }
 
   Eigen::Vector4d input_lower_bound() const;
   Eigen::Vector4d input_upper_bound() const;

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "cover/config/yaml_reader.hpp"
+#include "cover/config/param_fields.hpp"
 
 namespace cover::ugv {
 
@@ -33,6 +33,25 @@ struct ImuFilterParams {
   // the full-scale ranges of common MEMS IMUs).
   double max_specific_force_m_s2 = 160.0;
   double max_angular_velocity_rad_s = 35.0;
+
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using cover::config::Field;
+    visit("specific_force_cutoff_hz", self.specific_force_cutoff_hz,
+          Field("Hz", "first-order low-pass cut-off on the specific force").above(0.0));
+    visit("angular_velocity_cutoff_hz", self.angular_velocity_cutoff_hz,
+          Field("Hz", "first-order low-pass cut-off on the gyro").above(0.0));
+    visit("angular_acceleration_cutoff_hz", self.angular_acceleration_cutoff_hz,
+          Field("Hz", "low-pass cut-off on the differentiated gyro").above(0.0));
+    visit("max_sample_gap_s", self.max_sample_gap_s,
+          Field("s", "a longer gap between samples restarts the filter").above(0.0));
+    visit("max_specific_force_m_s2", self.max_specific_force_m_s2,
+          Field("m/s^2", "samples above this magnitude are rejected").above(0.0));
+    visit("max_angular_velocity_rad_s", self.max_angular_velocity_rad_s,
+          Field("rad/s", "gyro samples above this magnitude are rejected").above(0.0));
+  }
 
   static ImuFilterParams load(cover::config::YamlReader& reader);
   // Reads section `ugv_agent` -> `imu_filter` of an agent configuration file (the other

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "cover/config/yaml_reader.hpp"
+#include "cover/config/param_fields.hpp"
 #include "cover/model/ugv_motion.hpp"
 #include "cover/ugv/imu_filter.hpp"
 
@@ -33,6 +33,30 @@ struct SpeedEstimatorParams {
   // must stay below this, m/s: a ratio that jumps (slip, bumps, low yaw rate) is not a
   // speed.
   double imu_max_spread_m_s = 0.25;
+
+  // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
+  // the documentation walk this list.
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using cover::config::Field;
+    visit("odometry_cutoff_hz", self.odometry_cutoff_hz,
+          Field("Hz", "first-order low-pass on the wheel speed").above(0.0).at_most(1000.0));
+    visit("odometry_timeout_s", self.odometry_timeout_s,
+          Field("s", "older odometry is not used").above(0.0).at_most(10.0));
+    visit("max_speed_m_s", self.max_speed_m_s,
+          Field("m/s", "|speed| above this is no ground vehicle's").above(0.0).at_most(100.0));
+    visit("imu_min_yaw_rate_rad_s", self.imu_min_yaw_rate_rad_s,
+          Field("rad/s", "a_y / yaw_rate only while |yaw_rate| >= this").above(0.0).at_most(10.0));
+    visit("imu_speed_cutoff_hz", self.imu_speed_cutoff_hz,
+          Field("Hz", "low-pass on a_y / yaw_rate").above(0.0).at_most(100.0));
+    visit(
+        "imu_settle_s", self.imu_settle_s,
+        Field("s", "turning this long before the IMU speed is valid").at_least(0.0).at_most(60.0));
+    visit("imu_max_spread_m_s", self.imu_max_spread_m_s,
+          Field("m/s", "the spread of a_y / yaw_rate must stay below this")
+              .above(0.0)
+              .at_most(100.0));
+  }
 
   static SpeedEstimatorParams load(cover::config::YamlReader& reader);
   // Section `ugv_agent` -> `speed_estimator` of an agent configuration file.
