@@ -171,6 +171,14 @@ TEST(PlanOffThread, ANewStageSupersedesThePlanInFlight) {
   EXPECT_EQ(result.iterations, 2);
   EXPECT_FALSE(worker.take(b, result, true));  // taken once
   EXPECT_FALSE(worker.ready(b));
+  // Superseded even when its plan was done before the newer request came.
+  const std::uint64_t c = worker.request(first);
+  ASSERT_TRUE(cover::test::wait_until([&] { return worker.ready(c); }, 10000ms, 1ms));
+  const std::uint64_t d = worker.request(second);
+  EXPECT_FALSE(worker.ready(c));
+  EXPECT_FALSE(worker.take(c, result, true));
+  ASSERT_TRUE(worker.take(d, result, true));
+  EXPECT_EQ(result.iterations, 2);
 }
 
 // What a run flew, every control step: equal runs have equal traces, bit for bit.

@@ -70,7 +70,9 @@ bool PlanWorker::take(std::uint64_t id, planner::PlanResult& result, bool wait) 
     done_cv_.wait(lock, settled);
     waiting_.store(false);
   }
-  if (done_id_ != id || taken_) return false;
+  // Superseded even when its plan finished before the newer request came: nobody waits for
+  // an older plan once a newer one is asked for.
+  if (!takeable(id)) return false;
   std::swap(result, done_);
   taken_ = true;
   return true;
@@ -78,7 +80,11 @@ bool PlanWorker::take(std::uint64_t id, planner::PlanResult& result, bool wait) 
 
 bool PlanWorker::ready(std::uint64_t id) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  return done_id_ == id && !taken_;
+  return takeable(id);
+}
+
+bool PlanWorker::takeable(std::uint64_t id) const {
+  return done_id_ == id && !taken_ && requested_id_ == id;
 }
 
 void PlanWorker::run() {

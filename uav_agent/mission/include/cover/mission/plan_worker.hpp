@@ -48,7 +48,7 @@ class PlanWorker {
   // be overwritten). With `wait`, blocks until it is done. False when it is not done yet
   // (without `wait`), was superseded by a newer request, or was taken already.
   bool take(std::uint64_t id, planner::PlanResult& result, bool wait);
-  // True when request `id`'s result is done and not taken.
+  // True when request `id`'s result is done, not taken and not superseded.
   bool ready(std::uint64_t id);
   // True while a take() is blocked waiting for its result (what another thread, a test or a
   // watchdog, can see of a lockstep step held up by its plan).
@@ -56,6 +56,7 @@ class PlanWorker {
 
  private:
   void run();
+  bool takeable(std::uint64_t id) const;  // under mutex_
 
   PlanFunction plan_;
   std::mutex mutex_;
