@@ -52,11 +52,11 @@ TEST(ParamFields, LoadsChecksAndNamesTheKey) {
   EXPECT_EQ(e.gains, Eigen::Vector3d(0, 1, 2));
   EXPECT_EQ(e.name, "y");
 
-  EXPECT_EQ(error_of("period_s: 0.2"), "example.period_s: must be in (0, 0.1]");
-  EXPECT_EQ(error_of("period_s: 0"), "example.period_s: must be in (0, 0.1]");
-  EXPECT_EQ(error_of("period_s: .inf"), "example.period_s: must be in (0, 0.1]");
+  EXPECT_EQ(error_of("period_s: 0.2"), "example.period_s: must be in (0, 0.1] s");
+  EXPECT_EQ(error_of("period_s: 0"), "example.period_s: must be in (0, 0.1] s");
+  EXPECT_EQ(error_of("period_s: .inf"), "example.period_s: must be in (0, 0.1] s");
   EXPECT_EQ(error_of("count: 0"), "example.count: must be >= 1");
-  EXPECT_EQ(error_of("gains: [1, -1, 1]"), "example.gains: each must be >= 0");
+  EXPECT_EQ(error_of("gains: [1, -1, 1]"), "example.gains: each must be >= 0 1/s");
   EXPECT_NE(error_of("perod_s: 0.01").find("perod_s"), std::string::npos)
       << "a key that is no field is rejected";
   EXPECT_EQ(error_of("{period_s: 0.1, count: 1}"), "accepted");
@@ -154,9 +154,9 @@ TEST(ParamFields, RejectsWithTheDottedKey) {
             "vehicle.fallback: unknown key 'gain' (line 1)")
       << "a key the sub-section is declared without";
   EXPECT_EQ(vehicle_error("{id: 1, limits: {lag_rad: 1.5}}"),
-            "vehicle.limits.lag_rad: must be in (0, 1.5)");
+            "vehicle.limits.lag_rad: must be in (0, 1.5) rad");
   EXPECT_EQ(vehicle_error("{id: 1, limits: {gain: -1}}"),
-            "vehicle.limits.gain: must be >= 0 (0 disables)");
+            "vehicle.limits.gain: must be >= 0 1/s (0 disables)");
   EXPECT_EQ(vehicle_error("{id: 1, limits: 3}"), "vehicle.limits: expected a mapping");
   EXPECT_NE(vehicle_error("{id: 1, armed: maybe}").find("vehicle.armed: wrong type"),
             std::string::npos);

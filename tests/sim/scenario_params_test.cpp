@@ -34,9 +34,9 @@ TEST(Scenario, ShippedScenariosLoadAndScenario2WritesEachField) {
       "sim: {ugvs: [{pattern: {kind: stationary}}, "
       "{pattern: {kind: stationary}}]}\ntask_file: ../tasks/scenario2.yaml\n";
   EXPECT_EQ(error(world + "name: s\nmax_duration_s: 0"),
-            "scenario 's'.max_duration_s: must be in (0, 3600]");
+            "scenario 's'.max_duration_s: must be in (0, 3600] s");
   EXPECT_EQ(error(world + "name: s\nsettle_time_s: 61"),
-            "scenario 's'.settle_time_s: must be in [0, 60]");
+            "scenario 's'.settle_time_s: must be in [0, 60] s");
   EXPECT_EQ(error(world + "name: s\nextra_uavs: [{task_file: ../tasks/two_uavs_uav1.yaml, "
                           "start_on_ugv: -2}]"),
             "scenario 's'.extra_uavs[0].start_on_ugv: must be >= -1");

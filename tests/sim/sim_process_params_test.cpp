@@ -26,11 +26,11 @@ TEST(SimProcessParams, ShippedFileHoldsEveryFieldAtItsDefault) {
 
 TEST(SimProcessParams, ErrorsNameTheKeyAndTheBounds) {
   EXPECT_EQ(error_of("sim_process: {offboard_timeout_s: 0}"),
-            "sim_process.offboard_timeout_s: must be > 0");
+            "sim_process.offboard_timeout_s: must be > 0 s");
   EXPECT_EQ(error_of("sim_process: {loss_descent_rate_m_s: 4}"),
-            "sim_process.loss_descent_rate_m_s: must be in (0, 3]");
+            "sim_process.loss_descent_rate_m_s: must be in (0, 3] m/s");
   EXPECT_EQ(error_of("sim_process: {control_rate_hz: .inf}"),
-            "sim_process.control_rate_hz: must be in (0, 1000]");
+            "sim_process.control_rate_hz: must be in (0, 1000] Hz");
   EXPECT_NE(error_of("sim_process: {stall_timeout: 1}").find("unknown key 'stall_timeout'"),
             std::string::npos);
   EXPECT_NE(error_of("other: {}").find("missing section 'sim_process'"), std::string::npos);

@@ -79,7 +79,7 @@ TEST(WorldParams, ErrorsNameTheBadKey) {
   EXPECT_EQ(error_of("ugvs: [{pattern: {kind: circle, yaw_rate_rad_s: 0}}]"),
             "test.yaml.ugvs[0].pattern.yaw_rate_rad_s: must be non-zero on a circle, |w| >= 0.001");
   EXPECT_EQ(error_of("ugvs: [{pattern: {kind: circle, yaw_rate_rad_s: 6}}]"),
-            "test.yaml.ugvs[0].pattern.yaw_rate_rad_s: must be in [-5, 5]");
+            "test.yaml.ugvs[0].pattern.yaw_rate_rad_s: must be in [-5, 5] rad/s");
   // A pattern's bounds hold for the keys its kind does not use, too.
   EXPECT_EQ(error_of("ugvs: [{pattern: {kind: stationary, star_depth: 1.5}}]"),
             "test.yaml.ugvs[0].pattern.star_depth: must be in (0, 0.9]");
@@ -88,17 +88,17 @@ TEST(WorldParams, ErrorsNameTheBadKey) {
   EXPECT_EQ(error_of("ugvs: [{name: '', pattern: {kind: stationary}}]"),
             "test.yaml.ugvs[0].name: must not be empty");
   EXPECT_EQ(error_of("ugvs: [{deck_half_width_m: 0, pattern: {kind: stationary}}]"),
-            "test.yaml.ugvs[0].deck_half_width_m: must be in (0, 5]");
+            "test.yaml.ugvs[0].deck_half_width_m: must be in (0, 5] m");
   EXPECT_EQ(error_of("world: {physics_rate_hz: 1000}\nimu: {rate_hz: 300}\n"
                      "ugvs: [{pattern: {kind: stationary}}]"),
             "test.yaml.imu.rate_hz: must divide physics_rate_hz (1000.000000)");
   EXPECT_EQ(error_of("world: {gravity_m_s2: 30}\nugvs: [{pattern: {kind: stationary}}]"),
-            "test.yaml.world.gravity_m_s2: must be in (0, 30)");
+            "test.yaml.world.gravity_m_s2: must be in (0, 30) m/s^2");
   EXPECT_EQ(error_of("uav: {plant: {mass_true_kg: -1}}\nugvs: [{pattern: {kind: stationary}}]"),
-            "test.yaml.uav.plant.mass_true_kg: must be in [0.01, 100]");
+            "test.yaml.uav.plant.mass_true_kg: must be in [0.01, 100] kg");
   EXPECT_EQ(error_of("uav: {plant: {drag_coefficients_1_s: [0.3, 11, 0.1]}}\n"
                      "ugvs: [{pattern: {kind: stationary}}]"),
-            "test.yaml.uav.plant.drag_coefficients_1_s: each must be in [0, 10]");
+            "test.yaml.uav.plant.drag_coefficients_1_s: each must be in [0, 10] 1/s");
   EXPECT_EQ(error_of("uav: {plant: {min_thrust_m_s2: 20}}\nugvs: [{pattern: {kind: stationary}}]"),
             "test.yaml.uav.plant.max_thrust_m_s2: must exceed min_thrust_m_s2");
   EXPECT_EQ(error_of("uav: {initial: {start_on_ugv: 3}}\nugvs: [{pattern: {kind: stationary}}]"),

@@ -32,14 +32,14 @@ TEST(SimFcParams, ShippedFileHoldsEveryFieldAtItsDefault) {
 
 TEST(SimFcParams, BadValuesAndUnknownKeysAreNamed) {
   EXPECT_EQ(error_of("sim_fc: {com_of_loss_t_s: 0}"),
-            "sim_fc.com_of_loss_t_s: must be in [0.01, 60]");
+            "sim_fc.com_of_loss_t_s: must be in [0.01, 60] s");
   EXPECT_EQ(
       error_of("sim_fc: {system_id_base: 0}"),
       "sim_fc.system_id_base: must be in [1, 247] (UAVs 0..3 take system_id_base + u <= 250)");
   EXPECT_EQ(error_of("sim_fc: {ugv_system_id_base: 2}"),
             "sim_fc.ugv_system_id_base: must not overlap the UAVs' system ids");
   EXPECT_EQ(error_of("sim_fc: {attitude_rate_hz: 0}"),
-            "sim_fc.attitude_rate_hz: must be in [0.1, 1000]");
+            "sim_fc.attitude_rate_hz: must be in [0.1, 1000] Hz");
   EXPECT_EQ(error_of("sim_fc: {battery: {cell_full_v: 3.0}}"),
             "sim_fc.battery.cell_full_v: must exceed cell_empty_v");
   EXPECT_EQ(error_of("sim_fc: {battery: {cells: 11}}"), "sim_fc.battery.cells: must be in [1, 10]");

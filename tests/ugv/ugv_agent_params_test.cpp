@@ -34,13 +34,13 @@ TEST(UgvAgentParams, ErrorsNameTheDottedKey) {
   };
   EXPECT_EQ(error_of("ugv_agent: {status_rate_hz: 2}"), "accepted");
   EXPECT_EQ(error_of("ugv_agent: {imu_filter: {max_sample_gap_s: 0}}"),
-            "u.yaml.ugv_agent.imu_filter.max_sample_gap_s: must be > 0");
+            "u.yaml.ugv_agent.imu_filter.max_sample_gap_s: must be > 0 s");
   EXPECT_EQ(error_of("ugv_agent: {speed_estimator: {max_speed_m_s: 200}}"),
-            "u.yaml.ugv_agent.speed_estimator.max_speed_m_s: must be in (0, 100]");
+            "u.yaml.ugv_agent.speed_estimator.max_speed_m_s: must be in (0, 100] m/s");
   EXPECT_EQ(error_of("ugv_agent: {speed_estimator: {max_speed: 2}}"),
             "u.yaml.ugv_agent.speed_estimator: unknown key 'max_speed' (line 1)");
   EXPECT_EQ(error_of("ugv_agent: {segment_wait_s: -1}"),
-            "u.yaml.ugv_agent.segment_wait_s: must be in [0, 3600]");
+            "u.yaml.ugv_agent.segment_wait_s: must be in [0, 3600] s");
 }
 
 }  // namespace

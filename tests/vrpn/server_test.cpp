@@ -196,7 +196,7 @@ TEST(MocapServerParams, ShippedFileHoldsEveryFieldAtItsDefault) {
     }
     return std::string("accepted");
   };
-  EXPECT_EQ(error("mocap: {latency_s: 0.6}"), "mocap.latency_s: must be in [0, 0.5]");
+  EXPECT_EQ(error("mocap: {latency_s: 0.6}"), "mocap.latency_s: must be in [0, 0.5] s");
   EXPECT_NE(error("mocap: {up_axis: x}").find("test.yaml.mocap.up_axis: 'x' is not one of z, y"),
             std::string::npos);
   EXPECT_EQ(error("mocap: {ugv_prefix: uav}"),

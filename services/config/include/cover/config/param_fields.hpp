@@ -113,6 +113,8 @@ struct Field {
     return "finite";
   }
   // "must be in (0, 20]", "must be >= 1", "must be a finite number", then the hint.
+  // A bound carries the field's unit ("must be in (0, 1000] Hz"): the number alone would
+  // leave a reader guessing whether 0.1 meant seconds or milliseconds.
   std::string requirement() const {
     std::string text = "must be a finite number";
     if (std::isfinite(lower) && std::isfinite(upper)) {
@@ -120,6 +122,7 @@ struct Field {
     } else if (std::isfinite(lower) || std::isfinite(upper)) {
       text = "must be " + range();
     }
+    if (unit[0] && text != "must be a finite number") text += std::string(" ") + unit;
     return note[0] ? text + " (" + note + ")" : text;
   }
   // "px4, ardupilot".
