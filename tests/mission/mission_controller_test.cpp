@@ -51,6 +51,27 @@ TEST(MissionController, StaysIdleAndDisarmedUntilInputsArrive) {
   EXPECT_EQ(out.status.stage.state, MissionState::NotStarted);
 }
 
+// The start deck's inputs alone do not start the task: the UGV it flies to must be heard
+// too (an agent late to discover it would take off toward a frame it cannot fly in).
+TEST(MissionController, WaitsOnTheDeckUntilEveryUgvOfTheTaskIsHeard) {
+  MissionController controller = make_controller();
+  RelativeMeasurement state;
+  state.stamp_s = 0.0;
+  UgvImuMeasurement imu;
+  imu.stamp_s = 0.0;
+  controller.set_relative_state(0, state);
+  controller.set_ugv_imu(0, imu);
+  controller.set_relative_state(1, state);  // G1's state, not its IMU
+  const auto& waiting = controller.step(0.0);
+  EXPECT_FALSE(waiting.command.armed);
+  EXPECT_EQ(waiting.status.failsafe, Failsafe::WaitingForInputs);
+  EXPECT_EQ(waiting.status.stage.state, MissionState::NotStarted);
+  feed_at_rest(controller, 0.01);
+  const auto& started = controller.step(0.01);
+  EXPECT_TRUE(started.command.armed);
+  EXPECT_EQ(started.status.stage.state, MissionState::Running);
+}
+
 TEST(MissionController, StartsTheTaskAndPlansTheFirstStage) {
   MissionController controller = make_controller();
   ASSERT_EQ(controller.plan_clock(), cover::mission::PlanClock::Lockstep);

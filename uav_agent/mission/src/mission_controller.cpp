@@ -85,6 +85,15 @@ InputHealth MissionController::input_health(int ugv, double now_s) const {
   return assess_inputs(input, now_s, params_);
 }
 
+bool MissionController::task_inputs_healthy(double now_s) const {
+  for (const auto& process : machine_.task().processes) {
+    for (const int ugv : {process.from_ugv, process.to_ugv}) {
+      if (input_health(ugv, now_s).cause != FailsafeCause::None) return false;
+    }
+  }
+  return true;
+}
+
 // The failsafe ladder on the reference frame's inputs: true when it wrote this step's
 // command (emergency hover, landing, or motors off after it), false when SAMPC flies.
 bool MissionController::emergency_step(int reference, double now_s) {
@@ -150,11 +159,12 @@ const ControllerOutput& MissionController::step(double now_s) {
     return output_;
   }
 
-  // 1. Inputs of the current reference frame: without them, the failsafe ladder (or stay
-  // idle on the deck before the mission has started).
+  // 1. Inputs of the current reference frame: without them, the failsafe ladder. Before
+  // the mission has started, stay idle on the deck until every UGV the task flies between
+  // is heard: a UAV that took off toward a UGV it never heard (its agent late to discover
+  // over a lossy link) could only hover and land when the frame switched to it.
   int reference = machine_.reference_ugv();
-  if (machine_.decision().state == MissionState::NotStarted &&
-      input_health(reference, now_s).cause != FailsafeCause::None) {
+  if (machine_.decision().state == MissionState::NotStarted && !task_inputs_healthy(now_s)) {
     idle(Failsafe::WaitingForInputs);
     return output_;
   }

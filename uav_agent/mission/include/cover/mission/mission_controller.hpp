@@ -129,6 +129,8 @@ class MissionController {
   };
 
   InputHealth input_health(int ugv, double now_s) const;
+  // Every UGV of the task (each process's from and to) has fresh, valid inputs.
+  bool task_inputs_healthy(double now_s) const;
   bool emergency_step(int reference, double now_s);
   void need_plan();
   void advance_plan(double now_s);

@@ -8,7 +8,7 @@ namespace cover::mission {
 // task manager reads to know whether the UAV can take a task.
 enum class Failsafe : std::uint8_t {
   None = 0,
-  WaitingForInputs = 1,   // no valid state/IMU of the start UGV yet: stay idle, disarmed
+  WaitingForInputs = 1,   // no valid state/IMU of a UGV of the task yet: stay idle, disarmed
   EmergencyHover = 2,     // reference UGV's state or IMU lost or non-finite: level, hover thrust
   SolverError = 3,        // SAMPC returned its hover fallback
   MissionFailed = 4,      // the stage machine failed: hold position in the frame
