@@ -8,6 +8,7 @@
 #include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sim/odometry_sensor.hpp"
+#include "cover/sim/sensor_rate_field.hpp"
 #include "cover/sim/world_state.hpp"
 #include "cover/ugv/imu_filter.hpp"
 #include "cover/ugv/speed_estimator.hpp"
@@ -33,9 +34,7 @@ struct ImuSensorParams {
   static void fields(Self& self, Visit& visit) {
     using config::Field;
     visit("rate_hz", self.rate_hz,
-          Field("Hz", "sample rate; must divide world.physics_rate_hz")
-              .at_least(1.0)
-              .at_most(10000.0));
+          sensor_rate_field("sample rate; must divide world.physics_rate_hz"));
     visit("specific_force_noise_m_s2", self.specific_force_noise_m_s2,
           Field("m/s^2", "accelerometer white noise 1-sigma").at_least(0.0).at_most(10.0));
     visit("angular_velocity_noise_rad_s", self.angular_velocity_noise_rad_s,

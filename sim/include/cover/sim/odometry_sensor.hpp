@@ -8,6 +8,7 @@
 
 #include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
+#include "cover/sim/sensor_rate_field.hpp"
 #include "cover/sim/world_state.hpp"
 
 namespace cover::sim {
@@ -27,9 +28,7 @@ struct OdometrySensorParams {
   static void fields(Self& self, Visit& visit) {
     using config::Field;
     visit("rate_hz", self.rate_hz,
-          Field("Hz", "sample rate; must divide imu.rate_hz (delivered with an IMU sample)")
-              .at_least(1.0)
-              .at_most(10000.0));
+          sensor_rate_field("sample rate; must divide imu.rate_hz (delivered with an IMU sample)"));
     visit("speed_noise_m_s", self.speed_noise_m_s,
           Field("m/s", "white noise 1-sigma").at_least(0.0).at_most(1.0));
     visit("scale_error_sigma", self.scale_error_sigma,

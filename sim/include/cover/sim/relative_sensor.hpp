@@ -10,6 +10,7 @@
 #include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/model/relative_state.hpp"
+#include "cover/sim/sensor_rate_field.hpp"
 #include "cover/sim/world_state.hpp"
 
 namespace cover::sim {
@@ -32,9 +33,7 @@ struct RelativeSensorParams {
   static void fields(Self& self, Visit& visit) {
     using config::Field;
     visit("rate_hz", self.rate_hz,
-          Field("Hz", "sample rate; must divide world.physics_rate_hz")
-              .at_least(1.0)
-              .at_most(10000.0));
+          sensor_rate_field("sample rate; must divide world.physics_rate_hz"));
     visit("latency_s", self.latency_s,
           Field("s", "delay from sampling to availability, rounded to the physics step")
               .at_least(0.0)
