@@ -178,16 +178,23 @@ struct UavModel {
         0.5 * left_product_matrix(q).rightCols<3>();
   }
 
+  // The attitude does not depend on p or v (q' involves q and the rates only), so the
+  // attitude rows of every stage's sensitivity are zero in the p and v columns: the
+  // products with them run over the last kAttitudeColumns columns only.
+  static constexpr int kAttitudeColumns = kUavStateSize + kInputSize - idx::kQuaternion;
+
   void sensitivity(const UavState& x, const Input& u, double t, const Sens& dx_dz,
                    Sens& dk_dz) const {
     const Blocks b = blocks(x, u, t);
+    const auto dq_dz = dx_dz.middleRows<4>(idx::kQuaternion).rightCols<kAttitudeColumns>();
     dk_dz.middleRows<3>(idx::kPosition) = dx_dz.middleRows<3>(idx::kVelocity);
     auto dv = dk_dz.middleRows<3>(idx::kVelocity);
     dv.noalias() = b.dv_dp.lazyProduct(dx_dz.middleRows<3>(idx::kPosition));
     dv.noalias() += b.dv_dv.lazyProduct(dx_dz.middleRows<3>(idx::kVelocity));
-    dv.noalias() += b.dv_dq.lazyProduct(dx_dz.middleRows<4>(idx::kQuaternion));
-    dk_dz.middleRows<4>(idx::kQuaternion).noalias() =
-        b.dq_dq.lazyProduct(dx_dz.middleRows<4>(idx::kQuaternion));
+    dv.rightCols<kAttitudeColumns>().noalias() += b.dv_dq.lazyProduct(dq_dz);
+    auto dq = dk_dz.middleRows<4>(idx::kQuaternion);
+    dq.leftCols<idx::kQuaternion>().setZero();
+    dq.rightCols<kAttitudeColumns>().noalias() = b.dq_dq.lazyProduct(dq_dz);
     add_input_columns(x.segment<4>(idx::kQuaternion), dk_dz);
   }
 
