@@ -19,6 +19,7 @@ void fill_random_qp(RiccatiQp& qp, int horizon, double bound, unsigned seed) {
   for (int k = 0; k <= horizon; ++k) {
     QpNode& n = qp.nodes[k];
     n.A = MatrixXX::Identity() + 0.1 * random(MatrixXX());
+    n.A.bottomLeftCorner<kAttitude, kTranslational>().setZero();  // QpNode's structure
     n.B = 0.3 * random(MatrixXU());
     n.c = 0.1 * random(VectorX());
     MatrixXX lq = random(MatrixXX());

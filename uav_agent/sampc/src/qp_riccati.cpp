@@ -29,7 +29,12 @@ void RiccatiQp::factorize(const ActiveSet& active) {
   for (int k = horizon_ - 1; k >= 0; --k) {
     const QpNode& n = nodes[k];
     const MatrixXX& P = P_[k + 1];
-    PA.noalias() = P.lazyProduct(n.A);
+    // A's attitude rows are zero in the position and velocity columns (QpNode): PA's
+    // translational columns skip them. (A'PA's translational rows could too, but a dot
+    // product of 6 instead of 10 terms rounds differently and moves flight results.)
+    PA.leftCols<kTranslational>().noalias() = P.leftCols<kTranslational>().lazyProduct(
+        n.A.topLeftCorner<kTranslational, kTranslational>());
+    PA.rightCols<kAttitude>().noalias() = P.lazyProduct(n.A.rightCols<kAttitude>());
     PB.noalias() = P.lazyProduct(n.B);
     MatrixUU& R_bar = r_bar_[k];
     MatrixUX& S_bar = s_bar_[k];

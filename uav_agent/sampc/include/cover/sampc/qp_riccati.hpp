@@ -19,11 +19,16 @@ using MatrixXX = Eigen::Matrix<double, kNx, kNx>;
 using MatrixXU = Eigen::Matrix<double, kNx, kNu>;
 using MatrixUX = Eigen::Matrix<double, kNu, kNx>;
 using MatrixUU = Eigen::Matrix<double, kNu, kNu>;
+// The state's translational part (p, v) and its attitude part (q).
+inline constexpr int kTranslational = model::idx::kQuaternion;
+inline constexpr int kAttitude = kNx - kTranslational;
 
 // Data of one node k of the stage-structured QP
 //   min  sum_k 1/2 [dx;du]' [Q S'; S R] [dx;du] + q'dx + r'du   (+ terminal 1/2 dx'Q dx + q'dx)
 //   s.t. dx_{k+1} = A dx_k + B du_k + c,   dx_0 given,   lower <= du_k <= upper.
-// The terminal node uses only Q and q.
+// The terminal node uses only Q and q. A's attitude rows must be zero in the translational
+// columns (the attitude's dynamics involve the attitude and the rates only): the
+// factorisation skips that block.
 struct QpNode {
   MatrixXX A, Q;
   MatrixXU B;
