@@ -2,8 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 
 namespace cover::sampc {
 
@@ -202,6 +204,20 @@ double predicted_speed_m_s(double speed_m_s, double forward_acceleration_m_s2, d
 
 }  // namespace
 
+namespace {
+
+// fastest_speed_along on components: inlined into the Simpson loop below, which the compiler
+// then vectorises (17 square roots per call).
+inline double fastest_speed_along(double dx, double dy, double vx, double vy, double limit_m_s) {
+  // |lambda d - v| = s: lambda = d.v + sqrt(s^2 - |v|^2 + (d.v)^2), the far root.
+  const double along = dx * vx + dy * vy;
+  const double discriminant = limit_m_s * limit_m_s - (vx * vx + vy * vy) + along * along;
+  if (!(discriminant >= 0.0)) return 0.0;
+  return std::max(along + std::sqrt(discriminant), 0.0);
+}
+
+}  // namespace
+
 Eigen::Vector2d ugv_velocity_at(double speed_m_s, double yaw_rate_rad_s, double t_s,
                                 double forward_acceleration_m_s2) {
   const double speed = predicted_speed_m_s(speed_m_s, forward_acceleration_m_s2, t_s);
@@ -211,11 +227,8 @@ Eigen::Vector2d ugv_velocity_at(double speed_m_s, double yaw_rate_rad_s, double 
 
 double fastest_speed_along(const Eigen::Vector2d& direction, const Eigen::Vector2d& velocity_m_s,
                            double limit_m_s) {
-  // |lambda d - v| = s: lambda = d.v + sqrt(s^2 - |v|^2 + (d.v)^2), the far root.
-  const double along = direction.dot(velocity_m_s);
-  const double discriminant = limit_m_s * limit_m_s - velocity_m_s.squaredNorm() + along * along;
-  if (!(discriminant >= 0.0)) return 0.0;
-  return std::max(along + std::sqrt(discriminant), 0.0);
+  return fastest_speed_along(direction.x(), direction.y(), velocity_m_s.x(), velocity_m_s.y(),
+                             limit_m_s);
 }
 
 namespace {
@@ -228,24 +241,35 @@ namespace {
 double fastest_straight_distance_m(double u, double w, double a, const Eigen::Vector2d& direction,
                                    double limit, double tau) {
   constexpr int kIntervals = 16;
+  constexpr int kPoints = kIntervals + 1;
   const double h = tau / kIntervals;
   const Eigen::Rotation2Dd step(w * h);
+  // The UGV's predicted velocity at each point first (the heading is a recurrence), then
+  // the square roots in one loop the compiler vectorises, then the sum in Simpson's order.
+  std::array<double, kPoints> vx, vy, fastest;
   Eigen::Vector2d heading = Eigen::Vector2d::UnitX();
-  double sum = 0.0;
-  for (int i = 0; i <= kIntervals; ++i) {
-    const double weight = (i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
-    sum +=
-        weight * fastest_speed_along(direction, predicted_speed_m_s(u, a, i * h) * heading, limit);
+  for (int i = 0; i < kPoints; ++i) {
+    const Eigen::Vector2d velocity = predicted_speed_m_s(u, a, i * h) * heading;
+    vx[i] = velocity.x();
+    vy[i] = velocity.y();
     heading = step * heading;
+  }
+  for (int i = 0; i < kPoints; ++i) {
+    fastest[i] = fastest_speed_along(direction.x(), direction.y(), vx[i], vy[i], limit);
+  }
+  double sum = 0.0;
+  for (int i = 0; i < kPoints; ++i) {
+    const double weight = (i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+    sum += weight * fastest[i];
   }
   return sum * h / 3.0;
 }
 
-// Where the fastest straight flight of `tau` must go, and how far short of it it falls
-// (<= 0: it gets there).
+// How far short of `to_target` (the UGV's predicted position after tau, from the UAV) the
+// fastest straight flight of `tau` toward it falls (<= 0: it gets there); its direction.
 double fastest_straight_shortfall_m(double u, double w, double a, const Eigen::Vector2d& p,
-                                    double limit, double tau, Eigen::Vector2d& direction) {
-  const Eigen::Vector2d to_target = ugv_mean_velocity(u, w, tau, a) * tau - p;
+                                    const Eigen::Vector2d& to_target, double limit, double tau,
+                                    Eigen::Vector2d& direction) {
   const double length = to_target.norm();
   if (!(length > 0.0)) {
     direction = -p.normalized();
@@ -272,9 +296,24 @@ std::optional<StraightFlight> earliest_fastest_straight_flight(
   const double fastest = s + std::abs(u) + std::abs(a) * std::max(tau_max_s, 0.0);
   const double tau_lo = distance / (2.0 * fastest);
   if (!(tau_lo < tau_max_s)) return std::nullopt;
-  Eigen::Vector2d direction;
+  // Where the UGV will be after tau, from the UAV: both the bound and the shortfall need it
+  // at the same tau (one sin/cos pair each), so the last one is kept.
+  double offset_tau = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Vector2d offset;
+  const auto to_target = [&](double tau) -> const Eigen::Vector2d& {
+    if (!(tau == offset_tau)) {
+      offset = ugv_mean_velocity(u, w, tau, a) * tau - p_m;
+      offset_tau = tau;
+    }
+    return offset;
+  };
+  // The search's answer is its last feasible evaluation: its direction is kept.
+  Eigen::Vector2d feasible_direction = -p_m / distance;
   const auto shortfall = [&](double tau) {
-    return fastest_straight_shortfall_m(u, w, a, p_m, s, tau, direction);
+    Eigen::Vector2d direction;
+    const double f = fastest_straight_shortfall_m(u, w, a, p_m, to_target(tau), s, tau, direction);
+    if (f <= 0.0) feasible_direction = direction;
+    return f;
   };
   // Simpson's weights are positive and sum to tau, so no flight of tau covers more than
   // tau (s + the UGV's fastest speed by then): a target farther than that is surely not
@@ -284,14 +323,13 @@ std::optional<StraightFlight> earliest_fastest_straight_flight(
     const double fastest_ugv =
         u >= 0.0 ? std::max(u, u + a * tau) : std::abs(u) + std::abs(a) * tau;
     const double reach = tau * (s + fastest_ugv) * (1.0 + 1e-9);
-    return (ugv_mean_velocity(u, w, tau, a) * tau - p_m).norm() > reach;
+    return to_target(tau).norm() > reach;
   };
   // The grid's cell (<= 0.25 s) narrowed 2^20 times: to 2.4e-7 s.
   const std::optional<double> tau =
       first_feasible_time_s(tau_lo, tau_max_s, 20, shortfall, surely_short);
   if (!tau) return std::nullopt;
-  shortfall(*tau);  // the direction at the answer
-  return StraightFlight{*tau, direction};
+  return StraightFlight{*tau, feasible_direction};
 }
 
 namespace {
