@@ -233,6 +233,9 @@ double fastest_speed_along(const Eigen::Vector2d& direction, const Eigen::Vector
 
 namespace {
 
+// Intervals of the Simpson rule for the fastest straight flight's distance.
+constexpr int kSimpsonIntervals = 16;
+
 // How far a flight along `direction` gets in tau at the fastest speed the limit allows at
 // every instant against the UGV's predicted velocity: Simpson's rule on 16 intervals (the
 // integrand is smooth: the velocity turns by at most max_predicted_turn_rad over tau). The
@@ -240,7 +243,7 @@ namespace {
 // this runs ~50 times per node and step).
 double fastest_straight_distance_m(double u, double w, double a, const Eigen::Vector2d& direction,
                                    double limit, double tau) {
-  constexpr int kIntervals = 16;
+  constexpr int kIntervals = kSimpsonIntervals;
   constexpr int kPoints = kIntervals + 1;
   const double h = tau / kIntervals;
   const Eigen::Rotation2Dd step(w * h);
@@ -315,15 +318,28 @@ std::optional<StraightFlight> earliest_fastest_straight_flight(
     if (f <= 0.0) feasible_direction = direction;
     return f;
   };
-  // Simpson's weights are positive and sum to tau, so no flight of tau covers more than
-  // tau (s + the UGV's fastest speed by then): a target farther than that is surely not
-  // reached (the margin covers rounding), without the integral.
+  // Simpson's weights are positive and sum to tau, and the fastest speed along d against
+  // the UGV's velocity v is at most d.v + s: no flight of tau covers more than d.D(tau) +
+  // s tau, up to Simpson's error on d.v (bounded below from its fourth derivative; where a
+  // braking UGV stops within tau the kink leaves only the cruder bound tau (s + the UGV's
+  // fastest speed)). A target farther than that is surely not reached, without the
+  // integral: the same grid cell, the same answer.
+  const auto stops_within = [&](double tau) { return u >= 0.0 && a < 0.0 && u + a * tau < 0.0; };
   const auto surely_short = [&](double tau) {
     // The UGV's speed u + a t stops at 0 driving forward (predicted_speed_m_s).
     const double fastest_ugv =
         u >= 0.0 ? std::max(u, u + a * tau) : std::abs(u) + std::abs(a) * tau;
     const double reach = tau * (s + fastest_ugv) * (1.0 + 1e-9);
-    return to_target(tau).norm() > reach;
+    const Eigen::Vector2d& offset = to_target(tau);
+    const double length = offset.norm();
+    if (length > reach) return true;
+    if (stops_within(tau) || !(length > 0.0)) return false;
+    const double h = tau / kSimpsonIntervals, w4 = w * w * w * w;
+    const double simpson_error =
+        tau / 180.0 * h * h * h * h * (fastest_ugv * w4 + 4.0 * std::abs(a * w * w * w));
+    const Eigen::Vector2d ugv_travel = offset + p_m;
+    const double along = offset.dot(ugv_travel) / length;
+    return length > (along + s * tau) * (1.0 + 1e-9) + 2.0 * simpson_error + 1e-9;
   };
   // The grid's cell (<= 0.25 s) narrowed 2^20 times: to 2.4e-7 s.
   const std::optional<double> tau =
