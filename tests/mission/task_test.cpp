@@ -155,3 +155,16 @@ processes:
   task.processes[0].method = "fast";
   EXPECT_THROW(task.validate(2), ConfigError);
 }
+
+TEST(Task, NamesEachUgvOnceInTheOrderTheProcessesFlyThem) {
+  Task task;
+  EXPECT_TRUE(task.ugvs().empty());
+  task.processes.resize(3);
+  task.processes[0].from_ugv = 2;
+  task.processes[0].to_ugv = 0;
+  task.processes[1].from_ugv = 0;
+  task.processes[1].to_ugv = 2;
+  task.processes[2].from_ugv = 2;
+  task.processes[2].to_ugv = 1;
+  EXPECT_EQ(task.ugvs(), (std::vector<int>{2, 0, 1}));
+}

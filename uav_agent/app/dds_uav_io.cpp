@@ -107,12 +107,11 @@ bool DdsUavInputs::wait_for_stamps(const mission::Task& task, std::int64_t relat
     const UgvReaders& r = *readers_[ugv];
     return relative ? r.state_slot.newest_stamp_ns() : r.imu_slot.newest_stamp_ns();
   };
+  const std::vector<int> ugvs = task.ugvs();
   auto arrived = [&] {  // mutex_ held
-    for (const mission::TransitionProcess& p : task.processes) {
-      for (const int k : {p.from_ugv, p.to_ugv}) {
-        if (relative_ns >= 0 && newest(k, true) < relative_ns) return false;
-        if (imu_ns >= 0 && newest(k, false) < imu_ns) return false;
-      }
+    for (const int k : ugvs) {
+      if (relative_ns >= 0 && newest(k, true) < relative_ns) return false;
+      if (imu_ns >= 0 && newest(k, false) < imu_ns) return false;
     }
     return true;
   };

@@ -282,11 +282,7 @@ void UavAgentNode::start(const mission::Task& task, double now_s) {
     return;
   }
   spdlog::info("accepted {}", decision.reason);
-  inputs_.subscribe([&] {
-    std::vector<int> ugvs;
-    for (const auto& p : task.processes) ugvs.insert(ugvs.end(), {p.from_ugv, p.to_ugv});
-    return ugvs;
-  }());
+  inputs_.subscribe(task.ugvs());
   reported_key_.clear();
 }
 

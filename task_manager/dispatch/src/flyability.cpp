@@ -66,20 +66,10 @@ std::optional<std::string> check_process(const mission::TransitionProcess& p,
   return std::nullopt;
 }
 
-std::vector<int> ugvs_of(const mission::Task& task) {
-  std::vector<int> ugvs;
-  for (const auto& p : task.processes) {
-    for (const int k : {p.from_ugv, p.to_ugv}) {
-      if (std::find(ugvs.begin(), ugvs.end(), k) == ugvs.end()) ugvs.push_back(k);
-    }
-  }
-  return ugvs;
-}
-
 // The task's structure (chain, ids, final actions) is mission::Task::validate's; every UGV
 // the task names is allowed there, whether it is up is checked against the live view.
 std::optional<std::string> check_structure(const mission::Task& task) {
-  const std::vector<int> ugvs = ugvs_of(task);
+  const std::vector<int> ugvs = task.ugvs();
   const int ugv_count = ugvs.empty() ? 1 : *std::max_element(ugvs.begin(), ugvs.end()) + 1;
   try {
     task.validate(std::max(ugv_count, 1));
@@ -103,7 +93,7 @@ std::optional<std::string> check_uav(int uav_id, const LiveView& live, const Tas
 
 std::optional<std::string> check_ugvs(const mission::Task& task, const LiveView& live,
                                       const TaskLimits& limits, double now_s) {
-  for (const int k : ugvs_of(task)) {
+  for (const int k : task.ugvs()) {
     const std::string ugv = "UGV " + std::to_string(k) + " is not publishing its IMU";
     const auto imu = live.ugv_imu_heard_s.find(k);
     if (imu == live.ugv_imu_heard_s.end()) return ugv;
@@ -164,7 +154,7 @@ std::optional<std::string> first_unheard(const mission::Task& task, const LiveVi
     return id >= 0 && id < max_id && heard.find(id) == heard.end();
   };
   if (unheard(task.uav_id, max_uavs, live.agents)) return "UAV " + std::to_string(task.uav_id);
-  for (const int k : ugvs_of(task)) {
+  for (const int k : task.ugvs()) {
     if (unheard(k, max_ugvs, live.ugv_imu_heard_s)) return "UGV " + std::to_string(k);
   }
   return std::nullopt;

@@ -9,16 +9,6 @@ namespace cover::uav {
 
 namespace {
 
-std::vector<int> ugvs_named_by(const mission::Task& task) {
-  std::vector<int> ugvs;
-  for (const mission::TransitionProcess& p : task.processes) {
-    for (const int k : {p.from_ugv, p.to_ugv}) {
-      if (std::find(ugvs.begin(), ugvs.end(), k) == ugvs.end()) ugvs.push_back(k);
-    }
-  }
-  return ugvs;
-}
-
 std::string summary(const mission::Task& task) {
   std::string text = "task '" + task.task_id + "': " + std::to_string(task.processes.size()) +
                      " process(es), G" + std::to_string(task.processes.front().from_ugv);
@@ -64,7 +54,7 @@ TaskDecision UavLoop::give_task(const mission::Task& task) {
   } catch (const config::ConfigError& e) {
     return {false, e.what()};
   }
-  task_ugvs_ = ugvs_named_by(task);
+  task_ugvs_ = task.ugvs();
   return {true, summary(task)};
 }
 

@@ -46,6 +46,7 @@ MissionController::MissionController(Task task, int ugv_count, MissionParams mis
       machine_(validated(std::move(task), ugv_count), mission),
       sampc_((sampc.validate(), sampc)),
       process_modes_(process_modes(machine_.task(), sampc.mode)),
+      task_ugvs_(machine_.task().ugvs()),
       inputs_(static_cast<std::size_t>(ugv_count)),
       observer_(static_cast<int>(std::lround(mission.observer_window_s / mission.control_period_s)),
                 mission.control_period_s, mission.observer_time_constant_s),
@@ -86,10 +87,8 @@ InputHealth MissionController::input_health(int ugv, double now_s) const {
 }
 
 bool MissionController::task_inputs_healthy(double now_s) const {
-  for (const auto& process : machine_.task().processes) {
-    for (const int ugv : {process.from_ugv, process.to_ugv}) {
-      if (input_health(ugv, now_s).cause != FailsafeCause::None) return false;
-    }
+  for (const int ugv : task_ugvs_) {
+    if (input_health(ugv, now_s).cause != FailsafeCause::None) return false;
   }
   return true;
 }

@@ -88,6 +88,16 @@ TransitionProcess TransitionProcess::load(config::YamlReader& reader,
   return process;
 }
 
+std::vector<int> Task::ugvs() const {
+  std::vector<int> ids;
+  for (const TransitionProcess& p : processes) {
+    for (const int k : {p.from_ugv, p.to_ugv}) {
+      if (std::find(ids.begin(), ids.end(), k) == ids.end()) ids.push_back(k);
+    }
+  }
+  return ids;
+}
+
 Task Task::load(config::YamlReader& reader) {
   Task task;
   reader.optional("task_id", task.task_id);

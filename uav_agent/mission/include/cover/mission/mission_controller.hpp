@@ -154,6 +154,7 @@ class MissionController {
   sampc::Sampc sampc_;
   // The method of each process: its own, else SAMPC's configured mode.
   std::vector<sampc::Mode> process_modes_;
+  std::vector<int> task_ugvs_;  // Task::ugvs(), once: the step does not allocate
   std::vector<UgvInputs> inputs_;
   planner::Trajectory trajectory_;
   double stage_start_s_ = 0.0;

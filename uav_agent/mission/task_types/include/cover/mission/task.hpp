@@ -44,6 +44,9 @@ struct Task {
 
   static Task load(config::YamlReader& reader);
 
+  // The UGVs the task flies between, each once, in the order the processes name them.
+  std::vector<int> ugvs() const;
+
   // Throws config::ConfigError naming the process and key when the task cannot be flown:
   // no process, a UGV id outside [0, ugv_count), Gi == Gj, a chain break (process k+1 must
   // start where process k ended), a non-finite or absurd point, non-positive limits, or a
