@@ -167,6 +167,16 @@ void RiccatiQp::identify_active_set(ActiveSet& active) const {
   }
 }
 
+bool RiccatiQp::off_every_bound(const std::array<VectorU, kMaxHorizon>& du) const {
+  for (int k = 0; k < horizon_; ++k) {
+    if ((du[k].array() <= nodes[k].lower.array() + kOnBound).any() ||
+        (du[k].array() >= nodes[k].upper.array() - kOnBound).any()) {
+      return false;
+    }
+  }
+  return true;
+}
+
 bool RiccatiQp::within_bounds(const std::array<VectorU, kMaxHorizon>& du) const {
   for (int k = 0; k < horizon_; ++k) {
     if ((du[k].array() < nodes[k].lower.array() - kOnBound).any() ||
@@ -181,9 +191,13 @@ void RiccatiQp::prepare(int horizon) {
   horizon_ = horizon;
   for (int k = 0; k < horizon_; ++k) du_[k].setZero();
   simulate(VectorX::Zero(), du_, dx_);
-  compute_gradient();
   ActiveSet active{};
-  identify_active_set(active);
+  // An input can only be held where it sits on a bound: with none there (the common case)
+  // every input is free whatever the gradient, which then need not be computed.
+  if (!off_every_bound(du_)) {
+    compute_gradient();
+    identify_active_set(active);
+  }
   factorize(active);
 }
 
@@ -192,11 +206,25 @@ QpResult RiccatiQp::solve_prepared(const VectorX& dx0, int max_iterations) {
   // Start from the current plan (du = 0), feasible by construction.
   for (int k = 0; k < horizon_; ++k) du_[k].setZero();
   simulate(dx0, du_, dx_);
-  compute_gradient();
+  // The gradient decides only which inputs on a bound are held, and the Armijo search's
+  // prediction: off every bound (the common case) it is not needed at all.
+  bool gradient_current = false;
+  const auto update_gradient = [&] {
+    if (!gradient_current) compute_gradient();
+    gradient_current = true;
+  };
+  const auto find_active_set = [&](ActiveSet& active) {
+    if (off_every_bound(du_)) {
+      active = ActiveSet{};
+      return;
+    }
+    update_gradient();
+    identify_active_set(active);
+  };
   ActiveSet active{};
   while (result.iterations < max_iterations) {
     ++result.iterations;
-    identify_active_set(active);
+    find_active_set(active);
     if (active != factored_active_) {
       factorize(active);
       ++result.factorizations;
@@ -206,8 +234,8 @@ QpResult RiccatiQp::solve_prepared(const VectorX& dx0, int max_iterations) {
       // The exact minimiser on this face is feasible: optimal unless a held input wants out.
       du_ = new_du_;
       dx_ = new_dx_;
-      compute_gradient();
-      identify_active_set(active);
+      gradient_current = false;
+      find_active_set(active);
       if (active == factored_active_) {
         result.converged = true;
         return result;
@@ -215,6 +243,7 @@ QpResult RiccatiQp::solve_prepared(const VectorX& dx0, int max_iterations) {
       continue;
     }
     // Projected Armijo search along the Newton direction.
+    update_gradient();
     const double current = objective(du_, dx_);
     double step = 1.0;
     for (int halving = 0; halving <= kMaxHalvings; ++halving, step *= 0.5) {
@@ -230,7 +259,7 @@ QpResult RiccatiQp::solve_prepared(const VectorX& dx0, int max_iterations) {
     }
     du_ = trial_du_;
     dx_ = trial_dx_;
-    compute_gradient();
+    gradient_current = false;
   }
   return result;
 }

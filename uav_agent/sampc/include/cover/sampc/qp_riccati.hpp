@@ -92,6 +92,8 @@ class RiccatiQp {
   void compute_gradient();  // gradient_ = d objective / d du at (du_, dx_)
   void identify_active_set(ActiveSet& active) const;
   bool within_bounds(const std::array<VectorU, kMaxHorizon>& du) const;
+  // No input within rounding of either bound (so none can be held).
+  bool off_every_bound(const std::array<VectorU, kMaxHorizon>& du) const;
 
   int horizon_ = 0;
   ActiveSet factored_active_{};
