@@ -16,15 +16,22 @@ set(forbid_cover_wire ${flight} ${simulator})
 set(forbid_cover_sim_world_layout ${flight} ${simulator})
 set(forbid_cover_ugv_imu_source ${flight} ${simulator})
 set(forbid_cover-ugv-agent ${flight} ${simulator})
+# The parameter structs' libraries, without DDS: cover-params reads every one of them.
+set(dds cover_dds cover_time_sync_dds fastrtps ddsc)
+set(forbid_cover_sim_process_params ${dds})
+set(forbid_cover_ugv_agent_params ${dds})
+set(forbid_cover-params ${dds})
 # target -> what it must link: the walk sees transitive and private (LINK_ONLY) libraries,
 # so an empty closure cannot pass the rules above.
 set(require_cover-uav-agent cover_mission cover_sampc nlopt)
 set(require_cover-sim cover_sim cover_sim_world_layout)
 set(require_cover-ugv-agent cover_ugv_imu_source cover_sim_world_layout)
 set(require_cover-task-manager cover_task_store cover_task_types)
+set(require_cover-params cover_sampc cover_sim_process_params cover_ugv_agent_params)
 
 set(targets cover_task_types cover_task_store cover_task_dispatch cover-task-manager cover_wire
-            cover_sim_world_layout cover_ugv_imu_source cover-ugv-agent cover-uav-agent cover-sim)
+            cover_sim_world_layout cover_ugv_imu_source cover-ugv-agent cover-uav-agent cover-sim
+            cover_sim_process_params cover_ugv_agent_params cover-params)
 
 # Whether `library` (a target name, or nlopt in any spelling: NLopt::nlopt, libnlopt.so)
 # is among `items`.
