@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fstream>
 #include <thread>
 
 #include "cover/dds/dds_error.hpp"
@@ -11,8 +12,27 @@
 
 namespace cover::dds {
 
+namespace {
+
+// Linux silently grants at most net.core.rmem_max for a socket's receive buffer; a process
+// that asked for more to survive bursts should say it did not get it.
+void warn_when_receive_buffer_capped(const ParticipantOptions& options) {
+  if (options.vendor != Vendor::FastDds || options.receive_buffer_bytes <= 0) return;
+  std::ifstream file("/proc/sys/net/core/rmem_max");
+  long long cap_bytes = 0;
+  if (!(file >> cap_bytes) || cap_bytes >= options.receive_buffer_bytes) return;
+  spdlog::warn(
+      "UDP receive buffer capped at {} bytes by net.core.rmem_max ({} asked): samples arriving "
+      "while this process is descheduled may be lost; raise it with `sysctl -w "
+      "net.core.rmem_max={}`",
+      cap_bytes, options.receive_buffer_bytes, options.receive_buffer_bytes);
+}
+
+}  // namespace
+
 Participant::Participant(const ParticipantOptions& options) : options_(options) {
   options_.validate();
+  warn_when_receive_buffer_capped(options_);
   if (const auto identity = check_participant_security(options_)) {
     const std::string warning = expiry_warning(*identity, options_.security.expiry_warning_days);
     if (!warning.empty()) spdlog::warn("{}", warning);
