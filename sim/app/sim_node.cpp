@@ -164,6 +164,9 @@ bool SimNode::relative_withheld(double t_s) {
 
 void SimNode::publish_tick() {
   const double t = fleet_.time_s();
+  // The world first: the UGV agents wake on it and publish their IMU, which the UAV agent
+  // awaits, while the relative states and the tick are still being written.
+  segment_.write(fleet_.shared(), wire::to_stamp_ns(t));
   std::int64_t relative_stamp_ns = -1;
   const bool withheld = relative_withheld(t);
   if (mocap_) relative_stamp_ns = mocap_->serve(fleet_, withheld);
@@ -187,7 +190,6 @@ void SimNode::publish_tick() {
     if (slot.tick != fleet_.tick()) slot = TickPublish{fleet_.tick(), now_ns, {}};
   }
   publish_ugv_imu(t);
-  segment_.write(fleet_.shared(), wire::to_stamp_ns(t));
   msg::SimClock tick;
   tick.stamp_ns = wire::to_stamp_ns(t);
   tick.tick = fleet_.tick();
