@@ -50,6 +50,7 @@ SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>&
           {
             std::lock_guard<std::mutex> lock(mutex_);
             mailboxes_[u].trace = t;
+            if (!answered(mailboxes_[u], awaited_tick_ns_)) return;
           }
           arrived_.notify_all();
         }));
@@ -92,6 +93,7 @@ void SimNode::on_command(int u, const msg::UavCommand& command) {
         latency_ms_.push_back(static_cast<double>(now_ns - slot.second) * 1e-6);
       }
     }
+    if (!answered(box, awaited_tick_ns_)) return;
   }
   arrived_.notify_all();
 }
@@ -162,6 +164,9 @@ bool SimNode::relative_withheld(double t_s) {
 
 void SimNode::publish_tick() {
   const double t = fleet_.time_s();
+  // The world first: the UGV agents wake on it and publish their IMU, which the UAV agent
+  // awaits, while the relative states and the tick are still being written.
+  segment_.write(fleet_.shared(), wire::to_stamp_ns(t));
   std::int64_t relative_stamp_ns = -1;
   const bool withheld = relative_withheld(t);
   if (mocap_) relative_stamp_ns = mocap_->serve(fleet_, withheld);
@@ -185,7 +190,6 @@ void SimNode::publish_tick() {
     if (slot.tick != fleet_.tick()) slot = TickPublish{fleet_.tick(), now_ns, {}};
   }
   publish_ugv_imu(t);
-  segment_.write(fleet_.shared(), wire::to_stamp_ns(t));
   msg::SimClock tick;
   tick.stamp_ns = wire::to_stamp_ns(t);
   tick.tick = fleet_.tick();
@@ -206,6 +210,7 @@ bool SimNode::answered(const Mailbox& box, std::int64_t tick_ns) const {
 
 SimNode::TickWait SimNode::wait_for_commands(std::int64_t tick_ns) {
   std::unique_lock<std::mutex> lock(mutex_);
+  awaited_tick_ns_ = tick_ns;
   // The first tick is still start-up: an agent's reader may match the clock writer a
   // while after the writer matched it (discovery is not symmetric in time).
   const double timeout_s = fleet_.tick() == 0 ? params_.startup_timeout_s : params_.stall_timeout_s;

@@ -136,6 +136,9 @@ class SimNode {
   mutable std::mutex mutex_;
   std::condition_variable arrived_;
   std::vector<Mailbox> mailboxes_;
+  // Lockstep: the tick wait_for_commands waits on (under mutex_). A command or trace wakes
+  // it only when it completes that tick's answer: one wake-up per tick, not one per sample.
+  std::int64_t awaited_tick_ns_ = -1;
   // Publish time (monotonic ns) of the relative states of recent ticks, by stamp.
   std::array<std::pair<std::int64_t, std::int64_t>, 256> published_{};
   std::vector<double> latency_ms_;

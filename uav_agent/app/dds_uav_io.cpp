@@ -41,19 +41,27 @@ void DdsUavInputs::subscribe(const std::vector<int>& ugvs) {
     const auto imu_topic = dds::topics::ugv_imu(ugv);
     r->state_topic = state_topic.name();
     r->imu_topic = imu_topic.name();
+    // The waiter is notified after the lock is released: woken under it, it would block on
+    // the mutex at once, a second context switch.
     r->state =
         participant_.make_reader(state_topic, [this, slots, ugv](const msg::RelativeState& s) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          const auto why = wire::check_content(s, uav_id_, ugv, limits_);
-          if (why) return reject(*why, slots->state_topic);
-          slots->state_slot.offer(s);
+          {
+            std::lock_guard<std::mutex> lock(mutex_);
+            const auto why = wire::check_content(s, uav_id_, ugv, limits_);
+            if (why) return reject(*why, slots->state_topic);
+            slots->state_slot.offer(s);
+            if (!completes_wait()) return;
+          }
           arrived_.notify_all();
         });
     r->imu = participant_.make_reader(imu_topic, [this, slots, ugv](const msg::UgvImu& s) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      const auto why = wire::check_content(s, ugv, limits_);
-      if (why) return reject(*why, slots->imu_topic);
-      slots->imu_slot.offer(s);
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        const auto why = wire::check_content(s, ugv, limits_);
+        if (why) return reject(*why, slots->imu_topic);
+        slots->imu_slot.offer(s);
+        if (!completes_wait()) return;
+      }
       arrived_.notify_all();
     });
     std::lock_guard<std::mutex> lock(mutex_);
@@ -102,21 +110,26 @@ std::int64_t DdsUavInputs::imu_stamp_ns(int ugv) const {
 bool DdsUavInputs::wait_for_stamps(const mission::Task& task, std::int64_t relative_ns,
                                    std::int64_t imu_ns,
                                    std::chrono::steady_clock::time_point deadline) const {
+  const std::vector<int> ugvs = task.ugvs();
+  const Awaited awaited{&ugvs, relative_ns, imu_ns};
+  std::unique_lock<std::mutex> lock(mutex_);
+  awaited_ = awaited;
+  const bool arrived = arrived_.wait_until(lock, deadline, [&] { return stamps_arrived(awaited); });
+  awaited_.reset();
+  return arrived;
+}
+
+bool DdsUavInputs::stamps_arrived(const Awaited& awaited) const {
   auto newest = [&](int ugv, bool relative) -> std::int64_t {
     if (ugv < 0 || ugv >= static_cast<int>(readers_.size()) || !readers_[ugv]) return -1;
     const UgvReaders& r = *readers_[ugv];
     return relative ? r.state_slot.newest_stamp_ns() : r.imu_slot.newest_stamp_ns();
   };
-  const std::vector<int> ugvs = task.ugvs();
-  auto arrived = [&] {  // mutex_ held
-    for (const int k : ugvs) {
-      if (relative_ns >= 0 && newest(k, true) < relative_ns) return false;
-      if (imu_ns >= 0 && newest(k, false) < imu_ns) return false;
-    }
-    return true;
-  };
-  std::unique_lock<std::mutex> lock(mutex_);
-  return arrived_.wait_until(lock, deadline, arrived);
+  for (const int k : *awaited.ugvs) {
+    if (awaited.relative_ns >= 0 && newest(k, true) < awaited.relative_ns) return false;
+    if (awaited.imu_ns >= 0 && newest(k, false) < awaited.imu_ns) return false;
+  }
+  return true;
 }
 
 wire::RejectionCounts DdsUavInputs::rejections() const {

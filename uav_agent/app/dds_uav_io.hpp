@@ -61,15 +61,27 @@ class DdsUavInputs : public uav::UavInputs {
     dds::Reader<msg::RelativeState> state;  // last: their callbacks fill the slots
     dds::Reader<msg::UgvImu> imu;
   };
+  // What wait_for_stamps waits for, while it waits.
+  struct Awaited {
+    const std::vector<int>* ugvs = nullptr;  // the task's
+    std::int64_t relative_ns = -1;
+    std::int64_t imu_ns = -1;
+  };
   template <typename T>
   std::optional<T> take_accepted(wire::SampleSlot<T>& slot, const std::string& topic);
   void reject(wire::Rejection reason, const std::string& topic);  // mutex_ held
+  bool stamps_arrived(const Awaited& awaited) const;              // mutex_ held
+  // After a sample was offered (mutex_ held): whether it completes what a waiter awaits. The
+  // waiter is woken once per tick, not once per sample (4 IMU samples and 2 relative states
+  // in a lockstep tick of Scenario 2), each wake-up a context switch for nothing.
+  bool completes_wait() const { return awaited_ && stamps_arrived(*awaited_); }
 
   dds::Participant& participant_;
   std::uint32_t uav_id_;
   wire::IntakeLimits limits_;
   mutable std::mutex mutex_;                 // the slots, the clock and the counts
-  mutable std::condition_variable arrived_;  // a sample was offered to a slot
+  mutable std::condition_variable arrived_;  // what wait_for_stamps awaits has arrived
+  mutable std::optional<Awaited> awaited_;
   std::optional<double> now_s_;
   wire::RejectionCounts rejections_;
   std::vector<std::unique_ptr<UgvReaders>> readers_;  // by UGV id; null: not subscribed

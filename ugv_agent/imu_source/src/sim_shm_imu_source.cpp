@@ -48,15 +48,14 @@ std::size_t SimShmImuSource::read(std::vector<ImuSample>& out, std::chrono::mill
   out.clear();
   const auto start = std::chrono::steady_clock::now();
   const auto give_up = start + timeout;
-  auto next_liveness_check = start;
   while (status_.state == ImuSourceState::Ok) {
     if (take_new_samples(out)) return out.size();
     const auto now = std::chrono::steady_clock::now();
-    if (now >= next_liveness_check) {
+    if (now >= next_liveness_check_) {
       check_writer();
       // The writer's last samples may have landed just before it went.
       if (status_.state != ImuSourceState::Ok) take_new_samples(out);
-      next_liveness_check = now + kLivenessInterval;
+      next_liveness_check_ = now + kLivenessInterval;
       continue;
     }
     if (now >= give_up) break;
@@ -64,7 +63,7 @@ std::size_t SimShmImuSource::read(std::vector<ImuSample>& out, std::chrono::mill
     // or the timeout. A write that completed since the look above is read first.
     const std::uint64_t sequence = reader_.sequence();
     if (sequence == seen_sequence_ || sequence % 2 == 1) {
-      reader_.wait_for_write(sequence, std::min(give_up, next_liveness_check) - now);
+      reader_.wait_for_write(sequence, std::min(give_up, next_liveness_check_) - now);
     }
   }
   return out.size();

@@ -5,7 +5,6 @@
 #include <dds/dds.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -88,14 +87,19 @@ dds_qos_t* make_qos(const QosProfile& profile) {
   dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, profile.history_depth);
   dds_qset_resource_limits(qos, profile.max_instances * profile.history_depth,
                            profile.max_instances, profile.history_depth);
-  if (profile.deadline_s > 0) {
-    dds_qset_deadline(qos, static_cast<dds_duration_t>(profile.deadline_s * 1e9));
-  }
+  // No requested deadline: the reader counts its misses itself (Reader::deadline_misses),
+  // and a reader requesting one would not match a Fast DDS writer, which offers none
+  // (fastdds_backend.cpp).
   return qos;
 }
 
 dds_qos_t* make_writer_qos(const QosProfile& profile) {
   dds_qos_t* qos = make_qos(profile);
+  // Offered on the wire, where it costs nothing measurable: a reader that requests a deadline
+  // (a build before readers counted their own misses, another tool) still matches.
+  if (profile.deadline_s > 0) {
+    dds_qset_deadline(qos, static_cast<dds_duration_t>(profile.deadline_s * 1e9));
+  }
   // Cyclone keeps transient-local data for late joiners by the durability-service history
   // (default keep-last 1), not the writer's history: give late joiners the full depth.
   if (profile.durability == Durability::TransientLocal) {
@@ -203,7 +207,6 @@ class CycloneReader final : public ReaderBackend {
     dds_qos_t* qos = make_qos(profile);
     dds_listener_t* listener = dds_create_listener(this);
     dds_lset_data_available(listener, &CycloneReader::on_data_available);
-    dds_lset_requested_deadline_missed(listener, &CycloneReader::on_deadline_missed);
     reader_ = dds_create_reader(core_->participant(), core_->topic(type, topic), qos, listener);
     dds_delete_listener(listener);
     dds_delete_qos(qos);
@@ -220,15 +223,10 @@ class CycloneReader final : public ReaderBackend {
     dds_get_subscription_matched_status(reader_, &status);
     return status.current_count;
   }
-  std::uint64_t deadline_misses() const override { return deadline_misses_.load(); }
 
  private:
   static void on_data_available(dds_entity_t reader, void* self) {
     static_cast<CycloneReader*>(self)->take_all(reader);
-  }
-  static void on_deadline_missed(dds_entity_t, const dds_requested_deadline_missed_status_t,
-                                 void* self) {
-    ++static_cast<CycloneReader*>(self)->deadline_misses_;
   }
   void take_all(dds_entity_t reader) {
     void* samples[1] = {nullptr};
@@ -249,7 +247,6 @@ class CycloneReader final : public ReaderBackend {
   SampleHandler handler_;
   // Owned from the start, so a constructor that throws (topic or reader creation) frees it.
   std::unique_ptr<void, void (*)(void*)> neutral_sample_;
-  std::atomic<std::uint64_t> deadline_misses_{0};
   dds_entity_t reader_ = 0;
 };
 

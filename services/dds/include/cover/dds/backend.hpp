@@ -32,8 +32,6 @@ class ReaderBackend {
  public:
   virtual ~ReaderBackend() = default;
   virtual std::size_t matched_writers() const = 0;
-  // Deadline periods (QosProfile::deadline_s) that passed without a sample.
-  virtual std::uint64_t deadline_misses() const = 0;
 };
 
 class ParticipantBackend {

@@ -49,7 +49,8 @@ class Participant {
   template <typename T>
   Reader<T> make_reader(const Topic<T>& topic, typename Reader<T>::Callback on_sample) {
     check(topic);
-    auto state = std::make_shared<typename Reader<T>::State>(std::move(on_sample));
+    auto state =
+        std::make_shared<typename Reader<T>::State>(std::move(on_sample), topic.qos().deadline_s);
     auto handler = [state](const void* sample) { state->deliver(*static_cast<const T*>(sample)); };
     return Reader<T>(backend_->create_reader(type_support<T>(), topic.name(), topic.qos(), handler),
                      state);

@@ -30,7 +30,10 @@ class Reader {
   // Shared between the reader and the vendor's receive thread.
   class State {
    public:
-    explicit State(Callback callback) : callback_(std::move(callback)) {}
+    // `deadline_s` > 0: the expected longest period between samples (QosProfile::deadline_s).
+    explicit State(Callback callback, double deadline_s = 0.0)
+        : callback_(std::move(callback)),
+          deadline_ns_(static_cast<std::int64_t>(deadline_s * 1e9)) {}
     // The callback runs first: a thread woken by the count (wait_beyond) must find what the
     // callback did with the sample. Woken first, the UAV agent would step on the previous
     // relative state while its callback still files this one: a period of extra latency.
@@ -38,7 +41,9 @@ class Reader {
       if (callback_) callback_(sample);
       {
         std::lock_guard<std::mutex> lock(mutex_);
-        latest_ = Received{sample, cover::clock::monotonic_ns()};
+        const std::int64_t now_ns = cover::clock::monotonic_ns();
+        closed_misses_ += periods_missed(now_ns);
+        latest_ = Received{sample, now_ns};
         ++count_;
       }
       changed_.notify_all();
@@ -51,6 +56,14 @@ class Reader {
       std::lock_guard<std::mutex> lock(mutex_);
       return count_;
     }
+    // Deadline periods that passed without a sample since the first one: a gap of n whole
+    // periods counts n, as the vendors' requested-deadline status does. Counted here, not by
+    // the vendor: Fast DDS reschedules a deadline timer on every sample received and written,
+    // a wake-up of its event thread each (see fastdds_backend.cpp).
+    std::uint64_t deadline_misses() const {
+      std::lock_guard<std::mutex> lock(mutex_);
+      return closed_misses_ + periods_missed(cover::clock::monotonic_ns());
+    }
     // Waits until more than `seen` samples arrived; false on timeout.
     bool wait_beyond(std::uint64_t seen, std::chrono::milliseconds timeout) {
       std::unique_lock<std::mutex> lock(mutex_);
@@ -58,11 +71,18 @@ class Reader {
     }
 
    private:
+    std::uint64_t periods_missed(std::int64_t now_ns) const {  // mutex_ held
+      if (deadline_ns_ <= 0 || !latest_) return 0;
+      return static_cast<std::uint64_t>((now_ns - latest_->received_monotonic_ns) / deadline_ns_);
+    }
+
     Callback callback_;
+    std::int64_t deadline_ns_ = 0;
     mutable std::mutex mutex_;
     std::condition_variable changed_;
     std::optional<Received> latest_;
     std::uint64_t count_ = 0;
+    std::uint64_t closed_misses_ = 0;  // of the gaps before the latest sample
   };
 
   Reader() = default;
@@ -79,7 +99,9 @@ class Reader {
   }
 
   std::size_t matched_writers() const { return backend_ ? backend_->matched_writers() : 0; }
-  std::uint64_t deadline_misses() const { return backend_ ? backend_->deadline_misses() : 0; }
+  // Deadline periods (the topic's QosProfile::deadline_s) that passed without a sample,
+  // counted from the first sample; 0 for a topic without a deadline.
+  std::uint64_t deadline_misses() const { return state_ ? state_->deadline_misses() : 0; }
   bool wait_for_writers(std::size_t count, std::chrono::milliseconds timeout) const {
     return wait_until_matched([this] { return matched_writers(); }, count, timeout);
   }

@@ -36,8 +36,7 @@ class Topic {
   }
 
   // The same topic without a deadline: for a reader that does not watch the sample period
-  // (the flight recorder), which spares a timer rescheduled on every sample. A reader
-  // without a deadline matches every writer (deadline is requested <= offered).
+  // (the flight recorder); its deadline_misses() stays 0.
   Topic without_deadline() const {
     Topic relaxed = *this;
     relaxed.qos_.deadline_s = 0.0;

@@ -49,6 +49,9 @@ class SimShmImuSource : public ImuSource {
   // When the segment was first seen closed while its writer still ran (monotonic).
   std::optional<std::chrono::steady_clock::time_point> closed_since_;
   std::uint64_t seen_sequence_ = 0;
+  // Kept across reads: a lockstep agent reads once per tick, and a check per read (two
+  // system calls) would come every tick instead of every kLivenessInterval.
+  std::chrono::steady_clock::time_point next_liveness_check_{};
   std::uint64_t consumed_ = 0;  // ring samples delivered (or counted lost) so far
   bool attached_ = false;       // the first read has placed consumed_
   ImuSourceStatus status_;
