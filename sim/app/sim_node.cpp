@@ -86,12 +86,7 @@ void SimNode::on_command(int u, const msg::UavCommand& command) {
     box.command = command;
     box.command_received_ns = now_ns;
     if (options_.clock == SimClockMode::Realtime) {
-      const auto& slot =
-          published_[static_cast<std::size_t>(command.measurement_stamp_ns / 1'000'000) %
-                     published_.size()];
-      if (slot.first == command.measurement_stamp_ns && command.measurement_stamp_ns > 0) {
-        latency_ms_.push_back(static_cast<double>(now_ns - slot.second) * 1e-6);
-      }
+      latency_.answered(u, command.measurement_stamp_ns, now_ns);
     }
     if (!answered(box, awaited_tick_ns_)) return;
   }
@@ -184,8 +179,7 @@ void SimNode::publish_tick() {
   if (relative_stamp_ns >= 0) {
     const std::int64_t now_ns = clock::monotonic_ns();
     std::lock_guard<std::mutex> lock(mutex_);
-    published_[static_cast<std::size_t>(relative_stamp_ns / 1'000'000) % published_.size()] = {
-        relative_stamp_ns, now_ns};
+    latency_.published(relative_stamp_ns, now_ns);
     TickPublish& slot = tick_published_[fleet_.tick() % tick_published_.size()];
     if (slot.tick != fleet_.tick()) slot = TickPublish{fleet_.tick(), now_ns, {}};
   }

@@ -15,6 +15,7 @@
 #include "cover/dds/topics.hpp"
 #include "cover/shm/seqlock_writer.hpp"
 #include "fleet.hpp"
+#include "latency/sensor_latency.hpp"
 #include "mocap_link.hpp"
 #include "ugv_imu_links.hpp"
 
@@ -75,7 +76,9 @@ class SimNode {
   // thread taking off the socket the first SET_ATTITUDE_TARGET whose time_boot_ms is
   // nearest tick k's time (the whole path agent -> DDS -> bridge -> MAVLink), while the
   // agent's task runs.
-  const std::vector<double>& latency_ms() const { return latency_ms_; }
+  const std::vector<double>& latency_ms() const {
+    return uses_autopilots() ? autopilot_latency_ms_ : latency_.samples_ms();
+  }
   // What UAV `uav`'s link saw (autopilots only, after run()).
   const AutopilotLinks* autopilot_links() const { return autopilot_links_.get(); }
   double wall_time_s() const { return wall_time_s_; }
@@ -139,9 +142,8 @@ class SimNode {
   // Lockstep: the tick wait_for_commands waits on (under mutex_). A command or trace wakes
   // it only when it completes that tick's answer: one wake-up per tick, not one per sample.
   std::int64_t awaited_tick_ns_ = -1;
-  // Publish time (monotonic ns) of the relative states of recent ticks, by stamp.
-  std::array<std::pair<std::int64_t, std::int64_t>, 256> published_{};
-  std::vector<double> latency_ms_;
+  SensorLatency latency_;                     // the direct path's
+  std::vector<double> autopilot_latency_ms_;  // the path through the bridges
   double wall_time_s_ = 0.0;
   std::uint64_t republished_ticks_ = 0;
   bool in_relative_gap_ = false;

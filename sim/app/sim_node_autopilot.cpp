@@ -73,7 +73,7 @@ void SimNode::note_setpoint_locked(int u, std::uint32_t time_boot_ms, std::int64
   TickPublish& slot = tick_published_[tick % tick_published_.size()];
   if (slot.tick != tick || slot.answered[static_cast<std::size_t>(u)]) return;
   slot.answered[static_cast<std::size_t>(u)] = true;
-  latency_ms_.push_back(static_cast<double>(received_ns - slot.published_ns) * 1e-6);
+  autopilot_latency_ms_.push_back(static_cast<double>(received_ns - slot.published_ns) * 1e-6);
 }
 
 void SimNode::apply_autopilots() {

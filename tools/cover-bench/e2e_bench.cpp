@@ -3,11 +3,11 @@
 //            stamps each relative state it publishes; the command computed from it names
 //            that stamp when it comes back), per DDS mix, plain and with DDS-Security
 //            (secure: every process authenticated, its data encrypted; one-vendor mixes
-//            only, docs/security.md); beside each plain mix, its floor measured in the same
-//            run: round trips between two bare processes on the simulator's and the UAV
-//            agent's vendors, paced at 100 Hz, out on the relative state's QoS and back on
-//            the command's (the two hops of the path with no work at either end), and the
-//            latency as a multiple of it;
+//            only, docs/security.md); beside each plain mix, its floor measured during that
+//            run (concurrent_floor.hpp says why): round trips between two bare processes on the
+//            simulator's and the UAV agent's vendors, paced at 100 Hz, out on the relative state's
+//            QoS and back on the command's (the two hops of the path with no work at either end),
+//            and the latency as a multiple of it;
 //  lockstep: Scenarios 2 and 4 in lockstep, simulated seconds per wall second.
 #include <unistd.h>
 
@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -23,8 +24,9 @@
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
 #include "bench_stats.hpp"
+#include "concurrent_floor.hpp"
+#include "cover/launch/launch_file.hpp"
 #include "cover/process/child_process.hpp"
-#include "dds_ping_pong.hpp"
 #include "launch_run.hpp"
 #include "vendor_mix.hpp"
 
@@ -58,20 +60,27 @@ std::string make_fleet(const char* vendor) {
   return dir.string();
 }
 
-// The SCHED_FIFO priority the launcher reports `name` ran at (0: normal scheduling).
-int realtime_priority_of(const nlohmann::json& report, const std::string& name) {
-  if (!report.is_object() || !report.contains("processes")) return 0;
-  for (const auto& process : report["processes"]) {
-    if (process.value("name", "") == name) return process.value("realtime_priority", 0);
+// The floor's pace: the simulator publishes a relative state per control period (100 Hz in
+// the scenario files' mission.yaml).
+constexpr double kFloorRateHz = 100.0;
+
+// The SCHED_FIFO priority the launch file asks for `process` (0: normal scheduling).
+int realtime_priority_in(const cover::launch::LaunchFile& file, const std::string& process) {
+  for (const auto& spec : file.processes) {
+    if (spec.name == process) return spec.realtime_priority;
   }
   return 0;
 }
 
-// The mix's floor: `count` paced round trips, simulator vendor -> UAV agent vendor -> back,
-// each end scheduled as the run's simulator and UAV agent were (`report`): a floor at normal
-// scheduling beside a run at SCHED_FIFO would compare the schedulers, not the path.
-nlohmann::json measure_floor(const cover::bench::VendorMix& mix, const nlohmann::json& report,
-                             int domain, int count) {
+// The mix's floor, measured while its run flies: paced round trips simulator vendor -> UAV
+// agent vendor -> back, on the relative state's and the command's QoS, each end scheduled
+// as the launch file schedules the simulator and the UAV agent (a floor at normal
+// scheduling beside a run at SCHED_FIFO would compare the schedulers, not the path).
+std::unique_ptr<cover::bench::ConcurrentFloor> start_floor(const cover::bench::VendorMix& mix,
+                                                           const std::string& launch_name,
+                                                           int domain) {
+  const auto file =
+      cover::launch::LaunchFile::load_file(cover::bench::launch_file_path(launch_name));
   cover::bench::PingPongOptions options;
   options.ping_vendor = cover::dds::parse_vendor(mix.sim);
   options.pong_vendor = cover::dds::parse_vendor(mix.uav);
@@ -79,23 +88,12 @@ nlohmann::json measure_floor(const cover::bench::VendorMix& mix, const nlohmann:
   options.prefix = "cover_bench/e2e_floor_" + std::to_string(getpid());
   options.ping_qos = cover::dds::sensor_qos();
   options.pong_qos = cover::dds::command_qos();
-  options.ping_realtime_priority = realtime_priority_of(report, "sim");
-  options.pong_realtime_priority = realtime_priority_of(report, "uav0");
-  try {
-    cover::bench::PingPong ping_pong(options);
-    ping_pong.run(50, 100.0);  // warm-up at the same pace
-    const auto trips = ping_pong.run(count, 100.0);
-    return {{"p50_ms", cover::bench::percentile(trips.round_trip_us, 0.50) / 1000.0},
-            {"p99_ms", cover::bench::percentile(trips.round_trip_us, 0.99) / 1000.0},
-            {"samples", trips.received},
-            {"lost", trips.sent - trips.received},
-            {"ping_realtime_priority", ping_pong.ping_realtime_priority()},
-            {"pong_realtime_priority", ping_pong.pong_realtime_priority()}};
-  } catch (const std::exception& e) {
-    std::cerr << "cover-bench e2e: the floor of " << mix.name << " was not measured: " << e.what()
-              << "\n";
-    return nullptr;
-  }
+  options.ping_realtime_priority = realtime_priority_in(file, "sim");
+  options.pong_realtime_priority = realtime_priority_in(file, "uav0");
+  auto floor = std::make_unique<cover::bench::ConcurrentFloor>(options, kFloorRateHz);
+  if (floor->failed())
+    std::cerr << "cover-bench e2e: the floor of " << mix.name << " did not start\n";
+  return floor;
 }
 
 double ratio(double value, const nlohmann::json& floor, const char* key) {
@@ -119,10 +117,9 @@ int run(const std::vector<std::string>& args) {
                  "the UAV agents' method: " + cover::bench::joined_method_names(" | ") +
                      " (default: sampc.yaml's mode)")
       ->check(CLI::IsMember(cover::bench::method_names()));
-  int floor_count = 1000;
-  app.add_option("--floor-count", floor_count,
-                 "paced round trips measuring each plain mix's floor (0: none)")
-      ->capture_default_str();
+  bool with_floor = true;
+  app.add_flag("!--no-floor", with_floor,
+               "skip each plain mix's floor (paced round trips measured during its run)");
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
   // The launch files pass {method} to every UAV agent as --method.
   const std::vector<std::string> method_flags =
@@ -138,9 +135,10 @@ int run(const std::vector<std::string>& args) {
       flags.insert(flags.end(), method_flags.begin(), method_flags.end());
       const std::string fleet = secure ? make_fleet(mix.sim) : "";
       if (!fleet.empty()) flags.insert(flags.end(), {"--security", fleet});
+      auto running_floor =
+          secure || !with_floor ? nullptr : start_floor(mix, "scenario2", domain++);
       const nlohmann::json r = cover::bench::run_launch("scenario2", flags, domain++, "e2e");
-      const nlohmann::json floor =
-          secure || floor_count <= 0 ? nullptr : measure_floor(mix, r, domain++, floor_count);
+      const nlohmann::json floor = running_floor ? running_floor->stop() : nullptr;
       if (!fleet.empty()) std::filesystem::remove_all(fleet);
       const nlohmann::json latency =
           r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();

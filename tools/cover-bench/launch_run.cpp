@@ -40,10 +40,14 @@ LaunchOutcome run_launcher(const LaunchRequest& request, const std::string& log_
   return outcome;
 }
 
+std::string launch_file_path(const std::string& launch_name) {
+  return cover::config::default_config_dir() + "/launch/" + launch_name + ".yaml";
+}
+
 nlohmann::json run_launch(const std::string& launch_name, const std::vector<std::string>& flags,
                           int domain, const std::string& who, std::chrono::minutes timeout) {
   LaunchRequest request;
-  request.launch_file = cover::config::default_config_dir() + "/launch/" + launch_name + ".yaml";
+  request.launch_file = launch_file_path(launch_name);
   request.domain = domain;
   request.run_dir =
       std::filesystem::temp_directory_path() /

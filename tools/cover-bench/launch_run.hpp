@@ -33,6 +33,9 @@ std::vector<std::string> launch_argv(const LaunchRequest& request);
 LaunchOutcome run_launcher(const LaunchRequest& request, const std::string& log_file,
                            std::chrono::milliseconds timeout);
 
+// The launch file config/launch/<launch_name>.yaml.
+std::string launch_file_path(const std::string& launch_name);
+
 // One mission through cover-launch (`--json`): the launch file under config/launch/, the
 // extra flags, one DDS domain. Returns the launcher's JSON report, or an empty object when
 // it gave none. The launcher's log and run directory are removed after a successful run
