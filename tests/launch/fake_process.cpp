@@ -83,6 +83,15 @@ void print_environment(int argc, char** argv) {
     pthread_getschedparam(pthread_self(), &policy, &param);
     std::printf("thread sched: %s %d\n", policy == SCHED_FIFO ? "fifo" : "other",
                 param.sched_priority);
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    std::string cpus;
+    if (pthread_getaffinity_np(pthread_self(), sizeof set, &set) == 0) {
+      for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
+        if (CPU_ISSET(cpu, &set)) cpus += (cpus.empty() ? "" : ",") + std::to_string(cpu);
+      }
+    }
+    std::printf("thread cpus: %s\n", cpus.c_str());
   }).join();
   for (int i = 1; i < argc; ++i) std::printf("arg: %s\n", argv[i]);
   // Descriptors beyond stdin, stdout and stderr that the launcher let through.

@@ -346,5 +346,25 @@ TEST(LaunchFile, RealtimePriority) {
   }
 }
 
+TEST(LaunchFile, CpuAffinity) {
+  const auto file = parse(
+      "launch: {name: a, processes: [{name: p, executable: x, ends_run: true, "
+      "cpu_affinity: [1, 0]}, {name: q, executable: x}]}");
+  EXPECT_EQ(file.processes[0].cpu_affinity, (std::vector<int>{1, 0}));
+  EXPECT_TRUE(file.processes[1].cpu_affinity.empty()) << "any CPU unless asked";
+  const std::pair<const char*, const char*> bad[] = {{"[-1]", "CPU -1"},
+                                                     {"[1024]", "CPU 1024"},
+                                                     {"[1, 1]", "CPU 1 listed twice"},
+                                                     {"[x]", "cpu_affinity"},
+                                                     {"1", "cpu_affinity"}};
+  for (const auto& [value, reason] : bad) {
+    const std::string error =
+        error_of(std::string("launch: {name: a, processes: [{name: p, executable: x, ends_run: "
+                             "true, cpu_affinity: ") +
+                 value + "}]}");
+    EXPECT_NE(error.find(reason), std::string::npos) << value << ": " << error;
+  }
+}
+
 }  // namespace
 }  // namespace cover::launch

@@ -5,6 +5,8 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <thread>
+
 #include "cover/test/process_alive.hpp"
 #include "launch_test_support.hpp"
 
@@ -489,6 +491,48 @@ launch:
   EXPECT_TRUE(contains(log_of("uav0"), "thread sched: other 0\n")) << log_of("uav0");
   EXPECT_TRUE(contains(lockstep.err, "uav0: realtime_priority 12 not applied")) << lockstep.err;
   EXPECT_EQ(priority_in(lockstep.json(), "uav0"), 0);
+  expect_all_gone(lockstep.json());
+}
+
+// A process given cpu_affinity runs (every thread it starts too) on those CPUs in a
+// realtime run, and on any in lockstep; the launcher says which, and the report gives them.
+TEST_F(LaunchProcess, CpuAffinityPinsInRealtimeOnly) {
+  const std::string yaml = R"(
+launch:
+  name: cpu-affinity
+  grace_period_s: 0.3
+  variables: {clock: lockstep}
+  processes:
+    - name: sim
+      executable: fake_process
+      args: [--mode=exit, "--await={run_dir}/uav0.ready"]
+      ends_run: true
+    - {name: uav0, executable: fake_process, args: ["--ready={run_dir}/uav0.ready"],
+       cpu_affinity: [0]}
+)";
+  const auto cpus_in = [](const nlohmann::json& report, const std::string& name) {
+    for (const auto& process : report["processes"]) {
+      if (process["name"] == name) return process["cpus"].get<std::vector<int>>();
+    }
+    return std::vector<int>{-1};
+  };
+  const auto realtime = run(yaml, {"--json", "--clock", "realtime"});
+  ASSERT_EQ(realtime.exit_code, 0) << realtime.err;
+  EXPECT_TRUE(contains(log_of("uav0"), "thread cpus: 0\n")) << log_of("uav0");
+  EXPECT_TRUE(contains(realtime.err, "uav0 runs on CPU 0")) << realtime.err;
+  EXPECT_EQ(cpus_in(realtime.json(), "uav0"), std::vector<int>{0});
+  EXPECT_TRUE(cpus_in(realtime.json(), "sim").empty());
+  expect_all_gone(realtime.json());
+
+  fs::remove_all(run_dir_);
+  const auto lockstep = run(yaml, {"--json"});
+  ASSERT_EQ(lockstep.exit_code, 0) << lockstep.err;
+  if (std::thread::hardware_concurrency() > 1) {
+    EXPECT_FALSE(contains(log_of("uav0"), "thread cpus: 0\n")) << log_of("uav0");
+  }
+  EXPECT_TRUE(contains(lockstep.err, "uav0: cpu_affinity 0 not applied in lockstep"))
+      << lockstep.err;
+  EXPECT_TRUE(cpus_in(lockstep.json(), "uav0").empty());
   expect_all_gone(lockstep.json());
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <poll.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -50,6 +51,27 @@ TEST(ChildProcess, RunsTheCommandAndReadsItsLines) {
   EXPECT_EQ(child.read_line(10s), std::nullopt);  // EOF
   EXPECT_EQ(child.wait(10s), std::optional<int>(3));
   EXPECT_EQ(child.killed_by_signal(), 0);
+}
+
+// Pinned before exec: the program and what it runs see only the CPUs asked for; a CPU the
+// machine lacks is left out, and with none left the child keeps the parent's CPUs.
+TEST(ChildProcess, CpuAffinityPinsTheChild) {
+  SpawnOptions options;
+  options.capture_stdout = true;
+  options.cpu_affinity = {0};
+  ChildProcess pinned({"/bin/sh", "-c", "grep Cpus_allowed_list /proc/self/status; exec sleep 60"},
+                      options);
+  EXPECT_EQ(pinned.cpus(), std::vector<int>{0});
+  EXPECT_EQ(pinned.read_line(10s), std::optional<std::string>("Cpus_allowed_list:\t0"));
+  pinned.terminate();
+
+  options.cpu_affinity = {4095};
+  ChildProcess unpinnable({"/bin/sh", "-c", "exec sleep 60"}, options);
+  cpu_set_t parent;
+  CPU_ZERO(&parent);
+  ASSERT_EQ(sched_getaffinity(0, sizeof parent, &parent), 0);
+  EXPECT_EQ(static_cast<int>(unpinnable.cpus().size()), CPU_COUNT(&parent));
+  unpinnable.terminate();
 }
 
 TEST(ChildProcess, LogFileTakesStdoutAndStderr) {

@@ -38,6 +38,7 @@ void ConcurrentFloor::ping(PingPongOptions options) {
       std::lock_guard<std::mutex> lock(mutex_);
       ping_priority_ = ping_pong.ping_realtime_priority();
       pong_priority_ = ping_pong.pong_realtime_priority();
+      pong_cpus_ = ping_pong.pong_cpus();
       started_ = true;
     }
     started_cv_.notify_all();
@@ -77,7 +78,8 @@ nlohmann::json ConcurrentFloor::stop() {
           {"samples", trips_.received},
           {"lost", trips_.sent - trips_.received},
           {"ping_realtime_priority", ping_priority_},
-          {"pong_realtime_priority", pong_priority_}};
+          {"pong_realtime_priority", pong_priority_},
+          {"pong_cpus", pong_cpus_}};
 }
 
 }  // namespace cover::bench

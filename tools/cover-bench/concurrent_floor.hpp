@@ -29,7 +29,8 @@ class ConcurrentFloor {
   ConcurrentFloor& operator=(const ConcurrentFloor&) = delete;
 
   bool failed() const;
-  // Stops pinging; p50_ms, p99_ms, samples, lost and both ends' priorities, or null (with
+  // Stops pinging; p50_ms, p99_ms, samples, lost, both ends' priorities and the pong's
+  // CPUs, or null (with
   // the reason on stderr) when it never ran.
   nlohmann::json stop();
 
@@ -45,6 +46,7 @@ class ConcurrentFloor {
   RoundTrips trips_;
   int ping_priority_ = 0;
   int pong_priority_ = 0;
+  std::vector<int> pong_cpus_;
   std::thread thread_;
 };
 

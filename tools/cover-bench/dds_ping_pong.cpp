@@ -76,6 +76,7 @@ process::SpawnOptions pong_spawn_options(const PingPongOptions& options) {
   process::SpawnOptions spawn;
   spawn.capture_stdout = true;
   spawn.realtime_priority = options.pong_realtime_priority;
+  spawn.cpu_affinity = options.pong_cpu_affinity;
   return spawn;
 }
 
@@ -130,6 +131,10 @@ PingPong::PingPong(const PingPongOptions& options) : impl_(std::make_unique<Impl
 
 int PingPong::ping_realtime_priority() const {
   return impl_->ping_scheduling.priority();
+}
+
+std::vector<int> PingPong::pong_cpus() const {
+  return impl_->pong_process.cpus();
 }
 
 int PingPong::pong_realtime_priority() const {

@@ -26,6 +26,8 @@ struct PingPongOptions {
   // scheduling. A floor compared with a system's latency runs as that system's processes do.
   int ping_realtime_priority = 0;
   int pong_realtime_priority = 0;
+  // The CPUs the pong process runs on (empty: any), as the process it stands for is pinned.
+  std::vector<int> pong_cpu_affinity;
 };
 
 struct RoundTrips {
@@ -53,6 +55,8 @@ class PingPong {
   // but refused: that needs root, CAP_SYS_NICE or an rtprio limit).
   int ping_realtime_priority() const;
   int pong_realtime_priority() const;
+  // The CPUs the pong process may run on.
+  std::vector<int> pong_cpus() const;
 
  private:
   struct Impl;

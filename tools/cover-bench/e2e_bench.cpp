@@ -64,18 +64,20 @@ std::string make_fleet(const char* vendor) {
 // the scenario files' mission.yaml).
 constexpr double kFloorRateHz = 100.0;
 
-// The SCHED_FIFO priority the launch file asks for `process` (0: normal scheduling).
-int realtime_priority_in(const cover::launch::LaunchFile& file, const std::string& process) {
+// The launch file's process `name` (a default one, normal scheduling on any CPU, if none).
+cover::launch::ProcessSpec process_in(const cover::launch::LaunchFile& file,
+                                      const std::string& name) {
   for (const auto& spec : file.processes) {
-    if (spec.name == process) return spec.realtime_priority;
+    if (spec.name == name) return spec;
   }
-  return 0;
+  return {};
 }
 
 // The mix's floor, measured while its run flies: paced round trips simulator vendor -> UAV
 // agent vendor -> back, on the relative state's and the command's QoS, each end scheduled
-// as the launch file schedules the simulator and the UAV agent (a floor at normal
-// scheduling beside a run at SCHED_FIFO would compare the schedulers, not the path).
+// (and the pong pinned) as the launch file schedules the simulator and the UAV agent (a
+// floor at normal scheduling beside a run at SCHED_FIFO would compare the schedulers, not
+// the path).
 std::unique_ptr<cover::bench::ConcurrentFloor> start_floor(const cover::bench::VendorMix& mix,
                                                            const std::string& launch_name,
                                                            int domain) {
@@ -88,8 +90,10 @@ std::unique_ptr<cover::bench::ConcurrentFloor> start_floor(const cover::bench::V
   options.prefix = "cover_bench/e2e_floor_" + std::to_string(getpid());
   options.ping_qos = cover::dds::sensor_qos();
   options.pong_qos = cover::dds::command_qos();
-  options.ping_realtime_priority = realtime_priority_in(file, "sim");
-  options.pong_realtime_priority = realtime_priority_in(file, "uav0");
+  options.ping_realtime_priority = process_in(file, "sim").realtime_priority;
+  const cover::launch::ProcessSpec uav = process_in(file, "uav0");
+  options.pong_realtime_priority = uav.realtime_priority;
+  options.pong_cpu_affinity = uav.cpu_affinity;
   auto floor = std::make_unique<cover::bench::ConcurrentFloor>(options, kFloorRateHz);
   if (floor->failed())
     std::cerr << "cover-bench e2e: the floor of " << mix.name << " did not start\n";

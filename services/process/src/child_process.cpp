@@ -96,6 +96,16 @@ void close_others(int keep) {
     param.sched_priority = options.realtime_priority;
     sched_setscheduler(0, SCHED_FIFO, &param);
   }
+  if (!options.cpu_affinity.empty()) {
+    // Likewise before exec, and not fatal: a CPU this machine lacks leaves the set empty
+    // or smaller, and the parent reads what the child got.
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    for (const int cpu : options.cpu_affinity) {
+      if (cpu >= 0 && cpu < CPU_SETSIZE) CPU_SET(cpu, &set);
+    }
+    sched_setaffinity(0, sizeof set, &set);
+  }
   execve(setup.args[0], setup.args.data(), setup.env.data());
   report_and_exit(setup.error_fd);
 }
@@ -189,6 +199,17 @@ std::optional<std::string> ChildProcess::read_line(std::chrono::milliseconds tim
 
 bool ChildProcess::realtime() const {
   return sched_getscheduler(pid_) == SCHED_FIFO;
+}
+
+std::vector<int> ChildProcess::cpus() const {
+  std::vector<int> cpus;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(pid_, sizeof set, &set) != 0) return cpus;
+  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
+    if (CPU_ISSET(cpu, &set)) cpus.push_back(cpu);
+  }
+  return cpus;
 }
 
 std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {

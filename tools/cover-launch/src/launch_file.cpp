@@ -14,6 +14,8 @@
 namespace cover::launch {
 namespace {
 
+constexpr int kMaxCpus = 1024;  // Linux's CPU_SETSIZE: what sched_setaffinity can name
+
 bool only_chars(const std::string& text, const std::string& extra) {
   return !text.empty() && std::all_of(text.begin(), text.end(), [&](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || extra.find(c) != std::string::npos;
@@ -58,6 +60,7 @@ ProcessSpec parse_process(const YAML::Node& node, const std::string& context, La
   process.optional("max_respawns", spec.respawn.max_respawns);
   process.optional("keep_running", spec.keep_running);
   process.optional("realtime_priority", spec.realtime_priority);
+  process.optional("cpu_affinity", spec.cpu_affinity);
   process.reject_unknown_keys();
   apply_kind_defaults(spec, process, kind);
   return spec;
@@ -93,6 +96,17 @@ void validate_realtime_priority(const ProcessSpec& spec, const std::string& cont
                 "realtime_priority must be 1..99 (SCHED_FIFO), or 0 for normal scheduling");
 }
 
+void validate_cpu_affinity(const ProcessSpec& spec, const std::string& context) {
+  std::set<int> seen;
+  for (const int cpu : spec.cpu_affinity) {
+    config::check(cpu >= 0 && cpu < kMaxCpus, context,
+                  "cpu_affinity: CPU " + std::to_string(cpu) + " (CPUs are numbered 0.." +
+                      std::to_string(kMaxCpus - 1) + ")");
+    config::check(seen.insert(cpu).second, context,
+                  "cpu_affinity: CPU " + std::to_string(cpu) + " listed twice");
+  }
+}
+
 void validate_keep_running(const ProcessSpec& spec, LaunchKind kind, const std::string& context) {
   if (!spec.keep_running) return;
   config::check(serves_until_stopped(kind), context,
@@ -123,6 +137,7 @@ void validate_process(const ProcessSpec& spec, const std::set<std::string>& know
   validate_respawn(spec, context);
   validate_keep_running(spec, kind, context);
   validate_realtime_priority(spec, context);
+  validate_cpu_affinity(spec, context);
   validate_arguments(spec, known);
 }
 

@@ -42,6 +42,7 @@ PlannedProcess plan_process(const ProcessSpec& spec, const PlaceholderValues& va
   const bool lockstep = clock != values.end() && clock->second == "lockstep";
   (lockstep ? planned.realtime_priority_withheld : planned.realtime_priority) =
       spec.realtime_priority;
+  (lockstep ? planned.cpu_affinity_withheld : planned.cpu_affinity) = spec.cpu_affinity;
   for (const auto& [key, value] : spec.env) planned.env.push_back(key + "=" + value);
   planned.env.push_back("COVER_DDS=" + spec.dds);
   planned.env.push_back("COVER_DDS_DOMAIN=" + std::to_string(domain_id));

@@ -46,6 +46,8 @@ Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
                              process's exit (default: true for cover-fc-bridge)
         realtime_priority: 0 SCHED_FIFO priority 1..99 (0: normal scheduling); needs root
                              or CAP_SYS_NICE; not applied when {clock} is lockstep
+        cpu_affinity: [1]    pin it (and its threads) to these CPUs; not applied when {clock}
+                             is lockstep
   Placeholders: {run_dir} {run_id} {domain} {config_dir} and every variable; an argument
   whose placeholder is empty is dropped. {{ and }} are literal braces.
 

@@ -35,6 +35,7 @@ nlohmann::json make_report(const LaunchPlan& plan, const RunOutcome& outcome) {
          {"stopped_by", process.stopped_by},
          {"respawns", process.respawns},
          {"realtime_priority", process.realtime_priority},
+         {"cpus", process.cpus},
          {"cpu_s", process.cpu_s ? nlohmann::json(*process.cpu_s) : nlohmann::json(nullptr)}});
   }
   report["processes"] = std::move(processes);

@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -40,6 +41,18 @@ struct Child {
   // Standing and field launches: died and not to be restarted; the others went on.
   bool ended = false;
 };
+
+// "1" or "0,2,3": a CPU list as cpu_affinity and taskset write it.
+std::string cpu_list(const std::vector<int>& cpus) {
+  std::string out;
+  for (const int cpu : cpus) out += (out.empty() ? "" : ",") + std::to_string(cpu);
+  return out.empty() ? "none" : out;
+}
+
+std::string online_cpus() {
+  const long count = sysconf(_SC_NPROCESSORS_ONLN);
+  return count > 0 ? "0.." + std::to_string(count - 1) : "unknown";
+}
 
 std::string join(const std::vector<std::string>& words) {
   std::string line;
@@ -209,9 +222,26 @@ class Supervisor {
     options.ignore_hangup = true;
     options.close_other_fds = true;
     options.realtime_priority = spec.realtime_priority;
+    options.cpu_affinity = spec.cpu_affinity;
     auto child = std::make_unique<process::ChildProcess>(argv_of(index), options);
     log_scheduling(spec, *child);
     return child;
+  }
+
+  static void log_affinity(const PlannedProcess& spec, const process::ChildProcess& child) {
+    if (!spec.cpu_affinity_withheld.empty()) {
+      spdlog::info("{}: cpu_affinity {} not applied in lockstep (a core taken from the others)",
+                   spec.name, cpu_list(spec.cpu_affinity_withheld));
+    }
+    if (spec.cpu_affinity.empty()) return;
+    const std::vector<int> cpus = child.cpus();
+    if (cpus == spec.cpu_affinity) {
+      spdlog::info("{} runs on CPU {}", spec.name, cpu_list(cpus));
+    } else {
+      spdlog::warn(
+          "{}: cpu_affinity {} not applied as asked (this machine has CPUs {}): runs on {}",
+          spec.name, cpu_list(spec.cpu_affinity), online_cpus(), cpu_list(cpus));
+    }
   }
 
   static void log_scheduling(const PlannedProcess& spec, const process::ChildProcess& child) {
@@ -221,6 +251,7 @@ class Supervisor {
           "starve the machine",
           spec.name, spec.realtime_priority_withheld);
     }
+    log_affinity(spec, child);
     if (spec.realtime_priority == 0) return;
     if (child.realtime()) {
       spdlog::info("{} runs SCHED_FIFO priority {}", spec.name, spec.realtime_priority);
@@ -238,6 +269,7 @@ class Supervisor {
       auto child = spawn(index, /*restart=*/false);
       outcome_.processes[index].pid = child->pid();
       outcome_.processes[index].realtime_priority = child->realtime() ? spec.realtime_priority : 0;
+      if (!spec.cpu_affinity.empty()) outcome_.processes[index].cpus = child->cpus();
       spdlog::info("started {} pid {} dds {}: {}", spec.name, child->pid(), spec.dds,
                    join(argv_of(index)));
       children_.push_back({index, &spec, std::move(child), &outcome_.processes[index], {}});

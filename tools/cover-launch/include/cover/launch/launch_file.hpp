@@ -39,6 +39,11 @@ struct ProcessSpec {
   // lockstep: a lockstep run never sleeps, and FIFO processes that never sleep starve the
   // rest of the machine.
   int realtime_priority = 0;
+  // The CPUs the process and its threads may run on (0-based); empty: any. For the UAV
+  // agent: its DDS receive thread then wakes its control thread on the same core instead
+  // of across cores (docs/launch.md has the measurement). Like realtime_priority, not
+  // applied when {clock} is lockstep. A CPU the machine does not have is left out (logged).
+  std::vector<int> cpu_affinity;
 };
 
 // A whole local system: `launch:` in a launch file. See config/launch/example.yaml.

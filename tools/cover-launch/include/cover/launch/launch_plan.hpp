@@ -44,6 +44,10 @@ struct PlannedProcess {
   // lockstep (then 0, and realtime_priority_withheld holds the file's).
   int realtime_priority = 0;
   int realtime_priority_withheld = 0;
+  // The CPUs to pin it to (empty: any); the file's, unless {clock} is lockstep (then
+  // empty, and cpu_affinity_withheld holds the file's).
+  std::vector<int> cpu_affinity;
+  std::vector<int> cpu_affinity_withheld;
 };
 
 struct LaunchPlan {

@@ -18,6 +18,7 @@ struct ProcessOutcome {
   int respawns = 0;              // restarts after a death (respawn: true)
   std::optional<double> cpu_s;   // CPU time (user + system) of the latest run, once it ended
   int realtime_priority = 0;     // the SCHED_FIFO priority it runs at; 0: normal scheduling
+  std::vector<int> cpus;         // the CPUs it was pinned to (cpu_affinity); empty: any
 };
 
 struct RunOutcome {
