@@ -18,6 +18,10 @@ ConcurrentFloor::ConcurrentFloor(const PingPongOptions& options, double rate_hz)
 }
 
 ConcurrentFloor::~ConcurrentFloor() {
+  stop_pinging();
+}
+
+void ConcurrentFloor::stop_pinging() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_requested_ = true;
@@ -62,11 +66,7 @@ void ConcurrentFloor::ping(PingPongOptions options) {
 }
 
 nlohmann::json ConcurrentFloor::stop() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_requested_ = true;
-  }
-  if (thread_.joinable()) thread_.join();
+  stop_pinging();
   std::lock_guard<std::mutex> lock(mutex_);
   if (!error_.empty() || trips_.round_trip_us.empty()) {
     std::cerr << "cover-bench: a floor was not measured: "

@@ -30,12 +30,12 @@ class ConcurrentFloor {
 
   bool failed() const;
   // Stops pinging; p50_ms, p99_ms, samples, lost, both ends' priorities and the pong's
-  // CPUs, or null (with
-  // the reason on stderr) when it never ran.
+  // CPUs, or null (with the reason on stderr) when it never ran.
   nlohmann::json stop();
 
  private:
   void ping(PingPongOptions options);
+  void stop_pinging();  // asks the pinging thread to end and joins it
 
   const double rate_hz_;
   mutable std::mutex mutex_;
