@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdlib>
 #include <mutex>
 #include <string>
@@ -42,11 +43,13 @@ TEST(CoverPub, NowAndAutoStampEverySampleWithItsSendTimeAndCount) {
   options.domain_id = claim.domain();
   cover::dds::Participant participant(options);
   std::mutex mutex;
+  std::condition_variable arrived;
   std::vector<cover::msg::UavCommand> received;
   auto reader = participant.make_reader(cover::dds::topics::uav_command(0),
                                         [&](const cover::msg::UavCommand& command) {
                                           std::lock_guard<std::mutex> lock(mutex);
                                           received.push_back(command);
+                                          arrived.notify_all();
                                         });
   const std::int64_t before_ns = cover::clock::system_ns();
   const auto [code, out] =
@@ -57,13 +60,19 @@ TEST(CoverPub, NowAndAutoStampEverySampleWithItsSendTimeAndCount) {
                  std::to_string(claim.domain())});
   const std::int64_t after_ns = cover::clock::system_ns();
   ASSERT_EQ(code, 0) << out;
-  reader.wait_for_sample(scaled(5s), 9);  // the tenth, unless one was overwritten on the way
 
-  std::lock_guard<std::mutex> lock(mutex);
-  // Reliable, depth 1: a sample may be overwritten before it is read, never reordered.
+  // Reliable, depth 1: a sample may be overwritten on the way (the first too, when the
+  // second is written before the reader acknowledged it), never reordered. `cover pub`
+  // waits for acknowledgments before it exits, so the tenth, seq 14, always arrives.
+  constexpr std::uint32_t kFirstSeq = 5;
+  constexpr std::uint32_t kLastSeq = kFirstSeq + 9;
+  std::unique_lock<std::mutex> lock(mutex);
+  ASSERT_TRUE(arrived.wait_for(
+      lock, scaled(5s), [&] { return !received.empty() && received.back().seq == kLastSeq; }))
+      << received.size() << " samples, none with seq " << kLastSeq;
   ASSERT_GE(received.size(), 5u);
   std::int64_t last_stamp_ns = 0;
-  std::int64_t last_seq = 4;
+  std::int64_t last_seq = kFirstSeq - 1;
   for (const auto& command : received) {
     EXPECT_GT(command.stamp_ns, last_stamp_ns);
     EXPECT_GE(command.stamp_ns, before_ns);
@@ -75,8 +84,8 @@ TEST(CoverPub, NowAndAutoStampEverySampleWithItsSendTimeAndCount) {
     last_stamp_ns = command.stamp_ns;
     last_seq = command.seq;
   }
-  EXPECT_EQ(received.front().seq, 5u) << "counts from the given start";
-  EXPECT_LE(last_seq, 14);
+  // Ten samples from the given start end at its ninth successor, not at 9 or 10.
+  EXPECT_EQ(last_seq, kLastSeq) << "counts from the given start";
   // 10 samples at 50 Hz: the first and the last were sent ~180 ms apart, not at once.
   if (received.size() == 10) {
     EXPECT_GT(received.back().stamp_ns - received.front().stamp_ns, 100'000'000);
