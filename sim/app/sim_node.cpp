@@ -180,8 +180,7 @@ void SimNode::publish_tick() {
     const std::int64_t now_ns = clock::monotonic_ns();
     std::lock_guard<std::mutex> lock(mutex_);
     latency_.published(relative_stamp_ns, now_ns);
-    TickPublish& slot = tick_published_[fleet_.tick() % tick_published_.size()];
-    if (slot.tick != fleet_.tick()) slot = TickPublish{fleet_.tick(), now_ns, {}};
+    autopilot_latency_.published(static_cast<std::int64_t>(fleet_.tick()), now_ns);
   }
   publish_ugv_imu(t);
   msg::SimClock tick;

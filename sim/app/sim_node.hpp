@@ -77,7 +77,7 @@ class SimNode {
   // nearest tick k's time (the whole path agent -> DDS -> bridge -> MAVLink), while the
   // agent's task runs.
   const std::vector<double>& latency_ms() const {
-    return uses_autopilots() ? autopilot_latency_ms_ : latency_.samples_ms();
+    return uses_autopilots() ? autopilot_latency_.samples_ms() : latency_.samples_ms();
   }
   // What UAV `uav`'s link saw (autopilots only, after run()).
   const AutopilotLinks* autopilot_links() const { return autopilot_links_.get(); }
@@ -96,12 +96,6 @@ class SimNode {
     std::uint64_t setpoints = 0;
     std::int64_t setpoint_received_ns = 0;  // monotonic, of the newest
     std::size_t events_logged = 0;
-  };
-  // When a tick's relative states were written (realtime latency with autopilots).
-  struct TickPublish {
-    std::uint64_t tick = UINT64_MAX;
-    std::int64_t published_ns = 0;
-    std::array<bool, kMaxUavs> answered{};
   };
 
   bool wait_for_agents();
@@ -142,15 +136,14 @@ class SimNode {
   // Lockstep: the tick wait_for_commands waits on (under mutex_). A command or trace wakes
   // it only when it completes that tick's answer: one wake-up per tick, not one per sample.
   std::int64_t awaited_tick_ns_ = -1;
-  SensorLatency latency_;                     // the direct path's
-  std::vector<double> autopilot_latency_ms_;  // the path through the bridges
+  SensorLatency latency_{SensorLatency::kStampKeyStep};           // the direct path's
+  SensorLatency autopilot_latency_{SensorLatency::kTickKeyStep};  // through the bridges
   double wall_time_s_ = 0.0;
   std::uint64_t republished_ticks_ = 0;
   bool in_relative_gap_ = false;
 
   // Autopilots: the simulated time the reader threads stamp frames with (under mutex_).
   double sim_time_s_ = 0.0;
-  std::array<TickPublish, 256> tick_published_{};
   std::vector<std::chrono::steady_clock::time_point> keepalive_sent_;
   bool mode_switch_done_ = false;
   bool heartbeat_stop_done_ = false;

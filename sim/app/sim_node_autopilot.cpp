@@ -68,12 +68,8 @@ void SimNode::note_setpoint_locked(int u, std::uint32_t time_boot_ms, std::int64
   box.setpoint_received_ns = received_ns;
   const bool running = box.trace && box.trace->task_state == msg::TaskState::TASK_RUNNING;
   if (options_.clock != SimClockMode::Realtime || !running) return;
-  const auto tick =
-      static_cast<std::uint64_t>(std::llround(time_boot_ms * params_.control_rate_hz / 1000.0));
-  TickPublish& slot = tick_published_[tick % tick_published_.size()];
-  if (slot.tick != tick || slot.answered[static_cast<std::size_t>(u)]) return;
-  slot.answered[static_cast<std::size_t>(u)] = true;
-  autopilot_latency_ms_.push_back(static_cast<double>(received_ns - slot.published_ns) * 1e-6);
+  const std::int64_t tick = std::llround(time_boot_ms * params_.control_rate_hz / 1000.0);
+  autopilot_latency_.answered(u, tick, received_ns);
 }
 
 void SimNode::apply_autopilots() {

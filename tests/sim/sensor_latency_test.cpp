@@ -1,5 +1,6 @@
-// cover-sim's direct-path latency: one sample per UAV and relative-state stamp, the first
-// command that names it (sim/app/latency/sensor_latency.hpp).
+// cover-sim's sensor-to-command latency: one sample per UAV and relative-state stamp (the
+// direct path) or tick (through an autopilot), the first answer that names it
+// (sim/app/latency/sensor_latency.hpp).
 #include "latency/sensor_latency.hpp"
 
 #include <gtest/gtest.h>
@@ -11,7 +12,7 @@ constexpr std::int64_t kPeriodNs = 10'000'000;
 constexpr std::int64_t kMs = 1'000'000;
 
 TEST(SensorLatency, TheFirstCommandNamingAStampIsItsSample) {
-  SensorLatency latency;
+  SensorLatency latency(SensorLatency::kStampKeyStep);
   latency.published(kPeriodNs, 100 * kMs);
   EXPECT_TRUE(latency.answered(0, kPeriodNs, 100 * kMs + kMs / 4));
   ASSERT_EQ(latency.samples_ms().size(), 1U);
@@ -20,7 +21,7 @@ TEST(SensorLatency, TheFirstCommandNamingAStampIsItsSample) {
 
 TEST(SensorLatency, CommandsStepOnTheSameStampAgainAreNotSamples) {
   // An agent with no new state steps again every 1.5 periods, naming the stamp it has.
-  SensorLatency latency;
+  SensorLatency latency(SensorLatency::kStampKeyStep);
   latency.published(kPeriodNs, 0);
   EXPECT_TRUE(latency.answered(0, kPeriodNs, kMs / 4));
   EXPECT_FALSE(latency.answered(0, kPeriodNs, 15 * kMs));
@@ -29,7 +30,7 @@ TEST(SensorLatency, CommandsStepOnTheSameStampAgainAreNotSamples) {
 }
 
 TEST(SensorLatency, EachUavAnswersForItself) {
-  SensorLatency latency;
+  SensorLatency latency(SensorLatency::kStampKeyStep);
   latency.published(kPeriodNs, 0);
   EXPECT_TRUE(latency.answered(0, kPeriodNs, kMs));
   EXPECT_TRUE(latency.answered(1, kPeriodNs, 2 * kMs));
@@ -37,7 +38,7 @@ TEST(SensorLatency, EachUavAnswersForItself) {
 }
 
 TEST(SensorLatency, AStampPublishedAgainIsAnsweredAgain) {
-  SensorLatency latency;
+  SensorLatency latency(SensorLatency::kStampKeyStep);
   latency.published(kPeriodNs, 0);
   EXPECT_TRUE(latency.answered(0, kPeriodNs, kMs));
   latency.published(kPeriodNs, 5 * kMs);  // a republished tick: a new measurement
@@ -46,7 +47,7 @@ TEST(SensorLatency, AStampPublishedAgainIsAnsweredAgain) {
 }
 
 TEST(SensorLatency, UnknownForgottenOrBadStampsAndUavsAreNotSamples) {
-  SensorLatency latency;
+  SensorLatency latency(SensorLatency::kStampKeyStep);
   latency.published(kPeriodNs, 0);
   EXPECT_FALSE(latency.answered(0, 2 * kPeriodNs, kMs));  // never published
   EXPECT_FALSE(latency.answered(-1, kPeriodNs, kMs));
@@ -57,6 +58,20 @@ TEST(SensorLatency, UnknownForgottenOrBadStampsAndUavsAreNotSamples) {
   latency.published(kPeriodNs + 256 * kMs, kMs);
   EXPECT_FALSE(latency.answered(0, kPeriodNs, 2 * kMs));
   EXPECT_TRUE(latency.samples_ms().empty());
+}
+
+TEST(SensorLatency, TicksAsKeysEachHaveTheirOwnSlot) {
+  // The autopilot path names a tick (a setpoint's time_boot_ms over the period).
+  SensorLatency latency(SensorLatency::kTickKeyStep);
+  for (std::int64_t tick = 1; tick <= 256; ++tick) latency.published(tick, tick * kPeriodNs);
+  for (std::int64_t tick = 1; tick <= 256; ++tick) {
+    EXPECT_TRUE(latency.answered(0, tick, tick * kPeriodNs + kMs)) << tick;
+    EXPECT_FALSE(latency.answered(0, tick, tick * kPeriodNs + 2 * kMs)) << tick;
+  }
+  ASSERT_EQ(latency.samples_ms().size(), 256U);
+  for (const double sample_ms : latency.samples_ms()) EXPECT_DOUBLE_EQ(sample_ms, 1.0);
+  latency.published(257, 0);  // takes tick 1's slot
+  EXPECT_FALSE(latency.answered(1, 1, kMs));
 }
 
 }  // namespace
