@@ -32,6 +32,10 @@ void DdsUavInputs::reject(wire::Rejection reason, const std::string& topic) {
 }
 
 void DdsUavInputs::subscribe(const std::vector<int>& ugvs) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    task_ugvs_ = ugvs;
+  }
   for (const int k : ugvs) {
     if (k < 0 || k >= static_cast<int>(readers_.size()) || readers_[k]) continue;
     auto r = std::make_unique<UgvReaders>();
@@ -107,11 +111,9 @@ std::int64_t DdsUavInputs::imu_stamp_ns(int ugv) const {
   return readers_[ugv]->imu_slot.newest_stamp_ns();
 }
 
-bool DdsUavInputs::wait_for_stamps(const mission::Task& task, std::int64_t relative_ns,
-                                   std::int64_t imu_ns,
+bool DdsUavInputs::wait_for_stamps(std::int64_t relative_ns, std::int64_t imu_ns,
                                    std::chrono::steady_clock::time_point deadline) const {
-  const std::vector<int> ugvs = task.ugvs();
-  const Awaited awaited{&ugvs, relative_ns, imu_ns};
+  const Awaited awaited{relative_ns, imu_ns};
   std::unique_lock<std::mutex> lock(mutex_);
   awaited_ = awaited;
   const bool arrived = arrived_.wait_until(lock, deadline, [&] { return stamps_arrived(awaited); });
@@ -125,7 +127,7 @@ bool DdsUavInputs::stamps_arrived(const Awaited& awaited) const {
     const UgvReaders& r = *readers_[ugv];
     return relative ? r.state_slot.newest_stamp_ns() : r.imu_slot.newest_stamp_ns();
   };
-  for (const int k : *awaited.ugvs) {
+  for (const int k : task_ugvs_) {
     if (awaited.relative_ns >= 0 && newest(k, true) < awaited.relative_ns) return false;
     if (awaited.imu_ns >= 0 && newest(k, false) < awaited.imu_ns) return false;
   }

@@ -29,7 +29,9 @@ class DdsUavInputs : public uav::UavInputs {
   // The clock the next pulls are checked against (future stamps); call before each step.
   void set_now(double now_s);
 
-  // Subscribes to the relative states and IMU of `ugvs` (each once; kept afterwards).
+  // Subscribes to the relative states and IMU of `ugvs`, the UGVs a task just accepted
+  // names (each reader made once, kept afterwards); until the next call they are the UGVs
+  // wait_for_stamps awaits.
   void subscribe(const std::vector<int>& ugvs);
 
   bool relative_state(int ugv, mission::RelativeMeasurement& out) override;
@@ -38,10 +40,10 @@ class DdsUavInputs : public uav::UavInputs {
   // Stamps of the newest samples received for `ugv`, ns (-1: none), for lockstep waits.
   std::int64_t relative_stamp_ns(int ugv) const;
   std::int64_t imu_stamp_ns(int ugv) const;
-  // Blocks until every UGV `task` names has a relative state stamped >= relative_ns and an
-  // IMU sample stamped >= imu_ns (a stamp < 0: that input is not awaited), woken by the
-  // readers' callbacks as samples arrive; false at `deadline`.
-  bool wait_for_stamps(const mission::Task& task, std::int64_t relative_ns, std::int64_t imu_ns,
+  // Blocks until every UGV of the last subscribe() has a relative state stamped >=
+  // relative_ns and an IMU sample stamped >= imu_ns (a stamp < 0: that input is not
+  // awaited), woken by the readers' callbacks as samples arrive; false at `deadline`.
+  bool wait_for_stamps(std::int64_t relative_ns, std::int64_t imu_ns,
                        std::chrono::steady_clock::time_point deadline) const;
   // Waits until every subscribed UGV has a relative-state and an IMU writer; false on
   // timeout (then logs which is missing).
@@ -63,7 +65,6 @@ class DdsUavInputs : public uav::UavInputs {
   };
   // What wait_for_stamps waits for, while it waits.
   struct Awaited {
-    const std::vector<int>* ugvs = nullptr;  // the task's
     std::int64_t relative_ns = -1;
     std::int64_t imu_ns = -1;
   };
@@ -85,6 +86,7 @@ class DdsUavInputs : public uav::UavInputs {
   std::optional<double> now_s_;
   wire::RejectionCounts rejections_;
   std::vector<std::unique_ptr<UgvReaders>> readers_;  // by UGV id; null: not subscribed
+  std::vector<int> task_ugvs_;  // the last subscribe()'s: what wait_for_stamps awaits
 };
 
 // The loop's command to DDS: this step's trace, then its command (the simulator in

@@ -148,12 +148,11 @@ void UavAgentNode::run_lockstep() {
 // A lockstep tick is stepped on the inputs of that tick: wait (bounded) until the
 // relative states and UGV IMU published for it have arrived.
 void UavAgentNode::wait_for_inputs(const msg::SimClock& tick) {
-  const mission::Task* task = loop_.task();
-  if (!task) return;
+  if (!loop_.task()) return;
   const auto deadline =
       std::chrono::steady_clock::now() + clock::to_milliseconds(options_.input_wait_s);
   // Blocks on the readers' arrivals (no polling: a poll's sleep costs its slack every tick).
-  if (!inputs_.wait_for_stamps(*task, tick.relative_stamp_ns, tick.imu_stamp_ns, deadline)) {
+  if (!inputs_.wait_for_stamps(tick.relative_stamp_ns, tick.imu_stamp_ns, deadline)) {
     spdlog::warn("tick {}: inputs missing after {:.1f} s, stepping on what arrived", tick.tick,
                  options_.input_wait_s);
   }
