@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "cover/clock/clock.hpp"
+#include "cover/mavlink/messages.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "fc_messages.hpp"
 
@@ -15,6 +16,9 @@ constexpr std::size_t kRecentRequests = 64;
 // Lockstep: the agent's commands drive the bridge's tick; after this much simulated time
 // without one, the housekeeping thread ticks instead (the supervisor's cmd timeout).
 constexpr double kLockstepSilentTicks_s = 0.02;
+// Lockstep: how long a command waits for the autopilot's frames of the step before it
+// (they come within a millisecond; this bounds the wait for an autopilot that stopped).
+constexpr std::chrono::milliseconds kStepFramesWait{250};
 double monotonic_s() {
   return clock::ns_to_s(clock::monotonic_ns());
 }
@@ -66,15 +70,31 @@ void FcBridgeNode::on_command(const msg::UavCommand& command) {
   const AgentCommand c = from_msg(command);
   Events events;
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    // Lockstep: the tick's own decisions (mode and arm requests, retries, the land
-    // supervisor) go out just before its setpoint, from this thread, so the simulated
-    // autopilot meets them at the same tick in every run.
-    if (lockstep()) write_locked(bridge_.tick(*now));
+    std::unique_lock<std::mutex> lock(mutex_);
+    // Lockstep: the frames of the step before are taken first; the tick's own decisions
+    // (mode and arm requests, retries, the land supervisor) go out just before its
+    // setpoint, from this thread, so the simulated autopilot meets them at the same tick in
+    // every run.
+    if (lockstep()) {
+      await_step_frames_locked(lock, *now);
+      write_locked(bridge_.tick(*now));
+    }
     write_locked(bridge_.on_agent_command(c, *now));
+    if (lockstep() && bridge_.setpoint_sent()) steps_.flown(*now);
     take_events_locked(events);
   }
   if (!events.empty()) report(events);
+}
+
+void FcBridgeNode::await_step_frames_locked(std::unique_lock<std::mutex>& lock, double tick_s) {
+  if (steps_.wait(lock, tick_s, std::chrono::steady_clock::now() + kStepFramesWait)) return;
+  if (step_frames_late_logged_) return;
+  step_frames_late_logged_ = true;
+  spdlog::warn(
+      "tick {:.2f} s: the autopilot's frames of step {:.2f} s (closed by its HIGHRES_IMU) not in "
+      "after {} ms; the command goes on without them, and this lockstep run will not repeat "
+      "bit for bit (logged once)",
+      tick_s, steps_.flown_s(), kStepFramesWait.count());
 }
 
 void FcBridgeNode::on_request(const msg::FcRequest& request) {
@@ -98,32 +118,51 @@ void FcBridgeNode::on_request(const msg::FcRequest& request) {
 }
 
 void FcBridgeNode::on_frame(const mavlink::Frame& frame, const mavlink::ParserStats& stats) {
-  const auto now = clock_.now_s();
-  if (!now) return;
   Events events;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    // Lockstep: a frame belongs to the step the last setpoint flew (it came after that
+    // setpoint, and the next command waits for it), whatever the simulator's clock says by
+    // the time this thread runs.
+    const auto now = lockstep() && steps_.flown_s() >= 0.0 ? std::optional<double>(steps_.flown_s())
+                                                           : clock_.now_s();
+    if (!now) return;
     bridge_.set_parser_stats(stats);
     bridge_.on_frame(frame, *now);
+    if (lockstep() && frame.message_id == mavlink::HighresImu::kId) close_step_locked(frame);
     take_events_locked(events);
   }
   if (!events.empty()) report(events);
 }
 
+void FcBridgeNode::close_step_locked(const mavlink::Frame& frame) {
+  const double step_s =
+      1e-6 * static_cast<double>(mavlink::HighresImu::unpack(frame.payload.data()).time_usec);
+  steps_.frames_in(step_s);
+  // The agent's next tick waits for the state after this step (its FcGate).
+  write_state(bridge_.state(step_s), step_s, true);
+}
+
 void FcBridgeNode::housekeeping(double now_s) {
   Events events;
-  FcStatus status;
+  std::optional<FcStatus> status;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     // Lockstep: ticked on each command (on_command) while the agent answers; here only when
     // it has fallen silent (the supervisor must still see that), never racing a setpoint.
     const bool agent_silent = now_s - last_command_tick_s_ > kLockstepSilentTicks_s;
     if (!lockstep() || agent_silent) write_locked(bridge_.tick(now_s));
-    status = bridge_.state(now_s);
+    if (!lockstep()) {
+      status = bridge_.state(now_s);
+    } else if (steps_.in_s() < 0.0 || agent_silent) {
+      // Lockstep: the state goes out with each step's frames (close_step_locked); here only
+      // while none come, stamped with the newest step it includes.
+      write_state(bridge_.state(now_s), std::max(steps_.in_s(), 0.0), false);
+    }
     take_events_locked(events);
   }
   if (!events.empty()) report(events);
-  publish_state(status, now_s);
+  if (status) write_state(*status, now_s, false);
 }
 
 // --- outputs ---------------------------------------------------------------------------
@@ -181,11 +220,11 @@ bool FcBridgeNode::seen_before(const std::string& request_id) {
   return false;
 }
 
-void FcBridgeNode::publish_state(const FcStatus& status, double now_s) {
-  msg::FcState state = to_msg(status, options_.uav_id, clock::s_to_ns(now_s));
+void FcBridgeNode::write_state(const FcStatus& status, double stamp_s, bool every_step) {
+  msg::FcState state = to_msg(status, options_.uav_id, clock::s_to_ns(stamp_s));
   // Paced on the host's clock: readers judge a silent bridge by wall time.
   const double wall_s = monotonic_s();
-  const bool due = wall_s >= next_state_monotonic_s_;
+  const bool due = every_step || wall_s >= next_state_monotonic_s_;
   if (!due && last_state_ && !differs(state, *last_state_)) return;
   state_writer_.write(state);
   last_state_ = std::move(state);

@@ -17,6 +17,7 @@
 #include "cover/mavlink/link.hpp"
 #include "cover/mavlink/parser.hpp"
 #include "link_keeper.hpp"
+#include "lockstep_steps.hpp"
 
 namespace cover::fc_bridge {
 
@@ -34,7 +35,8 @@ struct NodeOptions {
 //    written at once (the latency path: no allocation, no log line per sample);
 //  - the link's reader thread: the autopilot's frames;
 //  - run()'s housekeeping loop, 50 Hz (lockstep: every simulator tick): resends,
-//    failsafe, heartbeat, cover/uav/U/fc at state_rate_hz and on every change.
+//    failsafe, heartbeat, cover/uav/U/fc at state_rate_hz and on every change (lockstep:
+//    with each step's frames, stamped with the step, see LockstepSteps).
 // Operator requests (cover/fc/request) are answered on cover/fc/reply.
 class FcBridgeNode {
  public:
@@ -67,7 +69,12 @@ class FcBridgeNode {
   void reply(const std::string& request_id, msg::FcCommandResult result,
              const std::string& message);
   bool seen_before(const std::string& request_id);
-  void publish_state(const FcStatus& status, double now_s);
+  // Lockstep (mutex_ held).
+  void await_step_frames_locked(std::unique_lock<std::mutex>& lock, double tick_s);
+  void close_step_locked(const mavlink::Frame& frame);
+  // cover/uav/U/fc at state_rate_hz and on a change; `every_step`: whatever the pace. From
+  // one thread at a time: the housekeeping thread in realtime, under mutex_ in lockstep.
+  void write_state(const FcStatus& status, double stamp_s, bool every_step);
 
   NodeOptions options_;
   BridgeClock clock_;
@@ -75,6 +82,8 @@ class FcBridgeNode {
   Bridge bridge_;
   std::uint64_t write_failures_ = 0;
   std::atomic<double> last_command_tick_s_{-1.0};  // bridge time of the last agent command
+  LockstepSteps steps_;                            // under mutex_
+  bool step_frames_late_logged_ = false;           // under mutex_
   dds::Writer<msg::FcState> state_writer_;
   dds::Writer<msg::FcReply> reply_writer_;
   std::optional<msg::FcState> last_state_;

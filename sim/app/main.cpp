@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -208,6 +209,17 @@ cover::sim::MavlinkPorts checked_ports(int bind_base, int peer_base, int count,
   return {static_cast<std::uint16_t>(bind_base), static_cast<std::uint16_t>(peer_base)};
 }
 
+// In lockstep a bridge takes a step's HIGHRES_IMU, sent last, as the end of that step's
+// frames and waits for it before the next tick's command: one sample every step.
+void check_lockstep_imu_rate(const cover::sim::fc::SimFcParams& fc,
+                             const cover::sim::SimProcessParams& sim) {
+  if (std::abs(fc.highres_imu_rate_hz - sim.control_rate_hz) <= 1e-9) return;
+  throw cover::config::ConfigError(fmt::format(
+      "highres_imu_rate_hz ({} Hz) must equal control_rate_hz ({} Hz) in lockstep: the bridge "
+      "waits for each step's HIGHRES_IMU (docs/flight-controller.md, \"Lockstep\")",
+      fc.highres_imu_rate_hz, sim.control_rate_hz));
+}
+
 cover::sim::MavlinkRunOptions mavlink_options(const CommandLine& cli,
                                               const cover::sim::Fleet& fleet,
                                               const cover::sim::fc::SimFcParams& fc_params) {
@@ -306,6 +318,9 @@ int main(int argc, char** argv) {
                                             : cover::sim::SimClockMode::Realtime;
     options.standing = cli.standing;
     options.mavlink = mavlink_options(cli, fleet, autopilots.params);
+    if (options.clock == cover::sim::SimClockMode::Lockstep && autopilots.profile) {
+      check_lockstep_imu_rate(autopilots.params, params);
+    }
     options.mocap = cover::sim::parse_mocap_option(cli.mocap, cli.mocap_config);
     if (!cli.relative_gap.empty()) {
       if (!(cli.relative_gap[0] >= 0.0 && cli.relative_gap[1] > 0.0)) {

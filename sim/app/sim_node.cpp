@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "cover/clock/clock.hpp"
+#include "cover/mission/mission_state.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/wire/control.hpp"
 #include "cover/wire/eigen.hpp"
@@ -45,15 +46,8 @@ SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>&
           participant.make_reader(dds::topics::uav_command(uav),
                                   [this, u](const msg::UavCommand& c) { on_command(u, c); }));
     }
-    trace_readers_.push_back(
-        participant.make_reader(dds::topics::uav_trace(uav), [this, u](const msg::ControlTrace& t) {
-          {
-            std::lock_guard<std::mutex> lock(mutex_);
-            mailboxes_[u].trace = t;
-            if (!answered(mailboxes_[u], awaited_tick_ns_)) return;
-          }
-          arrived_.notify_all();
-        }));
+    trace_readers_.push_back(participant.make_reader(
+        dds::topics::uav_trace(uav), [this, u](const msg::ControlTrace& t) { on_trace(u, t); }));
   }
   task_status_reader_ =
       participant.make_reader(dds::topics::task_status(), [this](const msg::TaskStatus& s) {
@@ -193,6 +187,25 @@ void SimNode::publish_tick() {
       fleet_.latest_imu_stamp_s() >= 0.0 ? wire::to_stamp_ns(fleet_.latest_imu_stamp_s()) : -1;
   tick.relative_stamp_ns = relative_stamp_ns;
   clock_writer_.write(tick);
+}
+
+void SimNode::on_trace(int u, const msg::ControlTrace& trace) {
+  bool state_changed = false;
+  bool completes_tick = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    Mailbox& box = mailboxes_[u];
+    state_changed = !box.trace || box.trace->task_state != trace.task_state;
+    box.trace = trace;
+    completes_tick = answered(box, awaited_tick_ns_);
+  }
+  if (state_changed) {
+    const auto state = wire::from_msg(trace.task_state);
+    spdlog::info("UAV {}: task {} from t = {:.2f} s (its trace)", u,
+                 state ? mission::to_string(*state) : "in an unknown state",
+                 wire::to_seconds(trace.stamp_ns));
+  }
+  if (completes_tick) arrived_.notify_all();
 }
 
 bool SimNode::answered(const Mailbox& box, std::int64_t tick_ns) const {

@@ -108,6 +108,7 @@ class SimNode {
   TickWait wait_for_commands(std::int64_t tick_ns);
   void apply_commands(bool lockstep);
   void on_command(int uav, const msg::UavCommand& command);
+  void on_trace(int uav, const msg::ControlTrace& trace);
   bool answered(const Mailbox& box, std::int64_t tick_ns) const;
   void log_stall(int uav, const Mailbox& box, std::int64_t tick_ns, double timeout_s) const;
   // Autopilots (sim_node_autopilot.cpp); the mutex held where named _locked.

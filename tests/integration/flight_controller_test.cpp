@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -19,7 +20,10 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "cover/test/cpu_hog.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 #include "launch_run.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
@@ -116,16 +120,67 @@ TEST(FlightController, AutopilotHeartbeatLostFailsTheTaskWithTheReason) {
   EXPECT_NE(status.find("flight-controller link lost"), std::string::npos) << status;
 }
 
+// Lockstep through the bridge repeats bit for bit: the bridge takes each step's autopilot
+// frames before the next tick's command, and the agent the bridge's state after that step
+// (docs/flight-controller.md, "Lockstep"), however the processes are scheduled: a second
+// run with every core busy lands at the same point, with the same events.
+TEST(FlightController, LockstepThroughTheAutopilotRepeatsBitForBitUnderACpuHog) {
+  constexpr int kDomain = 229;
+  const auto quiet = fly("px4", {}, kDomain);
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.stdout_text;
+  // Every tick found what it waits for (a timeout would be logged, and lose the repeat).
+  const auto run_dir = cover::test::scratch_dir() / ("cover_fc_" + std::to_string(kDomain));
+  EXPECT_EQ(cover::test::read_text(run_dir / "fc0.log").find("repeat bit for bit"),
+            std::string::npos);
+  EXPECT_EQ(cover::test::read_text(run_dir / "uav0.log").find("the bridge's state after step"),
+            std::string::npos);
+  cover::bench::LaunchOutcome loaded;
+  {
+    const cover::test::CpuHog hog;
+    loaded = fly("px4", {}, kDomain);
+  }
+  ASSERT_EQ(loaded.exit_code, 0) << loaded.stdout_text;
+  for (const char* key : {"landing_error_m", "Lt", "tracking_error_m", "duration_s"}) {
+    EXPECT_EQ(quiet.result.at(key), loaded.result.at(key)) << key;
+  }
+  EXPECT_EQ(quiet.result.at("fc").at("events"), loaded.result.at("fc").at("events"));
+  EXPECT_EQ(quiet.result.at("fc").at("setpoints_accepted"),
+            loaded.result.at("fc").at("setpoints_accepted"));
+}
+
+// In lockstep the bridge takes each step's HIGHRES_IMU as the end of the step's frames: a
+// simulated autopilot that would not send one every step is refused before it starts.
+TEST(FlightController, LockstepRefusesAnAutopilotImuSlowerThanTheControlRate) {
+  const std::string params = cover::test::scratch_path("sim_fc.yaml");
+  std::string yaml = cover::test::read_text(std::string(COVER_CONFIG_DIR) + "/sim/sim_fc.yaml");
+  const std::string key = "highres_imu_rate_hz: 100.0";
+  ASSERT_NE(yaml.find(key), std::string::npos) << "the shipped file changed: " << key;
+  yaml.replace(yaml.find(key), key.size(), "highres_imu_rate_hz: 50.0");
+  std::ofstream(params) << yaml;
+  cover::process::SpawnOptions spawn;
+  spawn.log_file = cover::test::scratch_path("sim.log");
+  cover::process::ChildProcess sim({cover::test::bin("cover-sim"), "--fc", "px4", "--fc-params",
+                                    params, "--clock", "lockstep", "--scenario", "scenario2"},
+                                   spawn);
+  const auto code = sim.wait(cover::test::scaled(std::chrono::seconds(30)));
+  ASSERT_TRUE(code.has_value());
+  EXPECT_EQ(*code, 2);
+  const std::string log = cover::test::read_text(spawn.log_file);
+  EXPECT_NE(log.find("highres_imu_rate_hz (50 Hz) must equal control_rate_hz (100 Hz)"),
+            std::string::npos)
+      << log;
+}
+
 // The newest control step the UAV agent reported (its trace is written just before each
 // command, stamped with the step's simulated time).
 class LastStep {
  public:
   explicit LastStep(int domain) : participant_(options(domain)) {
-    reader_ = participant_.make_reader(
-        cover::dds::topics::uav_trace(0), [this](const cover::msg::ControlTrace& t) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          stamp_s_ = t.stamp_ns * 1e-9;
-        });
+    reader_ = participant_.make_reader(cover::dds::topics::uav_trace(0),
+                                       [this](const cover::msg::ControlTrace& t) {
+                                         std::lock_guard<std::mutex> lock(mutex_);
+                                         stamp_s_ = t.stamp_ns * 1e-9;
+                                       });
   }
   double stamp_s() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -157,14 +212,14 @@ TEST(FlightController, AgentKilledInFlightPutsTheAutopilotInLandModeWithin150ms)
                                 {"--scenario", "scenario2", "--fc", "px4", "--fc-peer-port-base",
                                  fc_port, "--fc-bind-port-base", autopilot_port});
   LastStep last_step(kDomain);
-  auto bridge = system.spawn({cover::test::bin("cover-fc-bridge"), "--id", "0", "--autopilot",
-                              "px4", "--url", "udpin://127.0.0.1:" + fc_port, "--clock",
-                              "realtime", "--auto-arm"},
-                             "bridge");
-  auto agent = system.spawn({cover::test::bin("cover-uav-agent"), "--id", "0", "--clock",
-                             "realtime", "--ugv-count", "2", "--fc-bridge", "--task",
-                             std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml"},
-                            "uav");
+  auto bridge =
+      system.spawn({cover::test::bin("cover-fc-bridge"), "--id", "0", "--autopilot", "px4", "--url",
+                    "udpin://127.0.0.1:" + fc_port, "--clock", "realtime", "--auto-arm"},
+                   "bridge");
+  auto agent = system.spawn(
+      {cover::test::bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2",
+       "--fc-bridge", "--task", std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml"},
+      "uav");
   // In the air, COVER flying it: well above the deck.
   ASSERT_TRUE(system.wait_for_world(
       [](const cover::sim::SharedWorld& w) {
@@ -185,8 +240,8 @@ TEST(FlightController, AgentKilledInFlightPutsTheAutopilotInLandModeWithin150ms)
       std::chrono::seconds(5)))
       << "the autopilot never left OFFBOARD";
   ASSERT_GT(last_command_s, 0.0);
-  EXPECT_LE(land_s - last_command_s, 0.150) << "last command at " << last_command_s
-                                            << " s, land mode seen at " << land_s << " s";
+  EXPECT_LE(land_s - last_command_s, 0.150)
+      << "last command at " << last_command_s << " s, land mode seen at " << land_s << " s";
   // And it lands: at rest, motors off.
   EXPECT_TRUE(system.wait_for_world(
       [](const cover::sim::SharedWorld& w) {

@@ -16,6 +16,7 @@
 #include "cover/mission/mission_controller.hpp"
 #include "cover/mission/plan_worker.hpp"
 #include "cover/sim/closed_loop.hpp"
+#include "cover/test/cpu_hog.hpp"
 #include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
 #include "cover/uav/controller_config.hpp"
@@ -200,28 +201,6 @@ void expect_identical(const cover::sim::ClosedLoopResult& a,
   EXPECT_EQ(a.landing_error_m, b.landing_error_m);
 }
 
-// Spinning threads on every core, and the lockstep run must not notice.
-class CpuHog {
- public:
-  CpuHog() {
-    const unsigned n = std::max(2u, std::thread::hardware_concurrency());
-    for (unsigned i = 0; i < n; ++i) {
-      threads_.emplace_back([this] {
-        volatile double x = 1.0;
-        while (!stop_.load(std::memory_order_relaxed)) x = x * 1.0000001 + 1e-9;
-      });
-    }
-  }
-  ~CpuHog() {
-    stop_ = true;
-    for (std::thread& t : threads_) t.join();
-  }
-
- private:
-  std::atomic<bool> stop_{false};
-  std::vector<std::thread> threads_;
-};
-
 TEST(PlanOffThread, ALockstepRunIsBitIdenticalUnderACpuHog) {
   for (const cover::sampc::Mode mode : {cover::sampc::Mode::Cover, cover::sampc::Mode::Intercept}) {
     const auto config = cover::uav::ControllerConfig::load_default(mode);
@@ -234,7 +213,7 @@ TEST(PlanOffThread, ALockstepRunIsBitIdenticalUnderACpuHog) {
     ASSERT_TRUE(quiet.success) << quiet.status;
     cover::sim::ClosedLoopResult loaded;
     {
-      const CpuHog hog;
+      const cover::test::CpuHog hog;
       loaded = loop.run();
     }
     SCOPED_TRACE(cover::sampc::to_string(mode));

@@ -11,10 +11,20 @@ FcGate::FcGate(dds::Participant& participant, std::uint32_t uav_id, bool require
                double stale_after_s)
     : required_(required), stale_after_s_(stale_after_s) {
   reader_ = participant.make_reader(dds::topics::fc_state(uav_id), [this](const msg::FcState& s) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    latest_ = s;
-    received_monotonic_ns_ = clock::monotonic_ns();
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      latest_ = s;
+      received_monotonic_ns_ = clock::monotonic_ns();
+    }
+    arrived_.notify_all();
   });
+}
+
+bool FcGate::wait_for_stamp(std::int64_t stamp_ns,
+                            std::chrono::steady_clock::time_point deadline) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return arrived_.wait_until(lock, deadline,
+                             [&] { return latest_ && latest_->stamp_ns >= stamp_ns; });
 }
 
 bool FcGate::bridge_present() const {

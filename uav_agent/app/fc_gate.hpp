@@ -1,5 +1,7 @@
 #pragma once
 
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <mutex>
 #include <optional>
@@ -24,11 +26,15 @@ class FcGate {
   bool bridge_present() const;
   // nullopt: COVER's setpoints fly the UAV (or no bridge runs); otherwise why not.
   std::optional<std::string> not_ready_reason() const;
+  // Lockstep: blocks until a state stamped >= `stamp_ns` arrived (the bridge sends one with
+  // each step's frames, stamped with the step); false at `deadline`.
+  bool wait_for_stamp(std::int64_t stamp_ns, std::chrono::steady_clock::time_point deadline) const;
 
  private:
   bool required_;
   double stale_after_s_;
   mutable std::mutex mutex_;
+  mutable std::condition_variable arrived_;
   std::optional<msg::FcState> latest_;
   std::int64_t received_monotonic_ns_ = 0;
   dds::Reader<msg::FcState> reader_;  // last: its callback uses the members above

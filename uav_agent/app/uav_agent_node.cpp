@@ -148,13 +148,26 @@ void UavAgentNode::run_lockstep() {
 // A lockstep tick is stepped on the inputs of that tick: wait (bounded) until the
 // relative states and UGV IMU published for it have arrived.
 void UavAgentNode::wait_for_inputs(const msg::SimClock& tick) {
-  if (!loop_.task()) return;
   const auto deadline =
       std::chrono::steady_clock::now() + clock::to_milliseconds(options_.input_wait_s);
   // Blocks on the readers' arrivals (no polling: a poll's sleep costs its slack every tick).
-  if (!inputs_.wait_for_stamps(tick.relative_stamp_ns, tick.imu_stamp_ns, deadline)) {
+  if (loop_.task() &&
+      !inputs_.wait_for_stamps(tick.relative_stamp_ns, tick.imu_stamp_ns, deadline)) {
     spdlog::warn("tick {}: inputs missing after {:.1f} s, stepping on what arrived", tick.tick,
                  options_.input_wait_s);
+  }
+  // Through an autopilot: its state after the step our last command flew (whether it is
+  // armed and in OFFBOARD decides when a held task starts and when a flight fails).
+  const std::int64_t flown_ns = previous_tick_ns_;
+  previous_tick_ns_ = tick.stamp_ns;
+  if (flown_ns < 0 || !fc_gate_.bridge_present()) return;
+  // The bridge stamps a step with the autopilot's time: whole microseconds.
+  constexpr std::int64_t kAutopilotStampResolution_ns = 1000;
+  if (!fc_gate_.wait_for_stamp(flown_ns - kAutopilotStampResolution_ns, deadline)) {
+    spdlog::warn(
+        "tick {}: the bridge's state after step {:.2f} s missing after {:.1f} s, stepping "
+        "on the one before",
+        tick.tick, wire::to_seconds(flown_ns), options_.input_wait_s);
   }
 }
 

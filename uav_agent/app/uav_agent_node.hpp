@@ -85,6 +85,7 @@ class UavAgentNode {
   double next_status_s_ = 0.0;
   double last_step_s_ = 0.0;  // time of the last control step (the status stamp between steps)
   std::uint64_t answers_repeated_ = 0;  // lockstep ticks answered again (a lost answer)
+  std::int64_t previous_tick_ns_ = -1;  // lockstep: the tick stepped last (its command flew)
   // Where a lockstep run's wall time goes (logged at the end): waiting for the simulator's
   // tick, for that tick's inputs, and the step (of which waiting for a plan due at it).
   struct LockstepTimes {

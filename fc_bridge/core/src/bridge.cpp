@@ -219,6 +219,7 @@ void Bridge::on_imu(const mavlink::Frame& frame, double now_s) {
 const std::vector<mavlink::EncodedFrame>& Bridge::on_agent_command(const AgentCommand& command,
                                                                    double now_s) {
   out_.clear();
+  setpoint_sent_ = false;
   const double now = advance(now_s);
   if (!fresh(command)) return out_;
   supervisor_.on_command(command.handover, now);
@@ -273,6 +274,7 @@ void Bridge::send_setpoint(const AgentCommand& command, double now_s) {
       mapper_.map(command, estimator_.estimate(), session_.system_id(), session_.component_id());
   last_thrust_ = target.thrust;
   out_.push_back(encoder_.encode(target));
+  setpoint_sent_ = true;
   stream_.on_sent(now_s);
 }
 

@@ -43,7 +43,6 @@ void SimulatedAutopilot::queue_streams(double now_s, const World& world,
                                        const QuadrotorCommand& command) {
   if (heartbeat_stream_.due(now_s) && !heartbeats_stopped_) queue(heartbeat());
   if (attitude_stream_.due(now_s)) queue(attitude(now_s, world));
-  if (imu_stream_.due(now_s)) queue(highres_imu(now_s, world));
   if (target_stream_.due(now_s)) queue(attitude_target(now_s, world, command));
   if (ext_state_stream_.due(now_s)) {
     mavlink::ExtendedSysState state;
@@ -54,6 +53,9 @@ void SimulatedAutopilot::queue_streams(double now_s, const World& world,
     queue(sys_status());
     queue(battery_status());
   }
+  // Last: in lockstep the IMU sample closes the step's frames, and a bridge waits for it
+  // before the next tick's command (docs/flight-controller.md, "Lockstep").
+  if (imu_stream_.due(now_s)) queue(highres_imu(now_s, world));
 }
 
 mavlink::Heartbeat SimulatedAutopilot::heartbeat() const {

@@ -84,6 +84,9 @@ class Bridge {
   // Allocates nothing in the steady state.
   const std::vector<mavlink::EncodedFrame>& on_agent_command(const AgentCommand& command,
                                                              double now_s);
+  // Whether the last on_agent_command wrote a setpoint (no autopilot heard yet, or a
+  // command refused: it did not).
+  bool setpoint_sent() const { return setpoint_sent_; }
   const std::vector<mavlink::EncodedFrame>& on_operator_request(OperatorCommand command,
                                                                 const std::string& request_id,
                                                                 double now_s);
@@ -147,8 +150,9 @@ class Bridge {
   bool has_last_ = false;
   std::int64_t last_stamp_ns_ = 0;
   std::uint32_t last_seq_ = 0;
-  bool last_sent_ = false;  // the last fresh command went out as a setpoint
-  bool rejecting_ = false;  // a run of unusable commands is logged once, at its start and end
+  bool last_sent_ = false;      // the last fresh command went out as a setpoint
+  bool setpoint_sent_ = false;  // by the last on_agent_command
+  bool rejecting_ = false;      // a run of unusable commands is logged once, at its start and end
   bool last_release_ = false;
   double last_thrust_ = 0.0;  // normalised, as last sent
   bool highres_imu_seen_ = false;
