@@ -419,6 +419,42 @@ TEST_F(FoxgloveBridge, AMalformedMessageGetsAnErrorStatusOnlyToItsSender) {
   EXPECT_NE(stranger.response().find("400"), std::string::npos) << stranger.response();
 }
 
+// config/foxglove_bridge.yaml's keys, then the flags given on top of them; a bad value in
+// either, or an unknown key, is a configuration error naming the key (exit 2).
+TEST_F(FoxgloveBridge, TheFileSetsTheServerAndAFlagOverridesIt) {
+  const std::string config = scratch_path("foxglove_bridge.yaml");
+  std::ofstream(config) << "foxglove: {client_queue_kib: 128, max_clients: 3, "
+                           "slow_client_timeout_s: 2.5}\n";
+  const auto bridge = start_bridge({"--config", config, "--max-clients", "5"});
+  const std::string log = read_text(bridge->log());
+  EXPECT_NE(log.find("(queue 128 KiB per client, a client full for 2.5 s is dropped, at most 5 "
+                     "clients)"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(bridge->child().terminate(scaled(10s), SIGINT), 0);
+}
+
+TEST(FoxgloveBridgeProcess, ABadSettingInTheFileOrAFlagIsAConfigurationError) {
+  const std::string shipped = std::string(COVER_CONFIG_DIR) + "/foxglove_bridge.yaml";
+  const std::string fast = scratch_path("fast.yaml");
+  std::ofstream(fast) << "foxglove: {scene_rate_hz: 500}\n";
+  const std::string typo = scratch_path("typo.yaml");
+  std::ofstream(typo) << "foxglove: {prot: 9000}\n";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--config", fast}, "foxglove.scene_rate_hz"},
+      {{"--config", typo}, "prot"},
+      {{"--config", shipped, "--max-clients", "0"}, "foxglove.max_clients"},
+      {{"--config", scratch_path("missing.yaml")}, "missing.yaml"}};
+  for (const auto& [flags, key] : cases) {
+    std::vector<std::string> argv{COVER_FOXGLOVE_BRIDGE};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    const Output out = run(argv, "bad.stderr");
+    EXPECT_EQ(out.code, 2) << key;
+    const std::string error = read_text(scratch_path("bad.stderr"));
+    EXPECT_NE(error.find(key), std::string::npos) << error;
+  }
+}
+
 TEST(FoxgloveBridgeProcess, HelpAndATakenPortExitAsDocumented) {
   const Output help = run({COVER_FOXGLOVE_BRIDGE, "--help"}, "help.stderr");
   EXPECT_EQ(help.code, 0);

@@ -8,6 +8,7 @@
 #include "cover/config/param_fields.hpp"
 #include "cover/fc_bridge/fc_bridge_params.hpp"
 #include "cover/fleet/fleet_size.hpp"
+#include "cover/foxglove/live_view_params.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/mocap/relay_params.hpp"
 #include "cover/planner/planner_params.hpp"
@@ -123,6 +124,11 @@ std::vector<Section> sections() {
           "`config/mocap.yaml`, section `mocap` (required): a real motion-capture system over "
           "VRPN (`docs/mocap.md`). Besides these keys, the required map `bodies` (`uav<u>` / "
           "`ugv<k>` to the server's body names). Read by `cover-mocap-relay`."),
+      section<foxglove::LiveViewParams>(
+          "Live view (Foxglove)", "foxglove/params/include/cover/foxglove/live_view_params.hpp",
+          "`config/foxglove_bridge.yaml`, section `foxglove`: the Foxglove WebSocket server "
+          "(`docs/recording.md`). Read by `cover-foxglove-bridge` (`--config`); a flag given "
+          "on its command line overrides its key."),
   };
 }
 

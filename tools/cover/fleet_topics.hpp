@@ -7,14 +7,15 @@
 #include <vector>
 
 #include "cover/dds/topics.hpp"
+#include "cover/fleet/fleet_size.hpp"
 
 namespace cover::cli {
 
 // The vehicles whose topics a recorder, player or `cover fleet` binds: UAV ids 0..uavs-1,
 // UGV ids 0..ugvs-1.
 struct FleetSize {
-  std::uint32_t uavs = 4;
-  std::uint32_t ugvs = 8;
+  std::uint32_t uavs = fleet::kMaxUavs;
+  std::uint32_t ugvs = fleet::kMaxUgvs;
 };
 
 // True when `topic` matches one of the shell globs (fnmatch; `*` spans '/'), or `globs`

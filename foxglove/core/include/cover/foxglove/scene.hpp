@@ -6,13 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "cover/fleet/fleet_size.hpp"
 #include "cover/msg/types.hpp"
 
 namespace cover::foxglove {
 
 struct SceneOptions {
-  std::uint32_t uavs = 4;
-  std::uint32_t ugvs = 8;
+  std::uint32_t uavs = fleet::kMaxUavs;
+  std::uint32_t ugvs = fleet::kMaxUgvs;
   // A relative state older than this (by its receive time) no longer places a frame.
   double stale_after_s = 0.5;
   double deck_size_m = 1.0;  // the square drawn at each UGV frame's origin
