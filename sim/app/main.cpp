@@ -260,15 +260,7 @@ cover::sim::MavlinkRunOptions mavlink_options(const CommandLine& cli,
   return m;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();
-  CLI::App app{
-      "cover-sim: the simulated world of a scenario, shared over DDS and shared memory; with "
-      "--fc px4|ardupilot each UAV has a simulated autopilot speaking MAVLink over UDP"};
-  app.footer(kExitCodes);
-  CommandLine cli;
+void add_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--scenario", cli.scenario, "name in config/scenarios/ or a YAML path")
       ->capture_default_str();
   app.add_option("--clock", cli.clock,
@@ -299,6 +291,41 @@ int main(int argc, char** argv) {
                  "the simulated mocap system: rate, latency, noise, dropouts, up axis, units")
       ->capture_default_str();
   cli.dds.add_to(app);
+}
+
+// The run's options from the command line, checked against the fleet and the settings.
+cover::sim::SimRunOptions run_options(const CommandLine& cli, const cover::sim::Fleet& fleet,
+                                      const cover::sim::FleetAutopilots& autopilots,
+                                      const cover::sim::SimProcessParams& params) {
+  cover::sim::SimRunOptions options;
+  options.clock = cli.clock == "lockstep" ? cover::sim::SimClockMode::Lockstep
+                                          : cover::sim::SimClockMode::Realtime;
+  options.standing = cli.standing;
+  options.mavlink = mavlink_options(cli, fleet, autopilots.params);
+  if (options.clock == cover::sim::SimClockMode::Lockstep && autopilots.profile) {
+    check_lockstep_imu_rate(autopilots.params, params);
+  }
+  options.mocap = cover::sim::parse_mocap_option(cli.mocap, cli.mocap_config);
+  if (!cli.relative_gap.empty()) {
+    if (!(cli.relative_gap[0] >= 0.0 && cli.relative_gap[1] > 0.0)) {
+      throw cover::config::ConfigError("--relative-gap: START_S must be >= 0, DURATION_S > 0");
+    }
+    options.relative_gap_start_s = cli.relative_gap[0];
+    options.relative_gap_s = cli.relative_gap[1];
+  }
+  return options;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cover::process::ShutdownSignal::install();
+  CLI::App app{
+      "cover-sim: the simulated world of a scenario, shared over DDS and shared memory; with "
+      "--fc px4|ardupilot each UAV has a simulated autopilot speaking MAVLink over UDP"};
+  app.footer(kExitCodes);
+  CommandLine cli;
+  add_options(app, cli);
   CLI11_PARSE(app, argc, argv);
   cover::logging::init("sim");
   try {
@@ -313,22 +340,7 @@ int main(int argc, char** argv) {
     if (mavlink) autopilots.params = cover::sim::fc::SimFcParams::load_file(cli.fc_params_file);
     cover::sim::Fleet fleet(scenario, params, mission, autopilots);
     const cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-sim");
-    cover::sim::SimRunOptions options;
-    options.clock = cli.clock == "lockstep" ? cover::sim::SimClockMode::Lockstep
-                                            : cover::sim::SimClockMode::Realtime;
-    options.standing = cli.standing;
-    options.mavlink = mavlink_options(cli, fleet, autopilots.params);
-    if (options.clock == cover::sim::SimClockMode::Lockstep && autopilots.profile) {
-      check_lockstep_imu_rate(autopilots.params, params);
-    }
-    options.mocap = cover::sim::parse_mocap_option(cli.mocap, cli.mocap_config);
-    if (!cli.relative_gap.empty()) {
-      if (!(cli.relative_gap[0] >= 0.0 && cli.relative_gap[1] > 0.0)) {
-        throw cover::config::ConfigError("--relative-gap: START_S must be >= 0, DURATION_S > 0");
-      }
-      options.relative_gap_start_s = cli.relative_gap[0];
-      options.relative_gap_s = cli.relative_gap[1];
-    }
+    const cover::sim::SimRunOptions options = run_options(cli, fleet, autopilots, params);
     const std::string segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
     // Declared first, removed last: see SimNode.
     cover::shm::SeqlockWriter<cover::sim::SharedWorld> segment(
