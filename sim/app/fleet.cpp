@@ -19,8 +19,13 @@ Fleet::Fleet(const Scenario& scenario, const SimProcessParams& params,
                                     config::format_number(params.control_rate_hz) + " Hz");
   options_.control_rate_hz = params.control_rate_hz;
   for (int u = 0; u < scenario.uav_count(); ++u) {
-    Uav uav{std::make_unique<World>(scenario.world_of(u)), nullptr,
-            OffboardFailsafe(params.offboard_timeout_s, params.loss_descent_rate_m_s)};
+    Uav uav{std::make_unique<World>(scenario.world_of(u)),
+            nullptr,
+            OffboardFailsafe(params.offboard_timeout_s, params.loss_descent_rate_m_s),
+            nullptr,
+            OffboardState::WaitingForAgent,
+            {},
+            {}};
     uav.recorder =
         std::make_unique<RunRecorder>(scenario_, scenario_.task_of(u), mission, options_);
     if (autopilots_.profile) {

@@ -48,10 +48,10 @@ MissionController::MissionController(Task task, int ugv_count, MissionParams mis
       process_modes_(process_modes(machine_.task(), sampc.mode)),
       task_ugvs_(machine_.task().ugvs()),
       inputs_(static_cast<std::size_t>(ugv_count)),
+      plan_clock_(clock),
       observer_(static_cast<int>(std::lround(mission.observer_window_s / mission.control_period_s)),
                 mission.control_period_s, mission.observer_time_constant_s),
       ladder_(mission),
-      plan_clock_(clock),
       plan_worker_(plan ? std::move(plan) : stage_plan_function(planner), planner.pieces) {
   // The four trajectories that take turns (flown, adopted, the worker's two) are sized once
   // here: no plan and no adoption allocates on either thread.
@@ -141,32 +141,10 @@ const ControllerOutput& MissionController::step(double now_s) {
   output_.status.planned = false;
   output_.status.solve_us = 0.0;
   output_.status.solve_cpu_us = 0.0;
-  if (yielded_) {
-    output_.command.thrust_m_s2 = ladder_.hover_thrust_m_s2();
-    output_.command.body_rate_rad_s.setZero();
-    output_.command.armed = true;
-    output_.status.failsafe = Failsafe::AutopilotControl;
-    output_.status.stage = machine_.decision();
-    return output_;
-  }
-  if (ladder_.level() == LadderLevel::Disarmed) {
-    idle(Failsafe::EmergencyLanded);
-    return output_;
-  }
-  if (!machine_.decision().armed || disarmed_after_abort_) {
-    idle(Failsafe::Landed);
-    return output_;
-  }
+  if (not_flying_step(now_s)) return output_;
 
-  // 1. Inputs of the current reference frame: without them, the failsafe ladder. Before
-  // the mission has started, stay idle on the deck until every UGV the task flies between
-  // is heard: a UAV that took off toward a UGV it never heard (its agent late to discover
-  // over a lossy link) could only hover and land when the frame switched to it.
+  // 1. Inputs of the current reference frame: without them, the failsafe ladder.
   int reference = machine_.reference_ugv();
-  if (machine_.decision().state == MissionState::NotStarted && !task_inputs_healthy(now_s)) {
-    idle(Failsafe::WaitingForInputs);
-    return output_;
-  }
   if (emergency_step(reference, now_s)) return output_;
 
   // 2. Stage machine on the state in the current frame; a new stage needs a new plan.
@@ -181,20 +159,9 @@ const ControllerOutput& MissionController::step(double now_s) {
     return output_;
   }
 
-  // 3. The frame may have switched (transition stage): its own inputs are needed; the
-  // previous plan's states mean nothing there, its body-frame inputs still do.
+  // 3. The frame may have switched (transition stage): its own inputs are needed.
   reference = machine_.reference_ugv();
-  if (reference != last_reference_ugv_) {
-    sampc_.reset_frame();
-    // Frames are level (planar UGVs): the vertical estimate (mass) carries over, the
-    // horizontal one (drag in this frame's motion) does not.
-    disturbance_m_s2_.head<2>().setZero();
-    // The observer restarts its window in the new frame; its vertical part moves into the
-    // integral's so that the thrust does not step at the switch.
-    disturbance_m_s2_.z() += observer_.estimate_m_s2().z();
-    observer_.reset();
-    last_reference_ugv_ = reference;
-  }
+  if (reference != last_reference_ugv_) switch_frame(reference);
   if (emergency_step(reference, now_s)) return output_;
   const bool ended =
       decision.state == MissionState::Failed || decision.state == MissionState::Aborted;
@@ -210,6 +177,55 @@ const ControllerOutput& MissionController::step(double now_s) {
 
   // 4. SAMPC on the horizon reference.
   command_from_sampc(inputs_[reference], now_s);
+  report_degraded_flight(decision);
+  return output_;
+}
+
+// The steps that fly nothing of ours: the autopilot flies (we only keep a hover command
+// ready for when it hands back), the UAV is down, or the task has not started and some
+// UGV it flies between is not heard yet (a UAV that took off toward a UGV it never heard,
+// its agent late to discover over a lossy link, could only hover and land when the frame
+// switched to it).
+bool MissionController::not_flying_step(double now_s) {
+  if (yielded_) {
+    output_.command.thrust_m_s2 = ladder_.hover_thrust_m_s2();
+    output_.command.body_rate_rad_s.setZero();
+    output_.command.armed = true;
+    output_.status.failsafe = Failsafe::AutopilotControl;
+    output_.status.stage = machine_.decision();
+    return true;
+  }
+  if (ladder_.level() == LadderLevel::Disarmed) {
+    idle(Failsafe::EmergencyLanded);
+    return true;
+  }
+  if (!machine_.decision().armed || disarmed_after_abort_) {
+    idle(Failsafe::Landed);
+    return true;
+  }
+  if (machine_.decision().state == MissionState::NotStarted && !task_inputs_healthy(now_s)) {
+    idle(Failsafe::WaitingForInputs);
+    return true;
+  }
+  return false;
+}
+
+// The previous plan's states mean nothing in the new frame; its body-frame inputs still do.
+void MissionController::switch_frame(int reference) {
+  sampc_.reset_frame();
+  // Frames are level (planar UGVs): the vertical estimate (mass) carries over, the
+  // horizontal one (drag in this frame's motion) does not.
+  disturbance_m_s2_.head<2>().setZero();
+  // The observer restarts its window in the new frame; its vertical part moves into the
+  // integral's so that the thrust does not step at the switch.
+  disturbance_m_s2_.z() += observer_.estimate_m_s2().z();
+  observer_.reset();
+  last_reference_ugv_ = reference;
+}
+
+// A command SAMPC made while the ladder holds on the IMU, or while the UAV holds a point
+// after its task ended, says so in the status.
+void MissionController::report_degraded_flight(const StageDecision& decision) {
   if (ladder_.level() == LadderLevel::ImuHold && output_.status.failsafe == Failsafe::None) {
     output_.status.failsafe = Failsafe::ImuHold;
   }
@@ -217,7 +233,6 @@ const ControllerOutput& MissionController::step(double now_s) {
     output_.status.failsafe =
         decision.state == MissionState::Aborted ? Failsafe::Aborted : Failsafe::MissionFailed;
   }
-  return output_;
 }
 
 bool MissionController::abort(double now_s) {

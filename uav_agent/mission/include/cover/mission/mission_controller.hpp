@@ -131,7 +131,10 @@ class MissionController {
   InputHealth input_health(int ugv, double now_s) const;
   // Every UGV of the task (each process's from and to) has fresh, valid inputs.
   bool task_inputs_healthy(double now_s) const;
+  bool not_flying_step(double now_s);
   bool emergency_step(int reference, double now_s);
+  void switch_frame(int reference);
+  void report_degraded_flight(const StageDecision& decision);
   void need_plan();
   void advance_plan(double now_s);
   void request_plan(double now_s);
