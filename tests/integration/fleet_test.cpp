@@ -185,10 +185,14 @@ TEST(Fleet, ListsEveryProcessWithItsAgeAndStateAndOneKilledTurnsStale) {
     const Json* r = row_of(listing, "ugv-agent", 1);
     ASSERT_NE(r, nullptr) << "a process heard once stays listed: " << listing.dump(2);
     const double age = (*r)["age_s"];
-    if (last_age > 1.5) EXPECT_GT(age, last_age) << "its age grows once it is silent";
+    if (last_age > 1.5) {
+      EXPECT_GT(age, last_age) << "its age grows once it is silent";
+    }
     last_age = age;
     stale = (*r)["stale"].get<bool>();
-    if (stale) EXPECT_GT(age, (*r)["stale_after_s"].get<double>());
+    if (stale) {
+      EXPECT_GT(age, (*r)["stale_after_s"].get<double>());
+    }
   }
   EXPECT_TRUE(stale) << listing.dump(2);
   const Json* alive = row_of(listing, "ugv-agent", 0);

@@ -305,7 +305,9 @@ TEST(LaunchFile, ShippedFlightControllerLaunchesLoad) {
   for (const auto& process : field.processes) {
     EXPECT_TRUE(process.respawn.enabled) << process.name;
     for (const auto& arg : process.args) EXPECT_NE(arg, "--auto-arm") << process.name;
-    if (process.executable == "cover-fc-bridge") EXPECT_TRUE(process.keep_running);
+    if (process.executable == "cover-fc-bridge") {
+      EXPECT_TRUE(process.keep_running);
+    }
   }
   EXPECT_NE(field.variables.at("autopilot_url").find("serial://"), std::string::npos);
   for (const char* name : {"scenario2_px4.yaml", "scenario2_ardupilot.yaml"}) {

@@ -168,7 +168,9 @@ TEST(SimulatedAutopilot, Px4OffboardLossLandsAfterComOfLossTAndDisarmsOnTouchdow
   bool said_so = false;
   for (const auto& t : bench.sent<mav::StatusText>()) {
     said_so = said_so || t.text_string().find("Failsafe: offboard lost") == 0;
-    if (t.text_string().find("Failsafe") == 0) EXPECT_EQ(t.severity, 2);
+    if (t.text_string().find("Failsafe") == 0) {
+      EXPECT_EQ(t.severity, 2);
+    }
   }
   EXPECT_TRUE(said_so);
   bench.idle(1.0);
