@@ -185,31 +185,46 @@ void StagePlanner::plan_or_throw(const StageProblem& problem, PlanResult& result
     return;
   }
 
-  const Eigen::Vector3d start = problem.start_position_m;
-  const Eigen::Vector3d goal = problem.goal_position_m;
   const Eigen::Vector3d v0 = initial_velocity(problem);
   const Eigen::Vector3d a0 = initial_acceleration(problem);
-  const double vm = problem.vmax_m_s;
-  const double am = problem.amax_m_s2;
   result.initial_velocity_m_s = v0;
-
-  const Eigen::Vector3d displacement = goal - start;
-  const double distance = displacement.norm();
+  const double distance = (problem.goal_position_m - problem.start_position_m).norm();
   if (distance <= params_.at_goal_tolerance_m && v0.norm() <= params_.at_rest_tolerance_m_s &&
       a0.isZero()) {
     result.status = PlanStatus::Ok;
     result.reason = "already at the goal and at rest: hold";
-    result.trajectory.assign_hold(start);
+    result.trajectory.assign_hold(problem.start_position_m);
     return;
   }
 
-  // Initial guess (paper: uniform front-end path between p0 and p_t): the rest-to-rest
-  // minimum-jerk profile with a safe duration, plus time to absorb v0, bent by v0 so the
-  // first piece agrees with the start velocity. Also the fallback if L-BFGS breaks down.
+  const double guess_cost = prepare_guess(problem, v0, a0);
+  Optimiser& optimiser = *optimiser_;
+  optimiser.x = optimiser.guess;
+  double final_cost = 0.0;
+  int evaluations = 0;
+  const LbfgsResult why =
+      optimiser.lbfgs.minimize(&Optimiser::callback, &optimiser, optimiser.settings,
+                               optimiser.x.data(), final_cost, evaluations);
+  result.iterations = evaluations;
+  write_result(why, guess_cost, problem.start_position_m, result);
+}
+
+// Initial guess (paper: uniform front-end path between p0 and p_t): the rest-to-rest
+// minimum-jerk profile with a safe duration, plus time to absorb v0, bent by v0 so the
+// first piece agrees with the start velocity. Also the fallback if L-BFGS breaks down.
+// The cost is scaled to a unit gradient at the guess (L-BFGS's first step is unit
+// length); returns the guess's scaled cost.
+double StagePlanner::prepare_guess(const StageProblem& problem, const Eigen::Vector3d& v0,
+                                   const Eigen::Vector3d& a0) {
+  const Eigen::Vector3d start = problem.start_position_m;
+  const Eigen::Vector3d displacement = problem.goal_position_m - start;
+  const double vm = problem.vmax_m_s;
+  const double am = problem.amax_m_s2;
   Optimiser& optimiser = *optimiser_;
   const int pieces = params_.pieces;
   const double stop_time = 2.0 * v0.norm() / am;
-  const double total_time = std::max(rest_to_rest_duration(distance, vm, am) + stop_time, 1.0e-2);
+  const double total_time =
+      std::max(rest_to_rest_duration(displacement.norm(), vm, am) + stop_time, 1.0e-2);
   optimiser.durations.setConstant(total_time / pieces);
   for (int i = 1; i < pieces; ++i) {
     const double u = static_cast<double>(i) / pieces;
@@ -219,28 +234,25 @@ void StagePlanner::plan_or_throw(const StageProblem& problem, PlanResult& result
   }
 
   StageObjective& objective = optimiser.objective;
-  objective.set_problem(start, v0, a0, goal, vm, am);
+  objective.set_problem(start, v0, a0, problem.goal_position_m, vm, am);
   objective.encode(optimiser.waypoints, optimiser.durations, optimiser.guess.data());
-  // Scale the cost to a unit gradient at the guess: L-BFGS's first step is unit length.
   const double guess_unscaled =
       objective.evaluate(optimiser.guess.data(), optimiser.gradient.data());
   const double gradient_norm = optimiser.gradient.norm();
   if (std::isfinite(gradient_norm) && gradient_norm > 1.0) {
     objective.set_cost_scale(1.0 / gradient_norm);
   }
-  const double guess_cost = guess_unscaled * objective.cost_scale();
   objective.reset_tracking();
+  return guess_unscaled * objective.cost_scale();
+}
 
-  optimiser.x = optimiser.guess;
-  double final_cost = 0.0;
-  int evaluations = 0;
-  const LbfgsResult why =
-      optimiser.lbfgs.minimize(&Optimiser::callback, &optimiser, optimiser.settings,
-                               optimiser.x.data(), final_cost, evaluations);
-  result.iterations = evaluations;
-
-  // The last accepted iterate is the best point L-BFGS evaluated (every accepted step
-  // lowers the cost), but the objective tracks the best anyway.
+// The best point L-BFGS evaluated (the last accepted iterate is one, every accepted step
+// lowering the cost, but the objective tracks the best anyway), else the guess, else a
+// hold at the start: never a trajectory that is not finite.
+void StagePlanner::write_result(LbfgsResult why, double guess_cost, const Eigen::Vector3d& start,
+                                PlanResult& result) {
+  Optimiser& optimiser = *optimiser_;
+  StageObjective& objective = optimiser.objective;
   const bool have_best = StageObjective::is_usable_cost(objective.best_cost());
   const double* best = have_best ? objective.best_x().data() : optimiser.guess.data();
   classify(why, have_best && objective.best_cost() < guess_cost, result);

@@ -11,6 +11,8 @@
 
 namespace cover::planner {
 
+enum class LbfgsResult;  // lbfgs.hpp
+
 struct PlanResult {
   PlanStatus status = PlanStatus::Failed;
   const char* reason = "";  // static string: why this status
@@ -51,6 +53,10 @@ class StagePlanner {
  private:
   struct Optimiser;
   void plan_or_throw(const StageProblem& problem, PlanResult& result);
+  double prepare_guess(const StageProblem& problem, const Eigen::Vector3d& v0,
+                       const Eigen::Vector3d& a0);
+  void write_result(LbfgsResult why, double guess_cost, const Eigen::Vector3d& start,
+                    PlanResult& result);
 
   PlannerParams params_;
   std::unique_ptr<Optimiser> optimiser_;
