@@ -32,7 +32,9 @@ SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>&
       params_(params),
       segment_(segment),
       clock_writer_(participant.make_writer(dds::topics::sim_clock())),
-      mailboxes_(static_cast<std::size_t>(fleet.uav_count())) {
+      mailboxes_(static_cast<std::size_t>(fleet.uav_count())),
+      latency_(fleet.has_autopilots() ? SensorLatency::kTickKeyStep
+                                      : SensorLatency::kStampKeyStep) {
   const int ugvs = fleet.world(0).ugv_count();
   for (int u = 0; u < fleet.uav_count(); ++u) {
     const auto uav = static_cast<std::uint32_t>(u);
@@ -173,8 +175,7 @@ void SimNode::publish_tick() {
   if (relative_stamp_ns >= 0) {
     const std::int64_t now_ns = clock::monotonic_ns();
     std::lock_guard<std::mutex> lock(mutex_);
-    latency_.published(relative_stamp_ns, now_ns);
-    autopilot_latency_.published(static_cast<std::int64_t>(fleet_.tick()), now_ns);
+    latency_.published(latency_key(relative_stamp_ns), now_ns);
   }
   publish_ugv_imu(t);
   msg::SimClock tick;
@@ -206,6 +207,10 @@ void SimNode::on_trace(int u, const msg::ControlTrace& trace) {
                  wire::to_seconds(trace.stamp_ns));
   }
   if (completes_tick) arrived_.notify_all();
+}
+
+std::int64_t SimNode::latency_key(std::int64_t relative_stamp_ns) const {
+  return uses_autopilots() ? static_cast<std::int64_t>(fleet_.tick()) : relative_stamp_ns;
 }
 
 bool SimNode::answered(const Mailbox& box, std::int64_t tick_ns) const {

@@ -76,9 +76,7 @@ class SimNode {
   // thread taking off the socket the first SET_ATTITUDE_TARGET whose time_boot_ms is
   // nearest tick k's time (the whole path agent -> DDS -> bridge -> MAVLink), while the
   // agent's task runs.
-  const std::vector<double>& latency_ms() const {
-    return uses_autopilots() ? autopilot_latency_.samples_ms() : latency_.samples_ms();
-  }
+  const std::vector<double>& latency_ms() const { return latency_.samples_ms(); }
   // What UAV `uav`'s link saw (autopilots only, after run()).
   const AutopilotLinks* autopilot_links() const { return autopilot_links_.get(); }
   double wall_time_s() const { return wall_time_s_; }
@@ -113,6 +111,7 @@ class SimNode {
   void log_stall(int uav, const Mailbox& box, std::int64_t tick_ns, double timeout_s) const;
   // Autopilots (sim_node_autopilot.cpp); the mutex held where named _locked.
   bool uses_autopilots() const { return fleet_.has_autopilots(); }
+  std::int64_t latency_key(std::int64_t relative_stamp_ns) const;
   void start_autopilot_links();
   void set_sim_time();
   void on_autopilot_frame(int uav, const mavlink::Frame& frame);
@@ -137,8 +136,9 @@ class SimNode {
   // Lockstep: the tick wait_for_commands waits on (under mutex_). A command or trace wakes
   // it only when it completes that tick's answer: one wake-up per tick, not one per sample.
   std::int64_t awaited_tick_ns_ = -1;
-  SensorLatency latency_{SensorLatency::kStampKeyStep};           // the direct path's
-  SensorLatency autopilot_latency_{SensorLatency::kTickKeyStep};  // through the bridges
+  // Keyed as the path names a tick's states: the direct path's commands by their stamp,
+  // the autopilots' setpoints by the tick (latency_key).
+  SensorLatency latency_;
   double wall_time_s_ = 0.0;
   std::uint64_t republished_ticks_ = 0;
   bool in_relative_gap_ = false;

@@ -69,7 +69,7 @@ void SimNode::note_setpoint_locked(int u, std::uint32_t time_boot_ms, std::int64
   const bool running = box.trace && box.trace->task_state == msg::TaskState::TASK_RUNNING;
   if (options_.clock != SimClockMode::Realtime || !running) return;
   const std::int64_t tick = std::llround(time_boot_ms * params_.control_rate_hz / 1000.0);
-  autopilot_latency_.answered(u, tick, received_ns);
+  latency_.answered(u, tick, received_ns);
 }
 
 void SimNode::apply_autopilots() {
