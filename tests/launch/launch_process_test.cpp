@@ -447,6 +447,14 @@ TEST_F(LaunchProcess, HelpExplainsFormatAndExitCodes) {
 
 namespace {
 
+// The run report's entry of process `name`; an empty object if it has none.
+nlohmann::json process_report(const nlohmann::json& report, const std::string& name) {
+  for (const auto& process : report["processes"]) {
+    if (process["name"] == name) return process;
+  }
+  return nlohmann::json::object();
+}
+
 // A process given realtime_priority runs SCHED_FIFO at it, every thread it starts too, when
 // the run is realtime and the launcher may (root here); the launcher says which it did.
 TEST_F(LaunchProcess, RealtimePriorityIsSchedFifoInRealtimeOnly) {
@@ -477,10 +485,7 @@ launch:
   expect_all_gone(realtime.json());
   // The report says at what priority each process ran: what a latency is compared under.
   const auto priority_in = [](const nlohmann::json& report, const std::string& name) {
-    for (const auto& process : report["processes"]) {
-      if (process["name"] == name) return process["realtime_priority"].get<int>();
-    }
-    return -1;
+    return process_report(report, name).value("realtime_priority", -1);
   };
   EXPECT_EQ(priority_in(realtime.json(), "uav0"), may ? 12 : 0);
   EXPECT_EQ(priority_in(realtime.json(), "sim"), 0);
@@ -511,10 +516,7 @@ launch:
        cpu_affinity: [0]}
 )";
   const auto cpus_in = [](const nlohmann::json& report, const std::string& name) {
-    for (const auto& process : report["processes"]) {
-      if (process["name"] == name) return process["cpus"].get<std::vector<int>>();
-    }
-    return std::vector<int>{-1};
+    return process_report(report, name).value("cpus", std::vector<int>{-1});
   };
   const auto realtime = run(yaml, {"--json", "--clock", "realtime"});
   ASSERT_EQ(realtime.exit_code, 0) << realtime.err;

@@ -1,5 +1,7 @@
 #include "cover/launch/launch_file.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -14,7 +16,7 @@
 namespace cover::launch {
 namespace {
 
-constexpr int kMaxCpus = 1024;  // Linux's CPU_SETSIZE: what sched_setaffinity can name
+constexpr int kMaxCpus = CPU_SETSIZE;  // what sched_setaffinity can name
 
 bool only_chars(const std::string& text, const std::string& extra) {
   return !text.empty() && std::all_of(text.begin(), text.end(), [&](char c) {
