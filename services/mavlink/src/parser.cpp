@@ -41,7 +41,7 @@ void StreamParser::feed(const std::uint8_t* data, std::size_t size, const FrameH
     }
     // Copy only up to the next decision point (header, then whole frame), so the buffer
     // never holds bytes past the candidate unless a refusal handed them back.
-    const std::size_t target = frame_length_ != 0 ? frame_length_ : header_length();
+    const std::size_t target = frame_length_ != 0 ? bytes_to_judge() : header_length();
     const std::size_t take = std::min(target - buffered_, size - i);
     std::memcpy(buffer_.data() + buffered_, data + i, take);
     buffered_ += take;
@@ -70,12 +70,13 @@ void StreamParser::settle(const FrameHandler& on_frame) {
         continue;
       }
     }
-    if (buffered_ < frame_length_) return;
-    if (judge_frame() == Verdict::Refuse) {
+    if (buffered_ < bytes_to_judge()) return;
+    const Verdict verdict = unknown_ ? judge_unknown() : judge_frame();
+    if (verdict == Verdict::Refuse) {
       drop_until_magic(1);
       continue;
     }
-    deliver(on_frame);
+    if (verdict == Verdict::Deliver) deliver(on_frame);
     drop_until_magic(frame_length_);
   }
 }
@@ -94,10 +95,12 @@ StreamParser::Verdict StreamParser::judge_header() {
   };
   if ((incompat & ~kIncompatSigned) != 0) return refuse(stats_.bad_length);
   const std::optional<MessageInfo> info = message_info(id);
-  if (!info) return refuse(stats_.unknown_ids);
-  if (!v2 && length > info->payload_length) return refuse(stats_.bad_length);
-  crc_extra_ = info->crc_extra;
-  known_length_ = info->payload_length;
+  unknown_ = !info;
+  if (info) {
+    if (!v2 && length > info->payload_length) return refuse(stats_.bad_length);
+    crc_extra_ = info->crc_extra;
+    known_length_ = info->payload_length;
+  }
   const bool is_signed = (incompat & kIncompatSigned) != 0;
   frame_length_ = header_length() + length + kChecksumLength + (is_signed ? kSignatureLength : 0);
   return Verdict::NeedMore;
@@ -130,6 +133,25 @@ StreamParser::Verdict StreamParser::judge_frame() {
     return Verdict::Refuse;
   }
   return Verdict::Deliver;
+}
+
+// An unknown frame's length is all we can check: it is one when the next byte starts a
+// frame. A false start marker (inside garbage or a broken frame) rarely lines up so.
+std::size_t StreamParser::bytes_to_judge() const {
+  return unknown_ ? frame_length_ + 1 : frame_length_;
+}
+
+StreamParser::Verdict StreamParser::judge_unknown() {
+  ++stats_.candidates;
+  if (!is_magic(buffer_[frame_length_])) {
+    ++stats_.unknown_ids;
+    return Verdict::Refuse;
+  }
+  const bool v2 = buffer_[0] == kMagicV2;
+  ++stats_.unknown_frames;
+  stats_.unknown_frame_bytes += frame_length_;
+  count_sequence(buffer_[v2 ? 5 : 3], buffer_[v2 ? 6 : 4], buffer_[v2 ? 4 : 2]);
+  return Verdict::Skip;
 }
 
 void StreamParser::deliver(const FrameHandler& on_frame) {

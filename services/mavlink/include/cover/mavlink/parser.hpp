@@ -11,17 +11,25 @@
 namespace cover::mavlink {
 
 // What a stream parser saw, counted since construction. Every candidate (a start marker
-// followed by a header) is either delivered (`frames`) or counted in exactly one refusal
-// count; a refused candidate gives back every byte after its start marker to be scanned
-// again. So every byte fed is exactly one of: a byte of a delivered frame, the start
+// followed by a header) is delivered (`frames`), skipped whole as a frame of a message the
+// codec does not know (`unknown_frames`), or counted in exactly one refusal count; a
+// refused candidate gives back every byte after its start marker to be scanned again. So
+// every byte fed is exactly one of: a byte of a delivered or skipped frame, the start
 // marker of a refused candidate, a garbage byte, or still pending:
-//   bytes fed == delivered frame bytes + refusals() + garbage_bytes + pending_bytes().
+//   bytes fed == delivered frame bytes + unknown_frame_bytes + refusals() + garbage_bytes
+//                + pending_bytes().
+// An autopilot streams dozens of message types a companion does not read (PX4 about 25):
+// those are traffic, not errors, and their sequence numbers count as received.
 struct ParserStats {
-  std::uint64_t candidates = 0;        // frames judged: frames + refusals()
+  std::uint64_t candidates = 0;        // judged: frames + unknown_frames + refusals()
   std::uint64_t frames = 0;            // delivered (checksum ok; signature ok if checked)
   std::uint64_t garbage_bytes = 0;     // bytes skipped while looking for a start marker
   std::uint64_t crc_errors = 0;        // known id, checksum wrong
-  std::uint64_t unknown_ids = 0;       // id not in the message table (not delivered)
+  // A frame of an id not in the message table, skipped whole: its checksum cannot be checked
+  // (no CRC_EXTRA), so it counts as a frame only when a start marker follows it.
+  std::uint64_t unknown_frames = 0;
+  std::uint64_t unknown_frame_bytes = 0;
+  std::uint64_t unknown_ids = 0;  // an unknown id not followed by a start marker: refused
   std::uint64_t bad_length = 0;        // a known id with a payload longer than it can be
                                        // (v1) or an incompat flag we do not know
   std::uint64_t signature_errors = 0;  // signed, key configured, signature wrong
@@ -58,10 +66,12 @@ class StreamParser {
   std::size_t pending_bytes() const { return buffered_; }
 
  private:
-  enum class Verdict { NeedMore, Deliver, Refuse };
+  enum class Verdict { NeedMore, Deliver, Refuse, Skip };
   std::size_t header_length() const;
   Verdict judge_header();
   Verdict judge_frame();
+  Verdict judge_unknown();
+  std::size_t bytes_to_judge() const;
   void deliver(const FrameHandler& on_frame);
   void settle(const FrameHandler& on_frame);
   void drop_until_magic(std::size_t from);
@@ -70,11 +80,13 @@ class StreamParser {
   ParserOptions options_;
   ParserStats stats_;
   // buffer_[0, buffered_) is one candidate frame: it starts with a start marker.
-  std::array<std::uint8_t, kMaxFrameLength> buffer_{};
+  // One byte more than a frame: an unknown frame is judged by the byte that follows it.
+  std::array<std::uint8_t, kMaxFrameLength + 1> buffer_{};
   std::size_t buffered_ = 0;
   std::size_t frame_length_ = 0;   // the candidate's full length once its header is judged
   std::uint8_t crc_extra_ = 0;     // of the candidate's message, once its header is judged
   std::uint8_t known_length_ = 0;  // the candidate's message's full payload length
+  bool unknown_ = false;           // the candidate's id is not in the message table
   Frame frame_;                    // the frame being delivered, reused
   std::array<std::int16_t, 256 * 256> last_seq_{};  // per (system, component), -1: none
 };

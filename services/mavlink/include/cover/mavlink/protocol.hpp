@@ -36,7 +36,28 @@ inline constexpr std::uint16_t kDoSetMode = 176;
 // param1: gripper instance (1), param2: 0 release / 1 grab (GRIPPER_ACTIONS).
 inline constexpr std::uint16_t kDoGripper = 211;
 inline constexpr std::uint16_t kComponentArmDisarm = 400;
+// param1: message id, param2: interval in us (-1: stop, 0: default rate).
+inline constexpr std::uint16_t kSetMessageInterval = 511;
 }  // namespace mav_cmd
+
+// SYS_STATUS onboard_control_sensors_* bits (MAV_SYS_STATUS_SENSOR).
+namespace mav_sys_status_sensor {
+inline constexpr std::uint32_t kGyro3d = 1;
+inline constexpr std::uint32_t kAccel3d = 2;
+inline constexpr std::uint32_t kMag3d = 4;
+inline constexpr std::uint32_t kAbsolutePressure = 8;
+inline constexpr std::uint32_t kAhrs = 0x200000;
+inline constexpr std::uint32_t kPrearmCheck = 0x10000000;
+}  // namespace mav_sys_status_sensor
+
+// PARAM_VALUE.param_type (MAV_PARAM_TYPE).
+namespace mav_param_type {
+inline constexpr std::uint8_t kUint8 = 1;
+inline constexpr std::uint8_t kInt8 = 2;
+inline constexpr std::uint8_t kInt16 = 4;
+inline constexpr std::uint8_t kInt32 = 6;
+inline constexpr std::uint8_t kReal32 = 9;
+}  // namespace mav_param_type
 
 namespace mav_result {
 inline constexpr std::uint8_t kAccepted = 0;
