@@ -51,6 +51,41 @@ msg::FcLandedState landed_of(LandedState state) {
   return msg::FcLandedState::FC_LANDED_UNDEFINED;
 }
 
+msg::FcParameterWeight weight_of(ParameterWeight weight) {
+  switch (weight) {
+    case ParameterWeight::Blocking:
+      return msg::FcParameterWeight::FC_PARAMETER_BLOCKING;
+    case ParameterWeight::Advisory:
+      return msg::FcParameterWeight::FC_PARAMETER_ADVISORY;
+    case ParameterWeight::Info:
+      break;
+  }
+  return msg::FcParameterWeight::FC_PARAMETER_INFO;
+}
+
+msg::FcParameter parameter_of(const ParameterFinding& f) {
+  msg::FcParameter p;
+  p.name = f.name;
+  p.known = f.known;
+  p.absent = f.absent;
+  p.value = f.value;
+  p.weight = weight_of(f.weight);
+  p.needed = f.needed;
+  p.why = f.why;
+  p.ok = f.ok;
+  return p;
+}
+
+msg::FcStream stream_of(const StreamState& s) {
+  msg::FcStream m;
+  m.name = s.request.name;
+  m.asked_hz = s.request.rate_hz;
+  m.measured_hz = s.measured_hz;
+  m.arriving = s.arriving;
+  m.refusal = s.refusal;
+  return m;
+}
+
 std::uint32_t saturate(std::uint64_t count) {
   return static_cast<std::uint32_t>(
       std::min<std::uint64_t>(count, std::numeric_limits<std::uint32_t>::max()));
@@ -93,6 +128,18 @@ msg::FcState to_msg(const FcStatus& s, std::uint32_t uav_id, std::int64_t stamp_
   m.status_text = s.status_text;
   m.offboard_ready = s.offboard_ready;
   m.failsafe = s.failsafe;
+  m.rx_unknown = saturate(s.rx_unknown);
+  m.streams.clear();
+  for (const StreamState& stream : s.streams) m.streams.push_back(stream_of(stream));
+  m.streams_missing = s.streams_missing;
+  m.estimator_reported = s.estimator.reported;
+  m.estimator_ok = s.estimator.attitude_ok;
+  m.estimator = s.estimator.text;
+  m.parameters.clear();
+  for (const ParameterFinding& finding : s.parameters)
+    m.parameters.push_back(parameter_of(finding));
+  m.flight_blocker = s.flight_blocker;
+  m.auto_disarm_s = s.auto_disarm_s;
   return m;
 }
 
@@ -126,7 +173,9 @@ bool differs(const msg::FcState& a, const msg::FcState& b) {
   return a.link_ok != b.link_ok || a.autopilot != b.autopilot || a.system_id != b.system_id ||
          a.armed != b.armed || a.mode != b.mode || a.mode_name != b.mode_name ||
          a.landed_state != b.landed_state || a.offboard_ready != b.offboard_ready ||
-         a.status_text != b.status_text || a.failsafe != b.failsafe;
+         a.status_text != b.status_text || a.failsafe != b.failsafe ||
+         a.streams_missing != b.streams_missing || a.flight_blocker != b.flight_blocker ||
+         a.estimator != b.estimator || a.auto_disarm_s != b.auto_disarm_s;
 }
 
 }  // namespace cover::fc_bridge

@@ -75,6 +75,11 @@ class FakeAutopilot {
     a.target_component = target_component;
     return parse_one(encoder_.encode(a));
   }
+  // Any message, as this autopilot sends it.
+  template <typename M>
+  mavlink::Frame send(const M& message) {
+    return parse_one(encoder_.encode(message));
+  }
   mavlink::Frame status_text(const std::string& text, std::uint8_t severity) {
     mavlink::StatusText t;
     t.severity = severity;

@@ -92,7 +92,19 @@ TEST_P(FcBridgePeer, StreamsThenOffboardThenArmsWithFramesTheFakeAccepts) {
   ASSERT_NE(offboard, nullptr) << "no OFFBOARD / GUIDED_NOGPS request";
   ASSERT_NE(arm, nullptr) << "no arm request (--auto-arm)";
   EXPECT_EQ((*offboard)["result"], 0) << "requested before the stream was long enough";
-  EXPECT_EQ(offboard_at, 0U) << "the first command must be the mode";
+  // Before the mode: only the stream requests (SET_MESSAGE_INTERVAL), as node-mavlink reads
+  // them: HIGHRES_IMU (105) every 10 ms, EXTENDED_SYS_STATE (245) every 200 ms.
+  for (std::size_t i = 0; i < offboard_at; ++i) {
+    EXPECT_EQ(commands[i]["command"], 511) << "the first mode or arm command must be the mode";
+  }
+  std::size_t at = 0;
+  const auto* imu_stream = find_command(commands, 511, 105, 1, &at);
+  ASSERT_NE(imu_stream, nullptr) << "HIGHRES_IMU was not asked for";
+  EXPECT_EQ((*imu_stream)["param2"].get<double>(), 10000.0);
+  EXPECT_EQ((*imu_stream)["result"], 0);
+  const auto* landed_stream = find_command(commands, 511, 245, 1, &at);
+  ASSERT_NE(landed_stream, nullptr) << "EXTENDED_SYS_STATE was not asked for";
+  EXPECT_EQ((*landed_stream)["param2"].get<double>(), 200000.0);
   EXPECT_GT(arm_at, offboard_at);
   EXPECT_EQ((*arm)["result"], 0);
   EXPECT_EQ(result["armed"], true);

@@ -164,6 +164,8 @@ TEST(FcBridgeProcess, OperatorRequestsAreAnsweredOnTheReplyTopic) {
   EXPECT_EQ(reply_to("arm-unanswered")->result, msg::FcCommandResult::FC_RESULT_NO_ANSWER);
   std::vector<int> confirmations;
   for (const auto& c : rig.autopilot.commands()) {
+    // The bridge's own stream requests, unanswered here too, are sent again on their own.
+    if (c.command == mav::mav_cmd::kSetMessageInterval) continue;
     EXPECT_EQ(c.command, mav::mav_cmd::kComponentArmDisarm);
     EXPECT_EQ(c.target_system, kSys);
     confirmations.push_back(c.confirmation);

@@ -349,8 +349,16 @@ TEST(Wire, FcNotReadyReasonNamesWhatTheAutopilotLacks) {
   s.offboard_ready = true;
   EXPECT_FALSE(wire::fc_not_ready_reason(s));
   s.armed = false;
-  EXPECT_EQ(*wire::fc_not_ready_reason(s), "autopilot disarmed");
+  s.auto_disarm_s = -1.0;
+  EXPECT_EQ(*wire::fc_not_ready_reason(s), "autopilot disarmed (arm it: cover fc arm 0)");
+  s.auto_disarm_s = 11.0;  // PX4: COM_DISARM_PRFLT 10 s + 1 s spool-up
+  EXPECT_EQ(*wire::fc_not_ready_reason(s),
+            "autopilot disarmed (arm it: cover fc arm 0; it disarms by itself 11 s after arming "
+            "unless the UAV takes off)");
   s.armed = true;
+  s.flight_blocker = "autopilot parameter ATC_ANGLE_BOOST is 1, COVER needs 0: twice";
+  EXPECT_EQ(*wire::fc_not_ready_reason(s), s.flight_blocker);  // before the mode: it holds all
+  s.flight_blocker.clear();
   s.mode = msg::FcMode::FC_MODE_MANUAL;
   s.mode_name = "POSCTL";
   EXPECT_EQ(*wire::fc_not_ready_reason(s), "autopilot not in its offboard mode (mode POSCTL)");

@@ -39,6 +39,55 @@ std::string readable(const msg::FcState& s) {
   text += "  COVER flies it: " + (reason ? "no (" + *reason + ")" : std::string("yes")) + "\n";
   if (!s.failsafe.empty()) text += "  last bridge failsafe: " + s.failsafe + "\n";
   if (!s.status_text.empty()) text += "  autopilot says: " + s.status_text + "\n";
+  if (s.estimator_reported) {
+    text +=
+        std::string("  estimator: ") + (s.estimator_ok ? "" : "NOT READY: ") + s.estimator + "\n";
+  }
+  if (!s.streams_missing.empty()) text += "  streams missing: " + s.streams_missing + "\n";
+  std::snprintf(line, sizeof line, "  frames of message types the bridge does not read: %u\n",
+                s.rx_unknown);
+  text += line;
+  return text;
+}
+
+// Every parameter read (or given up on): what `check` waits for.
+bool parameters_read(const msg::FcState& s) {
+  if (s.parameters.empty()) return false;
+  for (const msg::FcParameter& p : s.parameters) {
+    if (!p.known && !p.absent) return false;
+  }
+  return true;
+}
+
+const char* weight_word(msg::FcParameterWeight weight) {
+  switch (weight) {
+    case msg::FcParameterWeight::FC_PARAMETER_BLOCKING:
+      return "blocking";
+    case msg::FcParameterWeight::FC_PARAMETER_ADVISORY:
+      return "advisory";
+    default:
+      return "info";
+  }
+}
+
+std::string parameter_table(const msg::FcState& s) {
+  std::string text = "UAV " + std::to_string(s.uav_id) + ": " + msg::to_string(s.autopilot) +
+                     " parameters COVER depends on\n";
+  for (const msg::FcParameter& p : s.parameters) {
+    char value[32];
+    if (p.known) {
+      std::snprintf(value, sizeof value, "%g", p.value);
+    } else {
+      std::snprintf(value, sizeof value, "%s", p.absent ? "absent" : "not read");
+    }
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-4s %-17s %-10s needs %s [%s]\n", p.ok ? "ok" : "BAD",
+                  p.name.c_str(), value, p.needed.c_str(), weight_word(p.weight));
+    text += line;
+    if (!p.ok) text += "       why: " + p.why + "\n";
+  }
+  text += s.flight_blocker.empty() ? "  no parameter holds COVER's tasks\n"
+                                   : "  TASKS ARE HELD: " + s.flight_blocker + "\n";
   return text;
 }
 
@@ -49,18 +98,20 @@ FcCommands::FcCommands(CLI::App& app) {
   std::string actions = "status";
   for (const auto& [name, kind] : kActions) actions += std::string("|") + name;
   fc_->add_option("action", action_,
-                  "status: the autopilot's state; arm, disarm, offboard (PX4 OFFBOARD / ArduPilot "
-                  "GUIDED_NOGPS), land: a command, answered by the autopilot")
+                  "status: the autopilot's state; check: the autopilot parameters COVER depends "
+                  "on, each with the value it needs and why; arm, disarm, offboard (PX4 OFFBOARD "
+                  "/ ArduPilot GUIDED_NOGPS), land: a command, answered by the autopilot")
       ->required()
-      ->check(CLI::IsMember({"status", "arm", "disarm", "offboard", "land"}));
+      ->check(CLI::IsMember({"status", "check", "arm", "disarm", "offboard", "land"}));
   fc_->add_option("uav", uav_id_, "UAV id U")->required();
   fc_->add_option("--timeout", timeout_s_, "seconds to wait for the bridge and the autopilot")
       ->capture_default_str();
   fc_->add_flag("--json", json_, "one JSON object instead of text");
   dds_.add_to(*fc_);
   fc_->footer(
-      "Exit: 0 status heard / command accepted, 1 refused by the autopilot (its reason printed),\n"
-      "2 usage, 3 no bridge or no answer within --timeout. Arming is the operator's decision:\n"
+      "Exit: 0 status heard / command accepted / every parameter right, 1 refused by the\n"
+      "autopilot (its reason printed) / a parameter wrong (named), 2 usage, 3 no bridge, no\n"
+      "answer or parameters not read within --timeout. Arming is the operator's decision:\n"
       "the bridge never arms on its own (auto_arm is for simulation only).");
 }
 
@@ -69,7 +120,9 @@ bool FcCommands::chosen() const {
 }
 
 int FcCommands::run() {
-  return action_ == "status" ? status() : command();
+  if (action_ == "status") return status();
+  if (action_ == "check") return check();
+  return command();
 }
 
 int FcCommands::status() {
@@ -87,6 +140,56 @@ int FcCommands::status() {
     std::cout << readable(state);
   }
   return kFcAccepted;
+}
+
+int FcCommands::check() {
+  dds::Participant participant(dds_.resolve("cover-fc"));
+  dds::Reader<msg::FcState> reader = participant.make_reader(dds::topics::fc_state(uav_id_));
+  const auto deadline = clock::monotonic_ns() + clock::s_to_ns(timeout_s_);
+  std::optional<msg::FcState> state;
+  // The bridge reads the parameters after it finds the autopilot: each new state is looked
+  // at until one has them all, or the deadline.
+  for (std::uint64_t seen = 0; clock::monotonic_ns() < deadline; seen = reader.received_count()) {
+    const double remaining_s = clock::ns_to_s(deadline - clock::monotonic_ns());
+    if (!reader.wait_for_sample(clock::to_milliseconds(remaining_s), seen)) break;
+    state = reader.latest()->sample;
+    if (parameters_read(*state)) break;
+  }
+  if (!state || !parameters_read(*state)) {
+    std::cerr << (state ? "UAV " + std::to_string(uav_id_) +
+                              "'s bridge has not read the autopilot's parameters within "
+                        : "no cover-fc-bridge reported for UAV " + std::to_string(uav_id_) +
+                              " within ")
+              << timeout_s_ << " s\n";
+    return kFcNoAnswer;
+  }
+  bool all_ok = true;
+  for (const msg::FcParameter& p : state->parameters) all_ok = all_ok && p.ok;
+  if (json_) {
+    nlohmann::ordered_json out;
+    out["uav_id"] = state->uav_id;
+    out["autopilot"] = msg::to_string(state->autopilot);
+    out["ok"] = all_ok;
+    out["flight_blocker"] = state->flight_blocker;
+    out["auto_disarm_s"] = state->auto_disarm_s;
+    out["parameters"] = nlohmann::ordered_json::array();
+    for (const msg::FcParameter& p : state->parameters) {
+      nlohmann::ordered_json row;
+      row["name"] = p.name;
+      row["known"] = p.known;
+      row["absent"] = p.absent;
+      if (p.known) row["value"] = p.value;
+      row["weight"] = weight_word(p.weight);
+      row["needed"] = p.needed;
+      row["why"] = p.why;
+      row["ok"] = p.ok;
+      out["parameters"].push_back(row);
+    }
+    std::cout << out.dump() << std::endl;
+  } else {
+    std::cout << parameter_table(*state);
+  }
+  return all_ok ? kFcAccepted : kFcRefused;
 }
 
 int FcCommands::command() {

@@ -12,13 +12,16 @@ class App;
 namespace cover::cli {
 
 // Exit codes of `cover fc ...`.
-inline constexpr int kFcAccepted = 0;  // status: a bridge reported; command: accepted
-inline constexpr int kFcRefused = 1;   // the autopilot (or its bridge) said no: reason printed
+inline constexpr int kFcAccepted = 0;  // status: a bridge reported; command: accepted;
+                                       // check: every parameter as COVER needs it
+inline constexpr int kFcRefused = 1;   // the autopilot (or its bridge) said no: reason printed;
+                                       // check: a parameter is wrong (named)
 inline constexpr int kFcNoAnswer = 3;  // no bridge, or the autopilot never answered
 
-// `cover fc status|arm|disarm|offboard|land U`: an operator's view of, and commands to,
-// one UAV's autopilot through its cover-fc-bridge. Each command waits for the autopilot's
-// answer (COMMAND_ACK, relayed by the bridge).
+// `cover fc status|check|arm|disarm|offboard|land U`: an operator's view of, and commands
+// to, one UAV's autopilot through its cover-fc-bridge. Each command waits for the
+// autopilot's answer (COMMAND_ACK, relayed by the bridge); `check` waits until the bridge
+// has read every parameter COVER depends on and judges them.
 class FcCommands {
  public:
   explicit FcCommands(CLI::App& app);
@@ -27,6 +30,7 @@ class FcCommands {
 
  private:
   int status();
+  int check();
   int command();
 
   CLI::App* fc_ = nullptr;

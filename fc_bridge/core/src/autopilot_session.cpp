@@ -129,6 +129,12 @@ void AutopilotSession::on_extended_sys_state(const mavlink::Frame& frame) {
   }
 }
 
+void AutopilotSession::report_text(std::string text, std::uint8_t severity) {
+  status_text_ = std::move(text);
+  status_severity_ = severity;
+  ++status_text_count_;
+}
+
 void AutopilotSession::on_status_text(const mavlink::Frame& frame) {
   const auto t = mav::StatusText::unpack(frame.payload.data());
   status_text_ = t.text_string();

@@ -3,8 +3,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cover/fc_bridge/px4_events.hpp"
+#include "cover/mavlink/event_messages.hpp"
 #include "cover/mavlink/messages.hpp"
+#include "cover/mavlink/parameter_messages.hpp"
 #include "cover/mavlink/protocol.hpp"
+#include "cover/mavlink/state_messages.hpp"
 
 namespace cover::fc_bridge {
 namespace {
@@ -18,6 +22,28 @@ constexpr std::uint8_t kProvisionalSystemId = 1;
 constexpr double kCompanionHeartbeatPeriod_s = 1.0;
 constexpr double kSequencerRetry_s = 1.0;
 constexpr double kMilliGToMS2 = 9.80665e-3;  // SCALED_IMU's accelerations are in mG
+// A housekeeping pass this much later than the one before means the bridge itself was
+// descheduled (the caller ticks at 50 Hz or more): the agent's commands may be waiting in
+// its queue, so the command timeout waits for the next pass.
+constexpr double kStalledTick_s = 0.06;
+// PX4 arms its motors' spool-up (COM_SPOOLUP_TIME, 1 s) before counting COM_DISARM_PRFLT.
+constexpr double kPx4SpoolUp_s = 1.0;
+// A refused operator command waits this long for the autopilot's reason, and takes the
+// texts it sent from this long before the refusal.
+constexpr double kReasonWait_s = 0.3;
+constexpr double kReasonLookback_s = 0.5;
+constexpr std::size_t kRecentTexts = 8;
+
+StreamRates stream_rates(const FcBridgeParams& p) {
+  StreamRates r;
+  r.highres_imu_hz = p.stream_highres_imu_hz;
+  r.extended_sys_state_hz = p.stream_extended_sys_state_hz;
+  r.sys_status_hz = p.stream_sys_status_hz;
+  r.battery_status_hz = p.stream_battery_status_hz;
+  r.estimator_status_hz = p.stream_estimator_status_hz;
+  r.attitude_target_hz = p.stream_attitude_target_hz;
+  return r;
+}
 
 HoverThrustEstimatorParams estimator_params(const FcBridgeParams& p) {
   HoverThrustEstimatorParams e;
@@ -82,12 +108,19 @@ Bridge::Bridge(const BridgeConfig& config)
       supervisor_(config.params.cmd_timeout_s, config.params.heartbeat_timeout_s,
                   2.0 * config.params.ack_timeout_s),
       sequencer_(config.params.offboard_stream_s, config.params.auto_arm, kSequencerRetry_s),
+      streams_(stream_plan(config.autopilot, stream_rates(config.params)),
+               config.params.stream_reask_s),
+      parameters_(parameter_rules(config.autopilot), config.params.param_read_timeout_s,
+                  config.params.param_read_tries, config.params.param_refresh_s),
+      estimator_health_(config.autopilot),
       encoder_(config.params.system_id != 0 ? static_cast<std::uint8_t>(config.params.system_id)
                                             : kProvisionalSystemId,
                static_cast<std::uint8_t>(config.params.component_id), config.signing_key) {
   out_.reserve(8);
   resend_.reserve(8);
   in_flight_.reserve(8);
+  recent_texts_.reserve(kRecentTexts);
+  held_replies_.reserve(4);
   notices_.reserve(16);
   replies_.reserve(4);
   seen_.hover_logged = estimator_.estimate();
@@ -120,7 +153,8 @@ void Bridge::note(Notice::Level level, std::string text) {
 void Bridge::on_frame(const mavlink::Frame& frame, double now_s) {
   const double now = advance(now_s);
   if (!session_.accept(frame, now)) return;
-  if (!seen_.known) learn_identity();
+  if (!seen_.known) learn_identity(now);
+  streams_.on_frame(frame.message_id, now);
   switch (frame.message_id) {
     case mav::CommandAck::kId:
       sender_.on_ack(mav::CommandAck::unpack(frame.payload.data()), encoder_.system_id(),
@@ -131,14 +165,33 @@ void Bridge::on_frame(const mavlink::Frame& frame, double now_s) {
     case mav::ScaledImu::kId:
       on_imu(frame, now);
       break;
+    case mav::SysStatus::kId:
+      estimator_health_.on_sys_status(mav::SysStatus::unpack(frame.payload.data()));
+      break;
+    case mav::EstimatorStatus::kId:
+      estimator_health_.on_estimator_flags(
+          mav::EstimatorStatus::unpack(frame.payload.data()).flags);
+      break;
+    case mav::EkfStatusReport::kId:
+      estimator_health_.on_estimator_flags(
+          mav::EkfStatusReport::unpack(frame.payload.data()).flags);
+      break;
+    case mav::Event::kId:
+      on_event(frame);
+      break;
+    case mav::ParamValue::kId:
+      on_parameter(frame, now);
+      break;
     default:
       break;
   }
   note_session_changes(now);
 }
 
-void Bridge::learn_identity() {
+void Bridge::learn_identity(double now_s) {
   seen_.known = true;
+  streams_.restart(now_s);
+  parameters_.restart(now_s);
   const std::uint8_t system_id = config_.params.system_id != 0
                                      ? static_cast<std::uint8_t>(config_.params.system_id)
                                      : session_.system_id();
@@ -164,6 +217,9 @@ void Bridge::note_session_changes(double now_s) {
     if (link_ok) {
       note(Notice::Level::Info, "autopilot link up (HEARTBEAT from system " +
                                     std::to_string(session_.system_id()) + ")");
+      // It may have rebooted: its streams and parameters are asked for again.
+      streams_.restart(now_s);
+      parameters_.restart(now_s);
     } else {
       note(Notice::Level::Error,
            format("autopilot link LOST: no HEARTBEAT for %.2f s (limit %.2f s)",
@@ -188,7 +244,53 @@ void Bridge::note_session_changes(double now_s) {
   if (session_.status_text_count() != seen_.status_texts) {
     seen_.status_texts = session_.status_text_count();
     note(severity_level(session_.status_severity()), "autopilot says: " + session_.status_text());
+    if (recent_texts_.size() == kRecentTexts) recent_texts_.erase(recent_texts_.begin());
+    recent_texts_.push_back({now_s, session_.status_text()});
   }
+}
+
+void Bridge::on_event(const mavlink::Frame& frame) {
+  const auto event = mav::Event::unpack(frame.payload.data());
+  // An event sent again (a ground station asked for it) is not news.
+  if (event_seen_ && event.sequence == last_event_sequence_) return;
+  event_seen_ = true;
+  last_event_sequence_ = event.sequence;
+  const EventText text = describe_px4_event(event);
+  if (!text.for_operator) return;
+  session_.report_text(text.text, text.level);
+}
+
+void Bridge::on_parameter(const mavlink::Frame& frame, double now_s) {
+  const auto value = mav::ParamValue::unpack(frame.payload.data());
+  if (!parameters_.on_value(value, now_s)) return;
+  const std::string name = mav::param_id_string(value.param_id);
+  for (const ParameterFinding& f : parameters_.findings()) {
+    if (f.name != name) continue;
+    note(f.ok ? Notice::Level::Info
+              : (f.weight == ParameterWeight::Blocking ? Notice::Level::Error
+                                                       : Notice::Level::Warning),
+         "autopilot parameter " + name + " = " + format("%g", value.param_value) +
+             (f.ok ? std::string(" (ok)")
+                   : std::string(" (COVER needs ") + f.needed + ": " + f.why + ")"));
+  }
+  seed_hover_thrust();
+}
+
+// The autopilot's own hover thrust, before the estimator has learned anything: a better
+// start than the configured one on a vehicle that learned it (ArduPilot's MOT_HOVER_LEARN).
+void Bridge::seed_hover_thrust() {
+  if (!config_.params.hover_thrust_from_autopilot || hover_seeded_ || estimator_.learning()) {
+    return;
+  }
+  const char* name = profile_.kind() == AutopilotKind::Px4 ? "MPC_THR_HOVER" : "MOT_THST_HOVER";
+  const auto value = parameters_.value(name);
+  if (!value) return;
+  const double before = estimator_.estimate();
+  if (!estimator_.restart_from(*value)) return;
+  hover_seeded_ = true;
+  seen_.hover_logged = estimator_.estimate();
+  note(Notice::Level::Info, std::string("hover thrust estimate starts at the autopilot's ") + name +
+                                format(" %.3f (was %.3f)", estimator_.estimate(), before));
 }
 
 void Bridge::on_imu(const mavlink::Frame& frame, double now_s) {
@@ -232,7 +334,7 @@ const std::vector<mavlink::EncodedFrame>& Bridge::on_agent_command(const AgentCo
   }
   last_release_ = command.release_payload;
   send_setpoint(command, now);
-  if (command.handover) supervise(now);  // at once, not at the next tick
+  if (command.handover) supervise(now, true);  // at once, not at the next tick
   return out_;
 }
 
@@ -317,7 +419,11 @@ void Bridge::finish(const InFlight& flight, const CommandResult& result, double 
        text);
   switch (flight.origin) {
     case Origin::Operator:
-      replies_.push_back({flight.request_id, result.outcome, text});
+      if (result.outcome == CommandOutcome::Refused) {
+        hold_refusal({flight.request_id, result.outcome, text}, now_s);
+      } else {
+        replies_.push_back({flight.request_id, result.outcome, text});
+      }
       break;
     case Origin::Failsafe:
       supervisor_.on_land_result(result.outcome, now_s);
@@ -329,6 +435,9 @@ void Bridge::finish(const InFlight& flight, const CommandResult& result, double 
       sequencer_.on_result(OffboardSequencer::Step::RequestArm, result.outcome, now_s);
       break;
     case Origin::Gripper:
+      break;
+    case Origin::StreamRequest:
+      streams_.on_result(result.outcome, result.message, now_s);
       break;
   }
 }
@@ -375,6 +484,28 @@ const std::vector<mavlink::EncodedFrame>& Bridge::on_operator_request(OperatorCo
   return out_;
 }
 
+void Bridge::hold_refusal(OperatorReply reply, double now_s) {
+  held_replies_.push_back({std::move(reply), now_s - kReasonLookback_s, now_s + kReasonWait_s});
+}
+
+void Bridge::release_refusals(double now_s) {
+  for (std::size_t i = 0; i < held_replies_.size();) {
+    HeldReply& held = held_replies_[i];
+    if (now_s < held.release_s) {
+      ++i;
+      continue;
+    }
+    std::string reasons;
+    for (const RecentText& text : recent_texts_) {
+      if (text.at_s < held.since_s) continue;
+      reasons += (reasons.empty() ? "" : "; ") + text.text;
+    }
+    if (!reasons.empty()) held.reply.message += "; the autopilot says: " + reasons;
+    replies_.push_back(std::move(held.reply));
+    held_replies_.erase(held_replies_.begin() + static_cast<std::ptrdiff_t>(i));
+  }
+}
+
 void Bridge::refuse(const std::string& request_id, std::string why) {
   note(Notice::Level::Warning, "request '" + request_id + "' refused: " + why);
   replies_.push_back({request_id, CommandOutcome::Refused, std::move(why)});
@@ -385,19 +516,90 @@ void Bridge::refuse(const std::string& request_id, std::string why) {
 const std::vector<mavlink::EncodedFrame>& Bridge::tick(double now_s) {
   out_.clear();
   const double now = advance(now_s);
+  const bool ran = last_tick_s_ < 0.0 || now - last_tick_s_ <= kStalledTick_s;
+  if (!ran && supervisor_.landing() == false && view(now).cover_flying()) {
+    note(Notice::Level::Warning,
+         format("housekeeping %.0f ms late (the bridge was descheduled): the command timeout "
+                "is judged on the next pass",
+                (now - last_tick_s_) * 1e3));
+  }
+  last_tick_s_ = now;
   note_session_changes(now);
   resend_.clear();
   sender_.poll(now, resend_);
   for (const mav::CommandLong& message : resend_) out_.push_back(encoder_.encode(message));
   take_results(now);
-  supervise(now);
+  supervise(now, ran);
   sequence(now);
+  request_streams(now);
+  read_parameters(now);
+  note_health_changes(now);
+  release_refusals(now);
   if (now >= next_heartbeat_s_) send_heartbeat(now);
   return out_;
 }
 
-void Bridge::supervise(double now_s) {
-  const SafetySupervisor::Decision decision = supervisor_.check(view(now_s), now_s);
+void Bridge::request_streams(double now_s) {
+  if (!session_.known() || !session_.link_ok(now_s) ||
+      sender_.busy(mav::mav_cmd::kSetMessageInterval)) {
+    return;
+  }
+  const auto spec = streams_.next_request(now_s);
+  if (!spec) return;
+  const char* name = "a stream";
+  for (const StreamState& s : streams_.states(now_s)) {
+    if (s.request.message_id == static_cast<std::uint32_t>(spec->param[0])) name = s.request.name;
+  }
+  const std::string what = std::string("stream ") + name +
+                           format(" at %.0f Hz", 1e6 / static_cast<double>(spec->param[1]));
+  if (!send_command(*spec, Origin::StreamRequest, what, "", now_s, false)) {
+    streams_.on_result(CommandOutcome::NoAnswer, "not sent", now_s);
+  }
+}
+
+void Bridge::read_parameters(double now_s) {
+  if (!session_.known() || !session_.link_ok(now_s)) return;
+  auto request = parameters_.next_request(now_s);
+  if (!request) return;
+  request->target_system = session_.system_id();
+  request->target_component = session_.component_id();
+  out_.push_back(encoder_.encode(*request));
+}
+
+void Bridge::note_health_changes(double now_s) {
+  const std::string missing = streams_.missing_summary(now_s);
+  if (missing != seen_.streams_missing) {
+    note(missing.empty() ? Notice::Level::Info : Notice::Level::Warning,
+         missing.empty() ? std::string("every stream asked of the autopilot arrives")
+                         : "streams asked of the autopilot not arriving: " + missing);
+    seen_.streams_missing = missing;
+  }
+  const std::string blocker = parameters_.flight_blocker();
+  if (blocker != seen_.flight_blocker) {
+    note(blocker.empty() ? Notice::Level::Info : Notice::Level::Error,
+         blocker.empty() ? std::string("no autopilot parameter holds COVER's flights any more")
+                         : "COVER's tasks are held: " + blocker);
+    seen_.flight_blocker = blocker;
+  }
+  const EstimatorHealth health = estimator_health_.health();
+  if (health.reported && health.text != seen_.estimator) {
+    note(health.attitude_ok ? Notice::Level::Info : Notice::Level::Warning,
+         "autopilot estimator: " + health.text);
+    seen_.estimator = health.text;
+  }
+}
+
+double Bridge::auto_disarm_s() const {
+  if (profile_.kind() == AutopilotKind::Px4) {
+    const auto delay = parameters_.value("COM_DISARM_PRFLT");
+    return delay && *delay > 0.0 ? *delay + kPx4SpoolUp_s : -1.0;
+  }
+  const auto delay = parameters_.value("DISARM_DELAY");
+  return delay && *delay > 0.0 ? *delay : -1.0;
+}
+
+void Bridge::supervise(double now_s, bool bridge_ran) {
+  const SafetySupervisor::Decision decision = supervisor_.check(view(now_s), now_s, bridge_ran);
   if (decision.triggered) {
     note(Notice::Level::Error, "LAND commanded: " + supervisor_.reason());
     if (sequencer_.automatic()) {
@@ -465,9 +667,16 @@ FcStatus Bridge::state(double now_s) const {
   s.setpoint_rate_hz = stream_.rate_hz(now);
   s.rx_errors = parser_stats_.errors();
   s.rx_dropped = parser_stats_.sequence_gaps;
+  s.rx_unknown = parser_stats_.unknown_frames;
   s.status_text = session_.status_text();
   s.offboard_ready = view(now).cover_flying();
   s.failsafe = supervisor_.reason();
+  s.streams = streams_.states(now);
+  s.streams_missing = streams_.missing_summary(now);
+  s.estimator = estimator_health_.health();
+  s.parameters = parameters_.findings();
+  s.flight_blocker = parameters_.flight_blocker();
+  s.auto_disarm_s = auto_disarm_s();
   return s;
 }
 

@@ -58,6 +58,8 @@ const char* command_name(std::uint16_t command) {
       return "DO_GRIPPER";
     case mav::mav_cmd::kComponentArmDisarm:
       return "COMPONENT_ARM_DISARM";
+    case mav::mav_cmd::kSetMessageInterval:
+      return "SET_MESSAGE_INTERVAL";
     default:
       return "COMMAND";
   }

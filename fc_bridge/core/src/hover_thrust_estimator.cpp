@@ -20,6 +20,14 @@ double HoverThrustEstimator::standard_deviation() const {
   return std::sqrt(variance_);
 }
 
+bool HoverThrustEstimator::restart_from(double initial) {
+  if (!std::isfinite(initial) || initial <= 0.0 || initial >= 1.0) return false;
+  hover_ = std::clamp(initial, params_.min, params_.max);
+  variance_ = params_.initial_std * params_.initial_std;
+  last_update_s_ = -1.0;
+  return true;
+}
+
 bool HoverThrustEstimator::update(double thrust, double specific_force_up_m_s2, double now_s) {
   const double g = params_.gravity_m_s2;
   if (!std::isfinite(thrust) || !std::isfinite(specific_force_up_m_s2) || !std::isfinite(now_s) ||

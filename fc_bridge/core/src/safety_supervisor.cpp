@@ -16,7 +16,8 @@ void SafetySupervisor::on_command(bool handover, double now_s) {
   handover_ = handover;
 }
 
-SafetySupervisor::Decision SafetySupervisor::check(const AutopilotView& autopilot, double now_s) {
+SafetySupervisor::Decision SafetySupervisor::check(const AutopilotView& autopilot, double now_s,
+                                                   bool bridge_ran) {
   Decision decision;
   if (latched_ && (!autopilot.armed || autopilot.mode == FcMode::Land)) {
     latched_ = false;
@@ -37,7 +38,7 @@ SafetySupervisor::Decision SafetySupervisor::check(const AutopilotView& autopilo
     } else if (last_command_s_ < 0.0) {
       trigger("no command from the UAV agent since the bridge started", now_s);
       decision.triggered = true;
-    } else if (now_s - last_command_s_ > cmd_timeout_s_) {
+    } else if (bridge_ran && now_s - last_command_s_ > cmd_timeout_s_) {
       char text[128];
       std::snprintf(text, sizeof(text), "no command from the UAV agent for %.0f ms (limit %.0f ms)",
                     (now_s - last_command_s_) * 1e3, cmd_timeout_s_ * 1e3);

@@ -24,6 +24,7 @@
 //       ardupilot 2 (denied). Other modes are accepted; param1 without the custom flag: 2.
 //     COMPONENT_ARM_DISARM (400): param1 1 arms, 0 disarms (accepted); it never arms
 //       unless asked.
+//     SET_MESSAGE_INTERVAL (511): accepted (its streams stay as above).
 //     NAV_LAND (21): accepted; mode becomes px4 AUTO.LAND (main 4, sub 6) / ardupilot
 //       LAND (9); after L s (--land-s, default 2) it disarms, on the ground.
 //     anything else: 3 (unsupported).
@@ -53,6 +54,7 @@ const { MavLinkPacketSplitter, MavLinkPacketParser, MavLinkProtocolV2, minimal, 
 const MAV_CMD_NAV_LAND = 21
 const MAV_CMD_DO_SET_MODE = 176
 const MAV_CMD_COMPONENT_ARM_DISARM = 400
+const MAV_CMD_SET_MESSAGE_INTERVAL = 511
 const PX4_MAIN_OFFBOARD = 6
 const PX4_MAIN_AUTO = 4
 const PX4_SUB_LAND = 6
@@ -279,6 +281,7 @@ class FakeAutopilot {
           this.event('disarmed')
         } else return 2
         return 0
+      case MAV_CMD_SET_MESSAGE_INTERVAL: return 0
       case MAV_CMD_NAV_LAND:
         this.setMode(this.px4 ? (PX4_MAIN_AUTO << 16 | PX4_SUB_LAND << 24) : COPTER_LAND)
         this.landingSince = this.now()

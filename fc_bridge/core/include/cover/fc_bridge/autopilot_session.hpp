@@ -42,6 +42,8 @@ class AutopilotSession {
   const std::string& status_text() const { return status_text_; }
   std::uint8_t status_severity() const { return status_severity_; }
   std::uint64_t status_text_count() const { return status_text_count_; }
+  // A text the autopilot sent another way than STATUSTEXT (PX4's EVENTs), kept as its last.
+  void report_text(std::string text, std::uint8_t severity);
 
  private:
   bool learn(const mavlink::Frame& frame);

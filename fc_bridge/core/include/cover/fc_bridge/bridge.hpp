@@ -9,12 +9,15 @@
 #include "cover/fc_bridge/autopilot_profile.hpp"
 #include "cover/fc_bridge/autopilot_session.hpp"
 #include "cover/fc_bridge/command_sender.hpp"
+#include "cover/fc_bridge/estimator_health.hpp"
 #include "cover/fc_bridge/fc_bridge_params.hpp"
 #include "cover/fc_bridge/hover_thrust_estimator.hpp"
 #include "cover/fc_bridge/offboard_sequencer.hpp"
+#include "cover/fc_bridge/parameter_check.hpp"
 #include "cover/fc_bridge/safety_supervisor.hpp"
 #include "cover/fc_bridge/setpoint_mapper.hpp"
 #include "cover/fc_bridge/setpoint_stream.hpp"
+#include "cover/fc_bridge/stream_monitor.hpp"
 #include "cover/mavlink/encoder.hpp"
 #include "cover/mavlink/frame.hpp"
 #include "cover/mavlink/parser.hpp"
@@ -54,9 +57,16 @@ struct FcStatus {
   double setpoint_rate_hz = 0.0;
   std::uint64_t rx_errors = 0;
   std::uint64_t rx_dropped = 0;
-  std::string status_text;
+  std::uint64_t rx_unknown = 0;  // frames of message types the bridge does not read
+  std::string status_text;       // the autopilot's last STATUSTEXT or (PX4) EVENT, in words
   bool offboard_ready = false;
   std::string failsafe;
+  std::vector<StreamState> streams;  // the streams asked for, their measured rates
+  std::string streams_missing;       // those that do not arrive, in words; empty: none
+  EstimatorHealth estimator;
+  std::vector<ParameterFinding> parameters;
+  std::string flight_blocker;   // a parameter that makes COVER's flight wrong or unsafe
+  double auto_disarm_s = -1.0;  // the autopilot disarms this long after arming on the ground
 };
 
 struct BridgeConfig {
@@ -100,7 +110,7 @@ class Bridge {
   std::vector<OperatorReply>& replies() { return replies_; }
 
  private:
-  enum class Origin { Operator, AutoOffboard, AutoArm, Failsafe, Gripper };
+  enum class Origin { Operator, AutoOffboard, AutoArm, Failsafe, Gripper, StreamRequest };
   struct InFlight {
     std::uint64_t token = 0;
     Origin origin = Origin::Operator;
@@ -119,11 +129,20 @@ class Bridge {
                     const std::string& request_id, double now_s, bool preempt);
   void take_results(double now_s);
   void finish(const InFlight& flight, const CommandResult& result, double now_s);
-  void supervise(double now_s);
+  void supervise(double now_s, bool bridge_ran);
   void sequence(double now_s);
   void send_heartbeat(double now_s);
   void refuse(const std::string& request_id, std::string why);
-  void learn_identity();
+  void learn_identity(double now_s);
+  void on_event(const mavlink::Frame& frame);
+  void on_parameter(const mavlink::Frame& frame, double now_s);
+  void seed_hover_thrust();
+  void request_streams(double now_s);
+  void read_parameters(double now_s);
+  void note_health_changes(double now_s);
+  double auto_disarm_s() const;
+  void hold_refusal(OperatorReply reply, double now_s);
+  void release_refusals(double now_s);
 
   BridgeConfig config_;
   AutopilotProfile profile_;
@@ -134,10 +153,17 @@ class Bridge {
   HoverThrustEstimator estimator_;
   SafetySupervisor supervisor_;
   OffboardSequencer sequencer_;
+  StreamMonitor streams_;
+  ParameterCheck parameters_;
+  EstimatorHealthTracker estimator_health_;
   mavlink::Encoder encoder_;
   mavlink::ParserStats parser_stats_;
 
   double now_s_ = -1e300;
+  double last_tick_s_ = -1.0;
+  bool event_seen_ = false;
+  std::uint16_t last_event_sequence_ = 0;
+  bool hover_seeded_ = false;
   double next_heartbeat_s_ = 0.0;
   std::uint64_t next_token_ = 1;
   std::vector<InFlight> in_flight_;
@@ -145,6 +171,19 @@ class Bridge {
   std::vector<mavlink::CommandLong> resend_;
   std::vector<Notice> notices_;
   std::vector<OperatorReply> replies_;
+  // The autopilot's recent texts, and refusals waiting a moment for their reason: PX4 says
+  // why it refused (an EVENT) just before or after its COMMAND_ACK.
+  struct RecentText {
+    double at_s = 0.0;
+    std::string text;
+  };
+  std::vector<RecentText> recent_texts_;
+  struct HeldReply {
+    OperatorReply reply;
+    double since_s = 0.0;
+    double release_s = 0.0;
+  };
+  std::vector<HeldReply> held_replies_;
 
   // The agent's stream.
   bool has_last_ = false;
@@ -166,6 +205,9 @@ class Bridge {
     LandedState landed = LandedState::Undefined;
     std::uint64_t status_texts = 0;
     double hover_logged = 0.0;
+    std::string streams_missing;
+    std::string flight_blocker;
+    std::string estimator;
   } seen_;
 };
 

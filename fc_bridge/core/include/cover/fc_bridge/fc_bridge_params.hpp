@@ -30,6 +30,18 @@ struct FcBridgeParams {
   int component_id = 191;          // MAV_COMP_ID_ONBOARD_COMPUTER
   bool auto_arm = false;           // simulation only: arm without an operator
   double gravity_m_s2 = 9.81;
+  // Streams asked of the autopilot (SET_MESSAGE_INTERVAL); 0: left as the autopilot sends it.
+  double stream_highres_imu_hz = 100.0;
+  double stream_extended_sys_state_hz = 5.0;
+  double stream_sys_status_hz = 2.0;
+  double stream_battery_status_hz = 1.0;
+  double stream_estimator_status_hz = 1.0;
+  double stream_attitude_target_hz = 0.0;
+  double stream_reask_s = 5.0;               // a missing stream is asked for again this often
+  double param_read_timeout_s = 0.5;         // a PARAM_REQUEST_READ unanswered this long: again
+  int param_read_tries = 3;                  // tries per name before "absent"
+  double param_refresh_s = 10.0;             // the parameters are read again this often
+  bool hover_thrust_from_autopilot = false;  // start the estimate at MPC_THR_HOVER / MOT_THST_HOVER
 
   // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
   // the documentation walk this list.
@@ -87,6 +99,55 @@ struct FcBridgeParams {
               .at_most(255.0));
     visit("auto_arm", self.auto_arm, Field("", "simulation only: arm without an operator"));
     visit("gravity_m_s2", self.gravity_m_s2, Field("m/s^2", "gravity").at_least(9.0).at_most(10.5));
+    visit(
+        "stream_highres_imu_hz", self.stream_highres_imu_hz,
+        Field(
+            "Hz",
+            "HIGHRES_IMU asked of the autopilot (the hover-thrust estimator's input); 0: not asked")
+            .at_least(0.0)
+            .at_most(500.0));
+    visit("stream_extended_sys_state_hz", self.stream_extended_sys_state_hz,
+          Field("Hz", "EXTENDED_SYS_STATE asked of the autopilot (landed state); 0: not asked")
+              .at_least(0.0)
+              .at_most(500.0));
+    visit("stream_sys_status_hz", self.stream_sys_status_hz,
+          Field("Hz", "SYS_STATUS asked of the autopilot (sensor health, battery); 0: not asked")
+              .at_least(0.0)
+              .at_most(500.0));
+    visit("stream_battery_status_hz", self.stream_battery_status_hz,
+          Field("Hz", "BATTERY_STATUS asked of the autopilot; 0: not asked")
+              .at_least(0.0)
+              .at_most(500.0));
+    visit("stream_estimator_status_hz", self.stream_estimator_status_hz,
+          Field("Hz", "ESTIMATOR_STATUS (PX4) / EKF_STATUS_REPORT (ArduPilot) asked; 0: not asked")
+              .at_least(0.0)
+              .at_most(500.0));
+    visit(
+        "stream_attitude_target_hz", self.stream_attitude_target_hz,
+        Field("Hz",
+              "ATTITUDE_TARGET asked (the autopilot's echo of the setpoint it flies); 0: not asked")
+            .at_least(0.0)
+            .at_most(500.0));
+    visit("stream_reask_s", self.stream_reask_s,
+          Field("s", "a requested stream that does not arrive is asked for again this often")
+              .at_least(0.5)
+              .at_most(600.0));
+    visit("param_read_timeout_s", self.param_read_timeout_s,
+          Field("s", "a PARAM_REQUEST_READ unanswered this long is sent again")
+              .at_least(0.05)
+              .at_most(10.0));
+    visit("param_read_tries", self.param_read_tries,
+          Field("", "tries per parameter name before it counts as absent")
+              .at_least(1.0)
+              .at_most(20.0));
+    visit("param_refresh_s", self.param_refresh_s,
+          Field("s", "the parameters COVER depends on are read again this often")
+              .at_least(1.0)
+              .at_most(3600.0));
+    visit("hover_thrust_from_autopilot", self.hover_thrust_from_autopilot,
+          Field("",
+                "start the hover-thrust estimate at the autopilot's MPC_THR_HOVER / "
+                "MOT_THST_HOVER once read, before the estimator has learned"));
   }
 
   static FcBridgeParams load_file(const std::string& path);

@@ -26,6 +26,11 @@ class HoverThrustEstimator {
   // m/s^2 (HIGHRES_IMU's zacc negated). False when it was not usable (not finite, absurd).
   bool update(double thrust, double specific_force_up_m_s2, double now_s);
   double estimate() const { return hover_; }
+  // Starts again from `initial` with the initial doubt (the autopilot's own hover thrust,
+  // read before the flight). False when `initial` is not a usable thrust.
+  bool restart_from(double initial);
+  // Whether any measurement was taken since construction or the last restart.
+  bool learning() const { return last_update_s_ >= 0.0; }
   double standard_deviation() const;
 
  private:

@@ -29,7 +29,10 @@ class SafetySupervisor {
     bool triggered = false;
     bool reached = false;  // the land mode (or disarmed) was just seen: the request ends
   };
-  Decision check(const AutopilotView& autopilot, double now_s);
+  // `bridge_ran`: false when the caller itself was descheduled since its last check (its
+  // pass came late): the agent's commands may be queued, undelivered, so the command
+  // timeout is not judged on this pass (the next one judges it).
+  Decision check(const AutopilotView& autopilot, double now_s, bool bridge_ran = true);
   // The answer to the land request that went out.
   void on_land_result(CommandOutcome outcome, double now_s);
 

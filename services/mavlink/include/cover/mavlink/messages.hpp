@@ -21,9 +21,9 @@ struct Heartbeat {
   static constexpr std::uint8_t kCrcExtra = 50;
   static constexpr std::uint8_t kPayloadLength = 9;
   std::uint32_t custom_mode = 0;
-  std::uint8_t type = 0;       // MAV_TYPE (2: quadrotor, 6: GCS, 18: onboard controller)
-  std::uint8_t autopilot = 0;  // MAV_AUTOPILOT (3: ArduPilot, 12: PX4, 8: invalid)
-  std::uint8_t base_mode = 0;  // MAV_MODE_FLAG (128: armed, 1: custom mode enabled)
+  std::uint8_t type = 0;           // MAV_TYPE (2: quadrotor, 6: GCS, 18: onboard controller)
+  std::uint8_t autopilot = 0;      // MAV_AUTOPILOT (3: ArduPilot, 12: PX4, 8: invalid)
+  std::uint8_t base_mode = 0;      // MAV_MODE_FLAG (128: armed, 1: custom mode enabled)
   std::uint8_t system_status = 0;  // MAV_STATE
   std::uint8_t mavlink_version = 3;
   void pack(std::uint8_t* payload) const;
@@ -74,7 +74,7 @@ struct AttitudeQuaternion {
   static constexpr std::uint8_t kCrcExtra = 246;
   static constexpr std::uint8_t kPayloadLength = 48;
   std::uint32_t time_boot_ms = 0;
-  float q1 = 1.0F, q2 = 0.0F, q3 = 0.0F, q4 = 0.0F;  // w, x, y, z: FRD body in NED
+  float q1 = 1.0F, q2 = 0.0F, q3 = 0.0F, q4 = 0.0F;            // w, x, y, z: FRD body in NED
   float rollspeed = 0.0F, pitchspeed = 0.0F, yawspeed = 0.0F;  // rad/s, FRD
   // extensions
   std::array<float, 4> repr_offset_q{};
@@ -116,10 +116,10 @@ struct SetAttitudeTarget {
   static constexpr std::uint8_t kPayloadLength = 51;
   std::uint32_t time_boot_ms = 0;
   std::array<float, 4> q{1.0F, 0.0F, 0.0F, 0.0F};  // w, x, y, z
-  float body_roll_rate = 0.0F;   // rad/s, FRD
-  float body_pitch_rate = 0.0F;  // rad/s, FRD
-  float body_yaw_rate = 0.0F;    // rad/s, FRD
-  float thrust = 0.0F;           // normalised collective thrust, 0..1
+  float body_roll_rate = 0.0F;                     // rad/s, FRD
+  float body_pitch_rate = 0.0F;                    // rad/s, FRD
+  float body_yaw_rate = 0.0F;                      // rad/s, FRD
+  float thrust = 0.0F;                             // normalised collective thrust, 0..1
   std::uint8_t target_system = 0;
   std::uint8_t target_component = 0;
   std::uint8_t type_mask = 0;  // ATTITUDE_TARGET_TYPEMASK (128: ignore attitude)
@@ -180,11 +180,11 @@ struct BatteryStatus {
   static constexpr std::uint32_t kId = 147;
   static constexpr std::uint8_t kCrcExtra = 154;
   static constexpr std::uint8_t kPayloadLength = 54;
-  std::int32_t current_consumed = -1;  // mAh
-  std::int32_t energy_consumed = -1;   // hJ
-  std::int16_t temperature = INT16_MAX;  // cdegC
+  std::int32_t current_consumed = -1;        // mAh
+  std::int32_t energy_consumed = -1;         // hJ
+  std::int16_t temperature = INT16_MAX;      // cdegC
   std::array<std::uint16_t, 10> voltages{};  // mV per cell, UINT16_MAX: none
-  std::int16_t current_battery = -1;  // cA
+  std::int16_t current_battery = -1;         // cA
   std::uint8_t id = 0;
   std::uint8_t battery_function = 0;
   std::uint8_t type = 0;
@@ -213,7 +213,7 @@ struct StatusText {
   static constexpr std::uint32_t kId = 253;
   static constexpr std::uint8_t kCrcExtra = 83;
   static constexpr std::uint8_t kPayloadLength = 54;
-  std::uint8_t severity = 6;  // MAV_SEVERITY (6: info)
+  std::uint8_t severity = 6;    // MAV_SEVERITY (6: info)
   std::array<char, 50> text{};  // not NUL-terminated when all 50 are used
   // extensions
   std::uint16_t id = 0;

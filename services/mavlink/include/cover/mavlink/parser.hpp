@@ -21,15 +21,15 @@ namespace cover::mavlink {
 // An autopilot streams dozens of message types a companion does not read (PX4 about 25):
 // those are traffic, not errors, and their sequence numbers count as received.
 struct ParserStats {
-  std::uint64_t candidates = 0;        // judged: frames + unknown_frames + refusals()
-  std::uint64_t frames = 0;            // delivered (checksum ok; signature ok if checked)
-  std::uint64_t garbage_bytes = 0;     // bytes skipped while looking for a start marker
-  std::uint64_t crc_errors = 0;        // known id, checksum wrong
+  std::uint64_t candidates = 0;     // judged: frames + unknown_frames + refusals()
+  std::uint64_t frames = 0;         // delivered (checksum ok; signature ok if checked)
+  std::uint64_t garbage_bytes = 0;  // bytes skipped while looking for a start marker
+  std::uint64_t crc_errors = 0;     // known id, checksum wrong
   // A frame of an id not in the message table, skipped whole: its checksum cannot be checked
   // (no CRC_EXTRA), so it counts as a frame only when a start marker follows it.
   std::uint64_t unknown_frames = 0;
   std::uint64_t unknown_frame_bytes = 0;
-  std::uint64_t unknown_ids = 0;  // an unknown id not followed by a start marker: refused
+  std::uint64_t unknown_ids = 0;       // an unknown id not followed by a start marker: refused
   std::uint64_t bad_length = 0;        // a known id with a payload longer than it can be
                                        // (v1) or an incompat flag we do not know
   std::uint64_t signature_errors = 0;  // signed, key configured, signature wrong

@@ -106,8 +106,12 @@ inline constexpr std::uint8_t kAutoSubLoiter = 3;
 inline constexpr std::uint32_t custom_mode(std::uint8_t main, std::uint8_t sub = 0) {
   return (static_cast<std::uint32_t>(main) << 16) | (static_cast<std::uint32_t>(sub) << 24);
 }
-inline constexpr std::uint8_t main_mode(std::uint32_t custom) { return (custom >> 16) & 0xFF; }
-inline constexpr std::uint8_t sub_mode(std::uint32_t custom) { return (custom >> 24) & 0xFF; }
+inline constexpr std::uint8_t main_mode(std::uint32_t custom) {
+  return (custom >> 16) & 0xFF;
+}
+inline constexpr std::uint8_t sub_mode(std::uint32_t custom) {
+  return (custom >> 24) & 0xFF;
+}
 }  // namespace px4_mode
 
 // ArduCopter's custom modes (the flight mode number).

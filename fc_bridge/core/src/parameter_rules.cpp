@@ -1,0 +1,122 @@
+#include <cmath>
+
+#include "cover/fc_bridge/parameter_check.hpp"
+
+// What COVER needs of each autopilot's parameters, and why (docs/autopilots.md; the
+// firmware sources behind each: the study in docs/flight-controller.md).
+namespace cover::fc_bridge {
+namespace {
+
+bool is_zero(double value) {
+  return value == 0.0;
+}
+bool thrust_is_thrust(double value) {
+  return (static_cast<long>(std::lround(value)) & 8) != 0;  // GUID_OPTIONS bit 3
+}
+bool within_one_second(double value) {
+  return value > 0.0 && value <= 1.0;
+}
+bool keeps_flying(double value) {
+  return value != 6.0 && value != 7.0;
+}  // not terminate/disarm
+bool mavlink_control_allowed(double value) {
+  return value != 0.0;
+}
+bool guided_timeout_short(double value) {
+  return value > 0.0 && value <= 3.0;
+}
+
+std::vector<ParameterRule> px4_rules() {
+  return {
+      {{"COM_OF_LOSS_T"},
+       ParameterWeight::Advisory,
+       "> 0 and <= 1 s",
+       "PX4's own offboard-loss delay: if the bridge dies, PX4 takes the UAV back after it "
+       "(the bridge itself lands the UAV within cmd_timeout_s of the agent's silence)",
+       within_one_second},
+      {{"COM_OBL_RC_ACT"},
+       ParameterWeight::Blocking,
+       "not 6 (terminate) or 7 (disarm)",
+       "what PX4 does when COVER's setpoints stop: terminate or disarm drops the UAV",
+       keeps_flying},
+      {{"MPC_THR_HOVER"},
+       ParameterWeight::Info,
+       "any (the vehicle's hover thrust)",
+       "the hover thrust PX4 assumes; the bridge's estimate can start from it",
+       nullptr},
+      {{"COM_DISARM_PRFLT"},
+       ParameterWeight::Info,
+       "any (< 0: never)",
+       "PX4 disarms this long (+1 s spool-up) after arming if the UAV does not take off: "
+       "arm within it of the task's start",
+       nullptr},
+      {{"COM_DISARM_LAND"},
+       ParameterWeight::Info,
+       "any (< 0: never)",
+       "PX4 disarms this long after it detects a landing, on a deck too",
+       nullptr},
+      {{"COM_RC_IN_MODE"},
+       ParameterWeight::Advisory,
+       "not 0 without an RC receiver",
+       "0 (RC only) makes an RC receiver an arming requirement",
+       mavlink_control_allowed},
+      {{"NAV_DLL_ACT"},
+       ParameterWeight::Advisory,
+       "0",
+       "> 0 makes a ground-station link an arming requirement and its loss a failsafe that "
+       "takes the UAV from COVER",
+       is_zero},
+  };
+}
+
+std::vector<ParameterRule> ardupilot_rules() {
+  return {
+      {{"ATC_ANGLE_BOOST"},
+       ParameterWeight::Blocking,
+       "0",
+       "ArduPilot multiplies the thrust by 1/cos(tilt); COVER's thrust is already along the "
+       "body axis, so it would be compensated twice",
+       is_zero},
+      {{"GUID_OPTIONS"},
+       ParameterWeight::Blocking,
+       "bit 3 (8) set",
+       "without it ArduPilot reads SET_ATTITUDE_TARGET's thrust as a climb rate",
+       thrust_is_thrust},
+      {{"GUID_TIMEOUT"},
+       ParameterWeight::Advisory,
+       "> 0 and <= 3 s",
+       "ArduPilot's own setpoint-loss delay: if the bridge dies it levels and holds "
+       "altitude after it",
+       guided_timeout_short},
+      {{"FS_THR_ENABLE"},
+       ParameterWeight::Advisory,
+       "0 without an RC receiver",
+       "with it set and no RC, arming fails (\"RC not found\") and the radio failsafe fires",
+       is_zero},
+      {{"MOT_THST_HOVER"},
+       ParameterWeight::Info,
+       "any (the vehicle's hover throttle)",
+       "the hover thrust ArduPilot learned; the bridge's estimate can start from it",
+       nullptr},
+      {{"DISARM_DELAY"},
+       ParameterWeight::Info,
+       "any (0: never)",
+       "ArduPilot disarms this long after arming while landed at zero throttle: arm within "
+       "it of the task's start",
+       nullptr},
+      {{"MAV_SYSID", "SYSID_THISMAV"},
+       ParameterWeight::Info,
+       "any (the system id)",
+       "the autopilot's MAVLink system id (MAV_SYSID from ArduPilot 4.7, SYSID_THISMAV "
+       "before)",
+       nullptr},
+  };
+}
+
+}  // namespace
+
+std::vector<ParameterRule> parameter_rules(AutopilotKind kind) {
+  return kind == AutopilotKind::Px4 ? px4_rules() : ardupilot_rules();
+}
+
+}  // namespace cover::fc_bridge
