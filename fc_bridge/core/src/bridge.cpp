@@ -324,6 +324,8 @@ const std::vector<mavlink::EncodedFrame>& Bridge::on_agent_command(const AgentCo
   setpoint_sent_ = false;
   const double now = advance(now_s);
   if (!fresh(command)) return out_;
+  if (last_fresh_s_ >= 0.0) gaps_.add(now - last_fresh_s_);
+  last_fresh_s_ = now;
   supervisor_.on_command(command.handover, now);
   if (command.release_payload && !last_release_) {
     CommandSpec gripper;
