@@ -31,7 +31,7 @@ Fleet::Fleet(const Scenario& scenario, const SimProcessParams& params,
     if (autopilots_.profile) {
       uav.autopilot = std::make_unique<fc::SimulatedAutopilot>(
           *autopilots_.profile, static_cast<std::uint8_t>(autopilots_.params.system_id_base + u),
-          autopilots_.params);
+          autopilots_.params, autopilots_.closing);
     }
     uavs_.push_back(std::move(uav));
   }
@@ -111,8 +111,8 @@ void Fleet::fill_shared() {
 }
 
 // The segment's OffboardState of a UAV flown by a simulated autopilot: flying the
-// companion's setpoints, descending in land mode, disarmed after it (or before the first
-// arming).
+// companion's setpoints, descending in land mode, disarmed after it (PX4 by then shows the
+// mode before the landing again), or before the first arming.
 OffboardState Fleet::offboard_view(const fc::SimulatedAutopilot& autopilot) {
   const bool landing = autopilot.mode() == fc::FlightMode::Land;
   if (autopilot.armed()) {
@@ -120,7 +120,8 @@ OffboardState Fleet::offboard_view(const fc::SimulatedAutopilot& autopilot) {
     return autopilot.mode() == fc::FlightMode::Offboard ? OffboardState::Offboard
                                                         : OffboardState::WaitingForAgent;
   }
-  return landing ? OffboardState::LossDisarmed : OffboardState::WaitingForAgent;
+  return landing || autopilot.landed_in_land_mode() ? OffboardState::LossDisarmed
+                                                    : OffboardState::WaitingForAgent;
 }
 
 bool Fleet::finished() const {

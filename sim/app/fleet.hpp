@@ -21,6 +21,9 @@ namespace cover::sim {
 struct FleetAutopilots {
   std::optional<fc::AutopilotProfile> profile;  // nullopt: direct
   fc::SimFcParams params;
+  // Lockstep: every step's frames end with a HIGHRES_IMU (the simulator's own contract with
+  // a bridge; real firmware has none).
+  fc::StepClosing closing = fc::StepClosing::None;
 };
 
 // The simulated fleet: one World per UAV over the same UGVs (UAVs do not interact

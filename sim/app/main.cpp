@@ -209,17 +209,6 @@ cover::sim::MavlinkPorts checked_ports(int bind_base, int peer_base, int count,
   return {static_cast<std::uint16_t>(bind_base), static_cast<std::uint16_t>(peer_base)};
 }
 
-// In lockstep a bridge takes a step's HIGHRES_IMU, sent last, as the end of that step's
-// frames and waits for it before the next tick's command: one sample every step.
-void check_lockstep_imu_rate(const cover::sim::fc::SimFcParams& fc,
-                             const cover::sim::SimProcessParams& sim) {
-  if (std::abs(fc.highres_imu_rate_hz - sim.control_rate_hz) <= 1e-9) return;
-  throw cover::config::ConfigError(fmt::format(
-      "highres_imu_rate_hz ({} Hz) must equal control_rate_hz ({} Hz) in lockstep: the bridge "
-      "waits for each step's HIGHRES_IMU (docs/flight-controller.md, \"Lockstep\")",
-      fc.highres_imu_rate_hz, sim.control_rate_hz));
-}
-
 cover::sim::MavlinkRunOptions mavlink_options(const CommandLine& cli,
                                               const cover::sim::Fleet& fleet,
                                               const cover::sim::fc::SimFcParams& fc_params) {
@@ -295,16 +284,12 @@ void add_options(CLI::App& app, CommandLine& cli) {
 
 // The run's options from the command line, checked against the fleet and the settings.
 cover::sim::SimRunOptions run_options(const CommandLine& cli, const cover::sim::Fleet& fleet,
-                                      const cover::sim::FleetAutopilots& autopilots,
-                                      const cover::sim::SimProcessParams& params) {
+                                      const cover::sim::FleetAutopilots& autopilots) {
   cover::sim::SimRunOptions options;
   options.clock = cli.clock == "lockstep" ? cover::sim::SimClockMode::Lockstep
                                           : cover::sim::SimClockMode::Realtime;
   options.standing = cli.standing;
   options.mavlink = mavlink_options(cli, fleet, autopilots.params);
-  if (options.clock == cover::sim::SimClockMode::Lockstep && autopilots.profile) {
-    check_lockstep_imu_rate(autopilots.params, params);
-  }
   options.mocap = cover::sim::parse_mocap_option(cli.mocap, cli.mocap_config);
   if (!cli.relative_gap.empty()) {
     if (!(cli.relative_gap[0] >= 0.0 && cli.relative_gap[1] > 0.0)) {
@@ -338,9 +323,12 @@ int main(int argc, char** argv) {
     autopilots.profile = cover::sim::fc::parse_profile(cli.fc);  // nullopt: direct
     const bool mavlink = autopilots.profile || cli.ugv_imu == "mavlink";
     if (mavlink) autopilots.params = cover::sim::fc::SimFcParams::load_file(cli.fc_params_file);
+    // In lockstep every step's frames end with a HIGHRES_IMU, which a bridge waits for
+    // (docs/flight-controller.md, "Lockstep"): the simulator's contract, not the firmware's.
+    if (cli.clock == "lockstep") autopilots.closing = cover::sim::fc::StepClosing::HighresImu;
     cover::sim::Fleet fleet(scenario, params, mission, autopilots);
     const cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-sim");
-    const cover::sim::SimRunOptions options = run_options(cli, fleet, autopilots, params);
+    const cover::sim::SimRunOptions options = run_options(cli, fleet, autopilots);
     const std::string segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
     // Declared first, removed last: see SimNode.
     cover::shm::SeqlockWriter<cover::sim::SharedWorld> segment(

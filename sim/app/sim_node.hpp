@@ -34,7 +34,7 @@ struct MavlinkRunOptions {
   double heartbeat_stop_time_s = -1.0;
   bool ugv_imu = false;
   MavlinkPorts ugv_imu_ports{14680, 14640};
-  fc::SimFcParams params;  // the rover autopilots' ids and heartbeat rate
+  fc::SimFcParams params;  // the rover autopilots' ids and heartbeat rate (PX4's)
 };
 
 struct SimRunOptions {

@@ -102,6 +102,9 @@ void SimNode::inject_autopilot_faults_locked(double t_s) {
 }
 
 void SimNode::log_autopilot_events_locked(int u) {
+  for (const std::string& note : fleet_.autopilot(u).take_link_notes()) {
+    spdlog::info("UAV {} autopilot: {}", u, note);
+  }
   const auto& events = fleet_.autopilot(u).events();
   Mailbox& box = mailboxes_[u];
   for (; box.events_logged < events.size(); ++box.events_logged) {

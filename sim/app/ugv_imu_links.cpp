@@ -8,7 +8,7 @@ UgvImuLinks::UgvImuLinks(int ugv_count, MavlinkPorts ports, const fc::SimFcParam
         Ugv{open_sitl_link(static_cast<std::uint16_t>(ports.bind_port_base + k),
                            static_cast<std::uint16_t>(ports.peer_port_base + k)),
             fc::SimulatedRoverImu(static_cast<std::uint8_t>(params.ugv_system_id_base + k),
-                                  params.heartbeat_rate_hz),
+                                  params.px4.streams.heartbeat_hz),
             0,
             {}});
   }

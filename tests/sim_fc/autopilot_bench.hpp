@@ -5,10 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "cover/fc_bridge/px4_events.hpp"
 #include "cover/mavlink/encoder.hpp"
+#include "cover/mavlink/event_messages.hpp"
 #include "cover/mavlink/messages.hpp"
+#include "cover/mavlink/parameter_messages.hpp"
 #include "cover/mavlink/parser.hpp"
 #include "cover/mavlink/protocol.hpp"
+#include "cover/mavlink/state_messages.hpp"
 #include "cover/sim/fc/simulated_autopilot.hpp"
 #include "cover/sim/world.hpp"
 #include "cover/sim/world_params.hpp"
@@ -31,8 +35,9 @@ class AutopilotBench {
   static constexpr double kPeriodS = 0.01;
 
   explicit AutopilotBench(AutopilotProfile profile, const WorldParams& world = ground_world(),
-                          const SimFcParams& params = SimFcParams{})
-      : world_(world), autopilot_(profile, kSystem, params) {}
+                          const SimFcParams& params = SimFcParams{},
+                          StepClosing closing = StepClosing::None)
+      : world_(world), autopilot_(profile, kSystem, params, closing) {}
 
   // Sends one message from the companion at the current time.
   template <typename Message>
@@ -110,6 +115,42 @@ class AutopilotBench {
   std::optional<mavlink::CommandAck> arm(bool on = true, float p2 = 0.0F) {
     return command(mavlink::mav_cmd::kComponentArmDisarm, on ? 1.0F : 0.0F, p2);
   }
+  // MAV_CMD_SET_MESSAGE_INTERVAL: `interval_us` > 0, 0 (default) or -1 (off).
+  std::optional<mavlink::CommandAck> interval(std::uint32_t message_id, float interval_us) {
+    return command(mavlink::mav_cmd::kSetMessageInterval, static_cast<float>(message_id),
+                   interval_us);
+  }
+  // A HEARTBEAT from the companion (what makes an ArduPilot link "active").
+  void companion_heartbeat() {
+    mavlink::Heartbeat h;
+    h.type = mavlink::mav_type::kOnboardController;
+    h.autopilot = mavlink::mav_autopilot::kInvalid;
+    send(h);
+  }
+  // PARAM_REQUEST_READ by name (index -1) or by index; the frames it answered with.
+  std::vector<mavlink::Frame> read_parameter(const std::string& name, std::int16_t index = -1) {
+    mavlink::ParamRequestRead request;
+    request.param_index = index;
+    request.target_system = kSystem;
+    request.target_component = 1;
+    request.param_id = mavlink::param_id_from(name);
+    const std::size_t before = received_.size();
+    send(request);
+    return {received_.begin() + static_cast<std::ptrdiff_t>(before), received_.end()};
+  }
+  // The PX4 EVENTs sent so far, in the words of the bridge's decoder.
+  std::vector<std::string> event_texts() const {
+    std::vector<std::string> out;
+    for (const auto& e : sent<mavlink::Event>())
+      out.push_back(fc_bridge::describe_px4_event(e).text);
+    return out;
+  }
+  // How many frames of message `id` the autopilot sent so far.
+  std::size_t count(std::uint32_t id) const {
+    std::size_t n = 0;
+    for (const auto& f : received_) n += f.message_id == id ? 1 : 0;
+    return n;
+  }
 
   // Every frame of message M the autopilot sent so far.
   template <typename M>
@@ -130,6 +171,7 @@ class AutopilotBench {
   World& world() { return world_; }
   double t_s() const { return t_s_; }
   const std::vector<mavlink::Frame>& received() const { return received_; }
+  const mavlink::ParserStats& parser_stats() const { return parser_.stats(); }
 
  private:
   void collect(const std::vector<mavlink::EncodedFrame>& frames) {

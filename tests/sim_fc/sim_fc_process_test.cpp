@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -82,13 +85,30 @@ class MavlinkClient {
     const auto frame = encoder_.encode(message);
     ASSERT_TRUE(link_->write(frame.bytes.data(), frame.size)) << link_->last_error();
   }
-  // Reads what is there: a socket left unread overflows and drops what comes next.
-  void drain() {
+  // Reads what is there: a socket left unread overflows and drops what comes next. Counts
+  // each message id, and keeps HIGHRES_IMU's stamps.
+  void drain(std::chrono::milliseconds first_wait = 0ms) {
     std::array<std::uint8_t, 2048> buffer{};
-    while (const std::size_t n = link_->read(buffer.data(), buffer.size(), 0ms)) {
-      parser_.feed(buffer.data(), n, [](const mav::Frame&) {});
+    auto wait = first_wait;
+    while (const std::size_t n = link_->read(buffer.data(), buffer.size(), wait)) {
+      wait = 0ms;
+      parser_.feed(buffer.data(), n, [&](const mav::Frame& frame) {
+        ++counts_[frame.message_id];
+        if (const auto imu = mav::decode<mav::HighresImu>(frame))
+          imu_stamps_us_.push_back(imu->time_usec);
+        if (const auto text = mav::decode<mav::StatusText>(frame))
+          texts_.push_back(text->text_string());
+      });
     }
   }
+  void forget() {
+    counts_.clear();
+    imu_stamps_us_.clear();
+    texts_.clear();
+  }
+  std::map<std::uint32_t, int> counts() const { return counts_; }
+  const std::vector<std::uint64_t>& imu_stamps_us() const { return imu_stamps_us_; }
+  const std::vector<std::string>& texts() const { return texts_; }
   std::uint8_t last_system() const { return last_system_; }
   const mav::ParserStats& stats() const { return parser_.stats(); }
 
@@ -97,6 +117,9 @@ class MavlinkClient {
   mav::StreamParser parser_;
   mav::Encoder encoder_{245, mav::mav_comp::kOnboardComputer};
   std::uint8_t last_system_ = 0;
+  std::map<std::uint32_t, int> counts_;
+  std::vector<std::uint64_t> imu_stamps_us_;
+  std::vector<std::string> texts_;
 };
 
 struct Profile {
@@ -104,10 +127,25 @@ struct Profile {
   std::uint8_t autopilot;
   std::uint32_t start_mode;
   std::uint32_t offboard_main;
-  std::uint8_t refused;
+  int offboard_acks;        // PX4 answers DO_SET_MODE twice
+  std::uint8_t arm_result;  // armed in the offboard mode with no setpoint stream
 };
 
-void heartbeats_and_a_refused_offboard(const Profile& profile) {
+mav::CommandLong command_to(std::uint8_t system, std::uint16_t id, float p1 = 0.0F,
+                            float p2 = 0.0F) {
+  mav::CommandLong c;
+  c.command = id;
+  c.param[0] = p1;
+  c.param[1] = p2;
+  c.target_system = system;
+  c.target_component = 1;
+  return c;
+}
+
+// Over UDP, as PX4 SITL and ArduCopter SITL did: the boot mode in the HEARTBEAT, the
+// offboard mode granted with no setpoint stream (PX4 twice), and the arm then refused by
+// PX4 (1) and granted by ArduPilot (0).
+void heartbeats_offboard_and_arm(const Profile& profile) {
   auto domain = cover::dds::DomainClaim::claim_any(230, 232);
   const std::uint16_t bind_base = free_port_base(1);
   const std::uint16_t peer_base = free_port_base(1);
@@ -126,33 +164,225 @@ void heartbeats_and_a_refused_offboard(const Profile& profile) {
   EXPECT_EQ(heartbeat->custom_mode, profile.start_mode);
   EXPECT_EQ(heartbeat->base_mode & mav::mav_mode_flag::kSafetyArmed, 0);
 
-  mav::CommandLong offboard;
-  offboard.command = mav::mav_cmd::kDoSetMode;
-  offboard.param[0] = mav::mav_mode_flag::kCustomModeEnabled;
+  auto offboard = command_to(client.last_system(), mav::mav_cmd::kDoSetMode,
+                             mav::mav_mode_flag::kCustomModeEnabled);
   offboard.param[1] = static_cast<float>(profile.offboard_main);
-  offboard.target_system = client.last_system();
-  offboard.target_component = 1;
   client.send(offboard);
-  const auto ack = client.wait_for<mav::CommandAck>(scaled(3s));
-  ASSERT_TRUE(ack);
-  EXPECT_EQ(ack->command, mav::mav_cmd::kDoSetMode);
-  EXPECT_EQ(ack->result, profile.refused);
-  EXPECT_EQ(ack->target_system, 245);
+  for (int i = 0; i < profile.offboard_acks; ++i) {
+    const auto ack = client.wait_for<mav::CommandAck>(scaled(3s));
+    ASSERT_TRUE(ack) << "ACK " << i;
+    EXPECT_EQ(ack->command, mav::mav_cmd::kDoSetMode);
+    EXPECT_EQ(ack->result, mav::mav_result::kAccepted);
+    EXPECT_EQ(ack->target_system, 245);
+  }
+  client.send(command_to(client.last_system(), mav::mav_cmd::kComponentArmDisarm, 1.0F));
+  const auto arm = client.wait_for<mav::CommandAck>(scaled(3s));
+  ASSERT_TRUE(arm);
+  EXPECT_EQ(arm->command, mav::mav_cmd::kComponentArmDisarm);  // not a third mode ACK
+  EXPECT_EQ(arm->result, profile.arm_result);
   EXPECT_EQ(client.stats().errors(), 0u);
 
   EXPECT_EQ(sim.terminate(scaled(10s), SIGINT), 0);  // a standing world ends by being stopped
 }
 
-TEST(SimFcProcess, Px4HeartbeatsAndRefusesOffboardWithoutASetpointStream) {
-  heartbeats_and_a_refused_offboard(
-      {"px4", mav::mav_autopilot::kPx4, mav::px4_mode::custom_mode(mav::px4_mode::kMainManual),
-       mav::px4_mode::kMainOffboard, mav::mav_result::kTemporarilyRejected});
+TEST(SimFcProcess, Px4AcceptsOffboardWithoutASetpointStreamAndRefusesTheArm) {
+  heartbeats_offboard_and_arm(
+      {"px4", mav::mav_autopilot::kPx4,
+       mav::px4_mode::custom_mode(mav::px4_mode::kMainAuto, mav::px4_mode::kAutoSubLoiter),
+       mav::px4_mode::kMainOffboard, 2, mav::mav_result::kTemporarilyRejected});
 }
 
-TEST(SimFcProcess, ArduPilotHeartbeatsAndRefusesGuidedNoGpsWithoutASetpointStream) {
-  heartbeats_and_a_refused_offboard({"ardupilot", mav::mav_autopilot::kArdupilotMega,
-                                     mav::copter_mode::kStabilize, mav::copter_mode::kGuidedNoGps,
-                                     mav::mav_result::kFailed});
+TEST(SimFcProcess, ArduPilotAcceptsGuidedNoGpsWithoutASetpointStreamAndArmsInIt) {
+  heartbeats_offboard_and_arm({"ardupilot", mav::mav_autopilot::kArdupilotMega,
+                               mav::copter_mode::kStabilize, mav::copter_mode::kGuidedNoGps, 1,
+                               mav::mav_result::kAccepted});
+}
+
+// The newest tick of cover/sim/clock, s (< 0: none yet).
+class SimClockWatch {
+ public:
+  explicit SimClockWatch(int domain) : participant_(options(domain)) {
+    reader_ = participant_.make_reader(cover::dds::topics::sim_clock(),
+                                       [this](const cover::msg::SimClock& tick) {
+                                         std::lock_guard<std::mutex> lock(mutex_);
+                                         t_s_ = std::max(t_s_, tick.stamp_ns * 1e-9);
+                                       });
+  }
+  double t_s() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return t_s_;
+  }
+  cover::dds::Participant& participant() { return participant_; }
+
+ private:
+  static cover::dds::ParticipantOptions options(int domain) {
+    cover::dds::ParticipantOptions o;
+    o.vendor = cover::dds::Vendor::FastDds;
+    o.domain_id = domain;
+    return o;
+  }
+  cover::dds::Participant participant_;
+  std::mutex mutex_;
+  double t_s_ = -1.0;
+  cover::dds::Reader<cover::msg::SimClock> reader_;
+};
+
+// ArduCopter SITL over UDP: nothing but HEARTBEAT until asked, no STATUSTEXT to a link that
+// has never sent a frame (its EKF aligns meanwhile, unheard); HIGHRES_IMU at the asked
+// 100 Hz (each simulated 10 ms, read from its stamps); "Arming motors" once it has heard us.
+TEST(SimFcProcess, ArduPilotSendsOnlyHeartbeatsAndTextsNoLinkUntilAskedOverUdp) {
+  auto domain = cover::dds::DomainClaim::claim_any(230, 232);
+  const std::uint16_t bind_base = free_port_base(1);
+  const std::uint16_t peer_base = free_port_base(1);
+  MavlinkClient client(peer_base);
+  SimClockWatch clock(domain.domain());
+  ChildProcess sim({bin("cover-sim"), "--fc", "ardupilot", "--clock", "realtime", "--standing",
+                    "--run-id", run_id("apstreams"), "--fc-bind-port-base",
+                    std::to_string(bind_base), "--fc-peer-port-base", std::to_string(peer_base)},
+                   on_domain(domain.domain(), "sim.log"));
+  // The world runs once a UAV agent is there (no task: the UAV sits on its deck).
+  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2"},
+                   on_domain(domain.domain(), "uav.log"));
+  // Past EKF3's alignment at 1 s of simulated time.
+  ASSERT_TRUE(wait_until(
+      [&] {
+        client.drain(20ms);
+        return clock.t_s() >= 2.0;
+      },
+      scaled(30s)))
+      << "the world never ran";
+  const auto counts = client.counts();
+  EXPECT_GE(counts.at(mav::Heartbeat::kId), 2);
+  EXPECT_EQ(counts.size(), 1u) << "a message other than HEARTBEAT before any request";
+  EXPECT_TRUE(client.texts().empty());
+
+  client.send(command_to(1, mav::mav_cmd::kSetMessageInterval,
+                         static_cast<float>(mav::HighresImu::kId), 10000.0F));
+  const auto ack = client.wait_for<mav::CommandAck>(scaled(3s));
+  ASSERT_TRUE(ack);
+  EXPECT_EQ(ack->result, mav::mav_result::kAccepted);
+  client.forget();
+  const auto& stamps = client.imu_stamps_us();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        client.drain(20ms);
+        return stamps.size() >= 100;
+      },
+      scaled(10s)));
+  int ten_ms_apart = 0;
+  for (std::size_t i = 1; i < stamps.size(); ++i)
+    ten_ms_apart += stamps[i] - stamps[i - 1] == 10000;
+  EXPECT_GE(ten_ms_apart, static_cast<int>(stamps.size()) * 9 / 10);  // every simulated step
+
+  client.send(command_to(1, mav::mav_cmd::kDoSetMode, 1.0F,
+                         static_cast<float>(mav::copter_mode::kGuidedNoGps)));
+  client.send(command_to(1, mav::mav_cmd::kComponentArmDisarm, 1.0F));
+  ASSERT_TRUE(wait_until(
+      [&] {
+        client.drain(20ms);
+        const auto& texts = client.texts();
+        return std::find(texts.begin(), texts.end(), "Arming motors") != texts.end();
+      },
+      scaled(5s)));
+  EXPECT_EQ(uav.terminate(scaled(10s), SIGINT), 0);
+  EXPECT_EQ(sim.terminate(scaled(10s), SIGINT), 0);
+}
+
+// cover/uav/0/fc as the test sees it: the newest state.
+class FcStateWatch {
+ public:
+  FcStateWatch(cover::dds::Participant& participant) {
+    reader_ = participant.make_reader(cover::dds::topics::fc_state(0),
+                                      [this](const cover::msg::FcState& s) {
+                                        std::lock_guard<std::mutex> lock(mutex_);
+                                        last_ = s;
+                                      });
+  }
+  std::optional<cover::msg::FcState> last() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return last_;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::optional<cover::msg::FcState> last_;
+  cover::dds::Reader<cover::msg::FcState> reader_;
+};
+
+// The real cover-fc-bridge on cover-sim's autopilot: it asks its streams and they all
+// arrive, reads every parameter (as the simulated firmware types them), sees the estimator
+// aligned; PX4's unknown message types are skipped, not errors. A wrong ATC_ANGLE_BOOST set in
+// the simulator's sim_fc.yaml becomes the bridge's flight_blocker.
+void real_bridge_on_the_simulated_autopilot(const std::string& autopilot, bool wrong_boost) {
+  auto domain = cover::dds::DomainClaim::claim_any(230, 232);
+  const std::uint16_t bind_base = free_port_base(1);
+  const std::uint16_t peer_base = free_port_base(1);
+  std::vector<std::string> sim_args = {bin("cover-sim"),
+                                       "--fc",
+                                       autopilot,
+                                       "--clock",
+                                       "realtime",
+                                       "--standing",
+                                       "--run-id",
+                                       run_id("bridge" + autopilot),
+                                       "--fc-bind-port-base",
+                                       std::to_string(bind_base),
+                                       "--fc-peer-port-base",
+                                       std::to_string(peer_base)};
+  if (wrong_boost) {
+    const std::string params = cover::test::scratch_path("sim_fc.yaml");
+    std::ofstream(params) << "sim_fc:\n  ardupilot:\n    atc_angle_boost: 1\n";
+    sim_args.insert(sim_args.end(), {"--fc-params", params});
+  }
+  SimClockWatch clock(domain.domain());
+  FcStateWatch fc(clock.participant());
+  ChildProcess sim(sim_args, on_domain(domain.domain(), "sim.log"));
+  ChildProcess bridge({bin("cover-fc-bridge"), "--id", "0", "--autopilot", autopilot, "--url",
+                       "udpin://127.0.0.1:" + std::to_string(peer_base), "--clock", "realtime"},
+                      on_domain(domain.domain(), "bridge.log"));
+  ChildProcess uav({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2",
+                    "--fc-bridge"},
+                   on_domain(domain.domain(), "uav.log"));
+  // Every stream asked and arriving, every parameter read: a few seconds of the world.
+  ASSERT_TRUE(wait_until([&] { return clock.t_s() >= 4.0; }, scaled(60s))) << "the world never ran";
+  std::optional<cover::msg::FcState> s;
+  ASSERT_TRUE(wait_until(
+      [&] {
+        s = fc.last();
+        return s && s->streams_missing.empty() && !s->streams.empty() && s->estimator_ok &&
+               !s->parameters.empty() && (!wrong_boost || !s->flight_blocker.empty());
+      },
+      scaled(20s)))
+      << (s ? "streams_missing '" + s->streams_missing + "', estimator '" + s->estimator +
+                  "', flight_blocker '" + s->flight_blocker + "'"
+            : std::string("no cover/uav/0/fc"));
+  EXPECT_TRUE(s->link_ok);
+  for (const auto& stream : s->streams) EXPECT_TRUE(stream.arriving) << stream.name;
+  for (const auto& p : s->parameters) {
+    if (p.name == "SYSID_THISMAV") continue;  // MAV_SYSID's old name
+    EXPECT_TRUE(p.known) << p.name;
+  }
+  EXPECT_EQ(s->rx_errors, 0u);
+  if (autopilot == "px4") {
+    EXPECT_GT(s->rx_unknown, 0u);
+  }
+  if (wrong_boost) {
+    EXPECT_NE(s->flight_blocker.find("ATC_ANGLE_BOOST is 1"), std::string::npos)
+        << s->flight_blocker;
+  } else {
+    EXPECT_EQ(s->flight_blocker, "");
+  }
+  EXPECT_EQ(uav.terminate(scaled(10s), SIGINT), 0);
+  EXPECT_EQ(bridge.terminate(scaled(10s), SIGINT), 0);
+  EXPECT_EQ(sim.terminate(scaled(10s), SIGINT), 0);
+}
+
+TEST(SimFcProcess, RealBridgeOnThePx4ReadsItsStreamsParametersAndEstimator) {
+  real_bridge_on_the_simulated_autopilot("px4", false);
+}
+
+TEST(SimFcProcess, RealBridgeHoldsFlightsOnTheArduPilotsWrongAngleBoost) {
+  real_bridge_on_the_simulated_autopilot("ardupilot", true);
 }
 
 // The UAV side of a lockstep run, played by the test: it answers each tick with a trace on
@@ -240,6 +470,12 @@ TEST(SimFcProcess, LockstepTickWaitsForTheSetpointNamingIt) {
     expected_ns += 10'000'000;
     ++answered;
   }
+  // The simulator's lockstep contract: every step closed by a HIGHRES_IMU stamped with it,
+  // though PX4's stream is 50 Hz and nobody asked for more.
+  companion.mavlink().drain(100ms);
+  const auto& stamps = companion.mavlink().imu_stamps_us();
+  ASSERT_GE(stamps.size(), 149u);
+  for (std::size_t i = 0; i < 149; ++i) EXPECT_EQ(stamps[i], i * 10000) << i;
   // A setpoint naming another time does not answer the tick: it is published again.
   const auto tick = companion.next_tick(5s);
   ASSERT_EQ(tick, std::optional<std::int64_t>(expected_ns));

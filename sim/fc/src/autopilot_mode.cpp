@@ -11,6 +11,10 @@ namespace cover::sim::fc {
 namespace px4 = mavlink::px4_mode;
 namespace copter = mavlink::copter_mode;
 
+constexpr std::uint32_t kCopterBrake = 17;
+constexpr FlightMode kModes[] = {FlightMode::Hold, FlightMode::Manual, FlightMode::Position,
+                                 FlightMode::Offboard, FlightMode::Land};
+
 const char* to_string(AutopilotProfile profile) {
   return profile == AutopilotProfile::Px4 ? "px4" : "ardupilot";
 }
@@ -21,9 +25,15 @@ std::optional<AutopilotProfile> parse_profile(const std::string& text) {
   return std::nullopt;
 }
 
+FlightMode start_mode(AutopilotProfile profile) {
+  return profile == AutopilotProfile::Px4 ? FlightMode::Hold : FlightMode::Manual;
+}
+
 const char* mode_name(AutopilotProfile profile, FlightMode mode) {
   const bool is_px4 = profile == AutopilotProfile::Px4;
   switch (mode) {
+    case FlightMode::Hold:
+      return is_px4 ? "AUTO.LOITER" : "BRAKE";
     case FlightMode::Manual:
       return is_px4 ? "MANUAL" : "STABILIZE";
     case FlightMode::Position:
@@ -39,6 +49,8 @@ const char* mode_name(AutopilotProfile profile, FlightMode mode) {
 std::uint32_t custom_mode(AutopilotProfile profile, FlightMode mode) {
   if (profile == AutopilotProfile::Px4) {
     switch (mode) {
+      case FlightMode::Hold:
+        return px4::custom_mode(px4::kMainAuto, px4::kAutoSubLoiter);
       case FlightMode::Manual:
         return px4::custom_mode(px4::kMainManual);
       case FlightMode::Position:
@@ -50,6 +62,8 @@ std::uint32_t custom_mode(AutopilotProfile profile, FlightMode mode) {
     }
   }
   switch (mode) {
+    case FlightMode::Hold:
+      return kCopterBrake;
     case FlightMode::Manual:
       return copter::kStabilize;
     case FlightMode::Position:
@@ -79,15 +93,14 @@ std::optional<FlightMode> requested_mode(AutopilotProfile profile, float param1,
   if (!flags || (*flags & mavlink::mav_mode_flag::kCustomModeEnabled) == 0) return std::nullopt;
   const auto main = whole(param2);
   if (!main) return std::nullopt;
-  for (FlightMode mode :
-       {FlightMode::Manual, FlightMode::Position, FlightMode::Offboard, FlightMode::Land}) {
+  for (FlightMode mode : kModes) {
     const std::uint32_t custom = custom_mode(profile, mode);
     if (profile == AutopilotProfile::ArduPilot) {
       if (custom == *main) return mode;
       continue;
     }
     if (px4::main_mode(custom) != *main) continue;
-    // Only AUTO has sub modes here (LAND); a PX4 ground station sends 0 for the others.
+    // Only AUTO has sub modes here (LOITER, LAND); a PX4 ground station sends 0 for the others.
     const auto sub = whole(param3);
     if (px4::main_mode(custom) != px4::kMainAuto || (sub && *sub == px4::sub_mode(custom))) {
       return mode;
@@ -100,8 +113,7 @@ std::optional<FlightMode> parse_mode_name(const std::string& text) {
   std::string upper = text;
   std::transform(upper.begin(), upper.end(), upper.begin(),
                  [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-  for (FlightMode mode :
-       {FlightMode::Manual, FlightMode::Position, FlightMode::Offboard, FlightMode::Land}) {
+  for (FlightMode mode : kModes) {
     for (AutopilotProfile profile : {AutopilotProfile::Px4, AutopilotProfile::ArduPilot}) {
       if (upper == mode_name(profile, mode)) return mode;
     }

@@ -14,13 +14,18 @@ namespace {
 
 namespace typemask = mavlink::attitude_target_typemask;
 
-constexpr std::uint8_t kSeverityCritical = 2;
-constexpr std::uint8_t kSeverityWarning = 4;
-constexpr std::uint8_t kSeverityInfo = 6;
-
 bool finite(const mavlink::SetAttitudeTarget& s) {
   return std::isfinite(s.body_roll_rate) && std::isfinite(s.body_pitch_rate) &&
          std::isfinite(s.body_yaw_rate) && std::isfinite(s.thrust);
+}
+
+// ArduPilot's angle boost (AC_AttitudeControl_Multi::get_throttle_boosted): the throttle
+// divided by the cosine of the tilt (at least 0.1), faded out towards inverted flight.
+double angle_boost(const World& world) {
+  const Eigen::Quaterniond q = world.state().uav.attitude.eigen();
+  const double cos_tilt = (q * Eigen::Vector3d::UnitZ()).z();
+  const double inverted_factor = std::clamp(10.0 * cos_tilt, 0.0, 1.0);
+  return inverted_factor / std::clamp(cos_tilt, 0.1, 1.0);
 }
 
 }  // namespace
@@ -41,26 +46,19 @@ const char* to_string(AutopilotEvent::Kind kind) {
   return "unknown";
 }
 
-bool SimulatedAutopilot::Stream::due(double now_s) {
-  // A small tolerance: the simulated time is a sum of control periods.
-  if (now_s + 1e-9 < next_due_s) return false;
-  next_due_s += period_s;
-  if (next_due_s <= now_s) next_due_s = now_s + period_s;  // fell behind: no burst
-  return true;
-}
-
 SimulatedAutopilot::SimulatedAutopilot(AutopilotProfile profile, std::uint8_t system_id,
-                                       const SimFcParams& params)
+                                       const SimFcParams& params, StepClosing closing)
     : profile_(profile),
       params_(params),
+      closing_(closing),
       encoder_(system_id, mavlink::mav_comp::kAutopilot1),
       battery_(params.battery),
-      heartbeat_stream_{1.0 / params.heartbeat_rate_hz, 0.0},
-      attitude_stream_{1.0 / params.attitude_rate_hz, 0.0},
-      imu_stream_{1.0 / params.highres_imu_rate_hz, 0.0},
-      target_stream_{1.0 / params.attitude_target_rate_hz, 0.0},
-      ext_state_stream_{1.0 / params.extended_sys_state_rate_hz, 0.0},
-      status_stream_{1.0 / params.sys_status_rate_hz, 0.0} {}
+      streams_(profile,
+               profile == AutopilotProfile::Px4 ? params.px4.streams : params.ardupilot.streams),
+      parameters_(profile, params, system_id),
+      auto_disarm_(profile, params),
+      mode_(start_mode(profile)),
+      mode_before_land_(start_mode(profile)) {}
 
 FrameResponse SimulatedAutopilot::on_frame(const mavlink::Frame& frame, double now_s) {
   last_now_s_ = now_s;
@@ -69,10 +67,13 @@ FrameResponse SimulatedAutopilot::on_frame(const mavlink::Frame& frame, double n
   if (frame.system_id == system_id() && frame.component_id == encoder_.component_id()) {
     return response;
   }
+  link_active_ = true;
   if (const auto setpoint = mavlink::decode<mavlink::SetAttitudeTarget>(frame)) {
     handle_setpoint(frame, *setpoint, now_s, response);
   } else if (const auto command = mavlink::decode<mavlink::CommandLong>(frame)) {
     handle_command(frame, *command, now_s);
+  } else if (const auto request = mavlink::decode<mavlink::ParamRequestRead>(frame)) {
+    handle_param_request(frame, *request);
   } else if (const auto timesync = mavlink::decode<mavlink::Timesync>(frame)) {
     handle_timesync(*timesync, now_s);
   }
@@ -89,17 +90,12 @@ void SimulatedAutopilot::handle_setpoint(const mavlink::Frame& frame,
     return;
   }
   companion_ = std::make_pair(frame.system_id, frame.component_id);
-  // A stream is unbroken while setpoints come faster than the minimum rate.
-  if (!setpoint_ || now_s - setpoint_->received_s > 1.0 / params_.offboard_stream_min_rate_hz) {
-    stream_start_s_ = now_s;
-  }
   setpoint_ = Setpoint{setpoint, now_s};
   ++setpoints_accepted_;
   if (guided_levelled_since_s_) {
     guided_levelled_since_s_.reset();
     in_failsafe_ = false;
-    event(AutopilotEvent::Kind::Failsafe, now_s, "GUIDED: setpoints again, following them",
-          kSeverityInfo);
+    log_event(AutopilotEvent::Kind::Failsafe, now_s, "GUIDED: setpoints again, following them");
   }
   response.setpoint_accepted = true;
   response.setpoint_time_boot_ms = setpoint.time_boot_ms;
@@ -149,21 +145,25 @@ double SimulatedAutopilot::setpoint_age_s(double now_s) const {
   return setpoint_ ? now_s - setpoint_->received_s : std::numeric_limits<double>::infinity();
 }
 
-bool SimulatedAutopilot::setpoint_fresh(double now_s) const {
-  return setpoint_age_s(now_s) <= 1.0 / params_.offboard_stream_min_rate_hz;
-}
-
-bool SimulatedAutopilot::stream_established(double now_s) const {
-  return setpoint_fresh(now_s) && now_s - stream_start_s_ + 1e-9 >= params_.offboard_stream_min_s;
+// PX4's offboard signal: an offboard_control_mode (published by every SET_ATTITUDE_TARGET,
+// in any mode) within COM_OF_LOSS_T (HealthAndArmingChecks offboardCheck.cpp).
+bool SimulatedAutopilot::offboard_signal(double now_s) const {
+  return setpoint_age_s(now_s) <= params_.px4.com_of_loss_t_s;
 }
 
 AutopilotStep SimulatedAutopilot::step(double now_s, const World& world) {
   last_now_s_ = now_s;
   resting_ = world.state().uav_contact.resting;
-  if (armed_ && mode_ == FlightMode::Land && resting_) disarm(now_s, "landed");
+  // ArduPilot's LAND disarms as soon as it touches down; PX4's waits COM_DISARM_LAND.
+  if (armed_ && mode_ == FlightMode::Land && resting_ && profile_ == AutopilotProfile::ArduPilot) {
+    disarm(now_s, "landed", 0);
+  }
   check_offboard_loss(now_s);
   AutopilotStep out;
   out.plant_command = plant_command(world);
+  check_auto_disarm(now_s);
+  if (!armed_) out.plant_command = QuadrotorCommand{};
+  report_alignment(now_s);
   const double hover = world.hover_thrust_command_m_s2();
   battery_.update(last_step_s_ ? now_s - *last_step_s_ : 0.0,
                   hover > 0.0 ? out.plant_command.thrust_m_s2 / hover : 0.0);
@@ -180,29 +180,59 @@ void SimulatedAutopilot::check_offboard_loss(double now_s) {
   if (!armed_ || mode_ != FlightMode::Offboard) return;
   const double age_s = setpoint_age_s(now_s);
   if (profile_ == AutopilotProfile::Px4) {
-    if (age_s <= params_.com_of_loss_t_s) return;
+    if (age_s <= params_.px4.com_of_loss_t_s) return;
     in_failsafe_ = true;
-    event(AutopilotEvent::Kind::Failsafe, now_s, "Failsafe: offboard lost, descending",
-          kSeverityCritical);
+    log_event(AutopilotEvent::Kind::Failsafe, now_s, "Failsafe: offboard lost, descending");
+    report(Px4Event("commander_failsafe_enter_generic", Px4EventLevel::Critical)
+               .arg(std::uint32_t{0})
+               .arg(kPx4FailsafeDescend),
+           now_s);
     set_mode(FlightMode::Land, now_s, "failsafe");
     return;
   }
-  if (!guided_levelled_since_s_ && age_s > params_.guid_timeout_s) {
+  // ArduPilot levels and holds silently (mode_guided.cpp); the LAND after it is ours, for a
+  // vehicle in the air only (on the ground DISARM_DELAY ends it, as on ArduCopter SITL).
+  if (!guided_levelled_since_s_ && age_s > params_.ardupilot.guid_timeout_s) {
     guided_levelled_since_s_ = now_s;
     in_failsafe_ = true;
-    event(AutopilotEvent::Kind::Failsafe, now_s, "GUIDED: setpoint timeout, levelling",
-          kSeverityCritical);
+    log_event(AutopilotEvent::Kind::Failsafe, now_s, "GUIDED: setpoint timeout, levelling");
   }
-  if (guided_levelled_since_s_ && now_s - *guided_levelled_since_s_ >= params_.guid_level_hold_s) {
-    event(AutopilotEvent::Kind::Failsafe, now_s, "Failsafe: no setpoints, landing",
-          kSeverityCritical);
+  if (guided_levelled_since_s_ && !resting_ &&
+      now_s - *guided_levelled_since_s_ >= params_.ardupilot.guid_level_hold_s) {
+    log_event(AutopilotEvent::Kind::Failsafe, now_s, "Failsafe: no setpoints, landing");
     set_mode(FlightMode::Land, now_s, "failsafe");
+  }
+}
+
+// The land detector (the plant's contact) and the firmware's auto-disarm. ArduPilot's
+// throttle is at zero unless COVER's setpoint asks for thrust: without RC its pilot
+// throttle is zero in every mode, and GUIDED_NOGPS without a setpoint (or levelled after
+// GUID_TIMEOUT) flies no thrust of COVER's.
+void SimulatedAutopilot::check_auto_disarm(double now_s) {
+  if (!armed_) return;
+  const bool flying_setpoint = mode_ == FlightMode::Offboard && setpoint_ &&
+                               !guided_levelled_since_s_ && setpoint_->message.thrust > 0.0F;
+  const AutoDisarmStep s = auto_disarm_.step(now_s, resting_, !flying_setpoint);
+  if (s.took_off) report(Px4Event("commander_takeoff_detected", Px4EventLevel::Info), now_s);
+  if (s.landed) report(Px4Event("commander_landing_detected", Px4EventLevel::Info), now_s);
+  if (!s.disarm) return;
+  switch (*s.disarm) {
+    case AutoDisarmCause::Px4Preflight:
+      disarm(now_s, "auto: preflight inaction", px4_arm_reason::kPreflightInaction);
+      break;
+    case AutoDisarmCause::Px4Landed:
+      disarm(now_s, "auto: landed", px4_arm_reason::kLanding);
+      break;
+    case AutoDisarmCause::ArduPilotDelay:
+      disarm(now_s, "auto: DISARM_DELAY", 0);
+      break;
   }
 }
 
 QuadrotorCommand SimulatedAutopilot::plant_command(const World& world) {
   if (!armed_) return QuadrotorCommand{};
   switch (mode_) {
+    case FlightMode::Hold:
     case FlightMode::Manual:
     case FlightMode::Position:
       return hold_command(world);
@@ -223,9 +253,12 @@ QuadrotorCommand SimulatedAutopilot::hold_command(const World& world) {
 // The last setpoint, held until it is stale (the failsafe above decides when).
 QuadrotorCommand SimulatedAutopilot::setpoint_command(const World& world) const {
   const mavlink::SetAttitudeTarget& s = setpoint_->message;
+  double throttle = std::clamp(static_cast<double>(s.thrust), 0.0, 1.0);
+  if (profile_ == AutopilotProfile::ArduPilot && params_.ardupilot.atc_angle_boost != 0) {
+    throttle = std::clamp(throttle * angle_boost(world), 0.0, 1.0);
+  }
   QuadrotorCommand command;
-  command.thrust_m_s2 =
-      std::clamp(static_cast<double>(s.thrust), 0.0, 1.0) * world.params().uav.max_thrust_m_s2;
+  command.thrust_m_s2 = throttle * world.params().uav.max_thrust_m_s2;
   command.body_rate_rad_s =
       Vec3(frd_to_flu(Eigen::Vector3d(s.body_roll_rate, s.body_pitch_rate, s.body_yaw_rate)));
   return command;
@@ -242,43 +275,6 @@ void SimulatedAutopilot::stop_heartbeats() {
 std::optional<mavlink::EncodedFrame> SimulatedAutopilot::heartbeat_frame() {
   if (heartbeats_stopped_) return std::nullopt;
   return encoder_.encode(heartbeat());
-}
-
-void SimulatedAutopilot::set_mode(FlightMode mode, double now_s, const std::string& why) {
-  if (mode == mode_) return;
-  mode_ = mode;
-  hold_height_m_.reset();
-  guided_levelled_since_s_.reset();
-  if (mode != FlightMode::Land) in_failsafe_ = false;
-  event(AutopilotEvent::Kind::Mode, now_s, std::string("Mode ") + mode_name() + " (" + why + ")",
-        kSeverityInfo);
-}
-
-void SimulatedAutopilot::arm(double now_s, const std::string& why) {
-  armed_ = true;
-  hold_height_m_.reset();
-  event(AutopilotEvent::Kind::Arming, now_s, "Armed (" + why + ")", kSeverityInfo);
-}
-
-void SimulatedAutopilot::disarm(double now_s, const std::string& why) {
-  armed_ = false;
-  event(AutopilotEvent::Kind::Arming, now_s, "Disarmed (" + why + ")", kSeverityInfo);
-}
-
-void SimulatedAutopilot::event(AutopilotEvent::Kind kind, double now_s, const std::string& text,
-                               std::uint8_t severity) {
-  events_.push_back({kind, now_s, text});
-  mavlink::StatusText status;
-  status.severity = severity;
-  status.set_text(text);
-  queue(status);
-}
-
-void SimulatedAutopilot::warn_limited(const std::string& text, double now_s) {
-  auto it = warned_at_s_.find(text);
-  if (it != warned_at_s_.end() && now_s - it->second < 1.0) return;
-  warned_at_s_[text] = now_s;
-  event(AutopilotEvent::Kind::Refusal, now_s, text, kSeverityWarning);
 }
 
 }  // namespace cover::sim::fc

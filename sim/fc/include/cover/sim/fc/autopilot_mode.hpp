@@ -13,12 +13,18 @@ const char* to_string(AutopilotProfile profile);  // "px4", "ardupilot"
 std::optional<AutopilotProfile> parse_profile(const std::string& text);
 
 // The flight modes the simulated autopilot has, by what they do:
-//  Manual   PX4 MANUAL / ArduPilot STABILIZE: the start mode (sticks centred: levelled,
-//           height held, as Position: the simulator has no sticks);
+//  Hold     PX4 AUTO.LOITER / ArduPilot BRAKE: PX4's mode after boot (without RC it starts
+//           in Hold), levelled, height held;
+//  Manual   PX4 MANUAL / ArduPilot STABILIZE: ArduPilot's mode after boot (sticks centred:
+//           levelled, height held, as Position: the simulator has no sticks);
 //  Position PX4 POSCTL / ArduPilot LOITER: the safety pilot's switch, levelled, height held;
 //  Offboard PX4 OFFBOARD / ArduPilot GUIDED_NOGPS: the companion's body-rate setpoints;
-//  Land     PX4 AUTO.LAND / ArduPilot LAND: levelled descent, disarms on touchdown.
-enum class FlightMode { Manual, Position, Offboard, Land };
+//  Land     PX4 AUTO.LAND / ArduPilot LAND: levelled descent; ArduPilot disarms on
+//           touchdown, PX4 COM_DISARM_LAND after it.
+enum class FlightMode { Hold, Manual, Position, Offboard, Land };
+
+// The mode each autopilot boots in (PX4 SITL: AUTO.LOITER; ArduCopter: STABILIZE).
+FlightMode start_mode(AutopilotProfile profile);
 
 // The autopilot's own name of the mode ("OFFBOARD", "GUIDED_NOGPS", ...).
 const char* mode_name(AutopilotProfile profile, FlightMode mode);
@@ -29,8 +35,9 @@ std::uint32_t custom_mode(AutopilotProfile profile, FlightMode mode);
 // number, param3 PX4 sub mode); nullopt for a mode the simulator does not have.
 std::optional<FlightMode> requested_mode(AutopilotProfile profile, float param1, float param2,
                                          float param3);
-// A mode named as either autopilot names it (case-insensitive): MANUAL, STABILIZE, POSCTL,
-// LOITER, OFFBOARD, GUIDED_NOGPS, LAND, AUTO.LAND. For fault injection flags.
+// A mode named as either autopilot names it (case-insensitive): AUTO.LOITER, BRAKE, MANUAL,
+// STABILIZE, POSCTL, LOITER, OFFBOARD, GUIDED_NOGPS, LAND, AUTO.LAND. For fault injection
+// flags.
 std::optional<FlightMode> parse_mode_name(const std::string& text);
 
 }  // namespace cover::sim::fc

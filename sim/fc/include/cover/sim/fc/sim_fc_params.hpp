@@ -44,34 +44,163 @@ struct BatteryParams {
   }
 };
 
+// The streams an autopilot sends on its companion link until MAV_CMD_SET_MESSAGE_INTERVAL
+// changes one (0: not sent). At most one frame of a message per control period: the
+// autopilot is stepped at the control rate.
+struct StreamRates {
+  double heartbeat_hz = 1.0;
+  double highres_imu_hz = 0.0;
+  double attitude_quaternion_hz = 0.0;
+  double attitude_hz = 0.0;  // ATTITUDE (30): Euler angles
+  double attitude_target_hz = 0.0;
+  double extended_sys_state_hz = 0.0;
+  double sys_status_hz = 0.0;
+  double battery_status_hz = 0.0;
+  double estimator_hz = 0.0;  // ESTIMATOR_STATUS (PX4) / EKF_STATUS_REPORT (ArduPilot)
+  // PX4 only: ALTITUDE (141) and VFR_HUD (74), two of the ~25 message types real PX4 streams
+  // that COVER's codec does not know: a bridge must skip them whole.
+  double codec_unknown_hz = 0.0;
+
+  // PX4's "onboard" link (mavlink_main.cpp MAVLINK_MODE_ONBOARD), as measured from PX4 SITL
+  // (shared/sitl/README.md): ATTITUDE 98, ATTITUDE_QUATERNION and HIGHRES_IMU 49, ...
+  static StreamRates px4_onboard();
+  // ArduCopter: every stream rate 0 on every port; HEARTBEAT only.
+  static StreamRates ardupilot_default() { return StreamRates{}; }
+
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    const auto rate = [](const char* doc) {
+      return Field("Hz", doc).at_least(0.0).at_most(1000.0);
+    };
+    visit("heartbeat_hz", self.heartbeat_hz, rate("HEARTBEAT"));
+    visit("highres_imu_hz", self.highres_imu_hz, rate("HIGHRES_IMU, the UAV's own IMU"));
+    visit("attitude_quaternion_hz", self.attitude_quaternion_hz, rate("ATTITUDE_QUATERNION"));
+    visit("attitude_hz", self.attitude_hz, rate("ATTITUDE (Euler angles)"));
+    visit("attitude_target_hz", self.attitude_target_hz,
+          rate("ATTITUDE_TARGET, what the rate loop flies"));
+    visit("extended_sys_state_hz", self.extended_sys_state_hz,
+          rate("EXTENDED_SYS_STATE, the landed state"));
+    visit("sys_status_hz", self.sys_status_hz, rate("SYS_STATUS: sensors, battery"));
+    visit("battery_status_hz", self.battery_status_hz, rate("BATTERY_STATUS"));
+    visit("estimator_hz", self.estimator_hz,
+          rate("ESTIMATOR_STATUS (PX4) / EKF_STATUS_REPORT (ArduPilot)"));
+    visit("codec_unknown_hz", self.codec_unknown_hz,
+          rate("PX4: ALTITUDE and VFR_HUD, message types COVER's codec does not know"));
+  }
+};
+
+// The simulated PX4: its parameters (answered to PARAM_REQUEST_READ with PX4's types; the
+// behavioural ones drive the simulation) and its stream rates.
+struct Px4Params {
+  StreamRates streams = StreamRates::px4_onboard();
+  double com_of_loss_t_s = 1.0;      // COM_OF_LOSS_T: offboard loss -> land (no GPS: descend)
+  int com_obl_rc_act = 0;            // COM_OBL_RC_ACT: reported only (the simulation descends)
+  double mpc_thr_hover = 0.5;        // MPC_THR_HOVER: reported only
+  double com_disarm_prflt_s = 10.0;  // COM_DISARM_PRFLT: auto-disarm before take-off (<= 0: never)
+  double com_disarm_land_s = 2.0;    // COM_DISARM_LAND: auto-disarm after landing (<= 0: never)
+  int com_rc_in_mode = 1;            // COM_RC_IN_MODE: reported only
+  int nav_dll_act = 0;               // NAV_DLL_ACT: reported only
+  double estimator_align_s = 0.0;    // simulated time from boot to an aligned attitude estimate
+
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("streams", self.streams,
+          Field("", "streams on the companion link until SET_MESSAGE_INTERVAL changes them"));
+    visit("com_of_loss_t_s", self.com_of_loss_t_s,
+          Field("s", "COM_OF_LOSS_T: no setpoint this long in OFFBOARD, armed: descend and land")
+              .at_least(0.01)
+              .at_most(60.0));
+    visit("com_obl_rc_act", self.com_obl_rc_act,
+          Field("", "COM_OBL_RC_ACT (reported: the simulated PX4 always descends)")
+              .at_least(0.0)
+              .at_most(7.0));
+    visit("mpc_thr_hover", self.mpc_thr_hover,
+          Field("", "MPC_THR_HOVER (reported only)").at_least(0.1).at_most(0.8));
+    visit("com_disarm_prflt_s", self.com_disarm_prflt_s,
+          Field("s",
+                "COM_DISARM_PRFLT: armed without taking off this long + 1 s spool-up: disarm "
+                "(<= 0 never)")
+              .at_least(-1.0)
+              .at_most(20.0));
+    visit("com_disarm_land_s", self.com_disarm_land_s,
+          Field("s", "COM_DISARM_LAND: landed this long after a take-off: disarm (<= 0 never)")
+              .at_least(-1.0)
+              .at_most(20.0));
+    visit("com_rc_in_mode", self.com_rc_in_mode,
+          Field("", "COM_RC_IN_MODE (reported only)").at_least(0.0).at_most(4.0));
+    visit("nav_dll_act", self.nav_dll_act,
+          Field("", "NAV_DLL_ACT (reported only)").at_least(0.0).at_most(6.0));
+    visit("estimator_align_s", self.estimator_align_s,
+          Field("s", "boot to an aligned attitude estimate (ESTIMATOR_STATUS, SYS_STATUS AHRS)")
+              .at_least(0.0)
+              .at_most(600.0));
+  }
+};
+
+// The simulated ArduCopter: as Px4Params.
+struct ArduPilotParams {
+  StreamRates streams = StreamRates::ardupilot_default();
+  int atc_angle_boost = 0;         // ATC_ANGLE_BOOST: 1 multiplies the thrust by 1/cos(tilt)
+  int guid_options = 8;            // GUID_OPTIONS: reported only (bit 3: thrust is thrust)
+  double guid_timeout_s = 3.0;     // GUID_TIMEOUT: no setpoint -> level, hold height
+  double guid_level_hold_s = 2.0;  // the simulator's own: levelled this long, then LAND
+  int fs_thr_enable = 0;           // FS_THR_ENABLE: reported only
+  double mot_thst_hover = 0.35;    // MOT_THST_HOVER: reported only
+  int disarm_delay_s = 10;         // DISARM_DELAY: landed at zero throttle this long: disarm
+  double estimator_align_s = 1.0;  // boot to EKF3 tilt alignment
+
+  template <typename Self, typename Visit>
+  static void fields(Self& self, Visit& visit) {
+    using config::Field;
+    visit("streams", self.streams,
+          Field("", "streams on the companion link until SET_MESSAGE_INTERVAL changes them")
+              .without({"codec_unknown_hz"}));
+    visit("atc_angle_boost", self.atc_angle_boost,
+          Field("", "ATC_ANGLE_BOOST: 1 divides the thrust by cos(tilt) (COVER needs 0)")
+              .at_least(0.0)
+              .at_most(1.0));
+    visit("guid_options", self.guid_options,
+          Field("", "GUID_OPTIONS (reported only; COVER needs bit 3, thrust as thrust)")
+              .at_least(0.0)
+              .at_most(65535.0));
+    visit("guid_timeout_s", self.guid_timeout_s,
+          Field("s", "GUID_TIMEOUT: no setpoint this long in GUIDED_NOGPS: level, height held")
+              .at_least(0.1)
+              .at_most(60.0));
+    visit("guid_level_hold_s", self.guid_level_hold_s,
+          Field("s",
+                "levelled this long after GUID_TIMEOUT, then LAND (the simulator's own: "
+                "ArduPilot holds until its pilot acts)")
+              .at_least(0.0)
+              .at_most(600.0));
+    visit("fs_thr_enable", self.fs_thr_enable,
+          Field("", "FS_THR_ENABLE (reported only)").at_least(0.0).at_most(7.0));
+    visit("mot_thst_hover", self.mot_thst_hover,
+          Field("", "MOT_THST_HOVER (reported only)").at_least(0.125).at_most(0.6875));
+    visit("disarm_delay_s", self.disarm_delay_s,
+          Field("s", "DISARM_DELAY: armed, landed, zero throttle this long: disarm (0 never)")
+              .at_least(0.0)
+              .at_most(127.0));
+    visit("estimator_align_s", self.estimator_align_s,
+          Field("s", "boot to EKF3 tilt alignment (EKF_STATUS_REPORT, SYS_STATUS AHRS)")
+              .at_least(0.0)
+              .at_most(600.0));
+  }
+};
+
 // The simulated autopilots (config/sim/sim_fc.yaml, section `sim_fc`): their MAVLink
-// identities, stream rates and the autopilot parameters the tests exercise.
+// identities, each firmware's parameters and streams, the battery.
 struct SimFcParams {
   // UAV u's autopilot is system system_id_base + u, component 1: a bridge must learn it
   // from the HEARTBEAT, never assume 1.
   int system_id_base = 1;
   // UGV k's rover autopilot (its IMU stream) is system ugv_system_id_base + k.
   int ugv_system_id_base = 101;
-  // Streams, Hz; at most one frame per control period (cover-sim steps the autopilot at
-  // the control rate).
-  double heartbeat_rate_hz = 1.0;
-  double attitude_rate_hz = 50.0;  // ATTITUDE_QUATERNION
-  double highres_imu_rate_hz = 100.0;
-  double attitude_target_rate_hz = 10.0;
-  double extended_sys_state_rate_hz = 5.0;
-  double sys_status_rate_hz = 1.0;  // SYS_STATUS and BATTERY_STATUS
-  // PX4 COM_OF_LOSS_T: no setpoint for this long in OFFBOARD, armed -> land (no GPS: descend).
-  double com_of_loss_t_s = 1.0;
-  // ArduPilot GUID_TIMEOUT: no setpoint for this long in GUIDED_NOGPS -> level, height held.
-  double guid_timeout_s = 3.0;
-  // ArduPilot: levelled this long after GUID_TIMEOUT, then LAND. ArduPilot itself would hold
-  // level until the pilot acts; the simulator has no pilot.
-  double guid_level_hold_s = 2.0;
   double land_speed_m_s = 0.5;  // PX4 MPC_LAND_SPEED / ArduPilot LAND_SPEED
-  // OFFBOARD / GUIDED_NOGPS is granted only after setpoints streamed faster than
-  // offboard_stream_min_rate_hz for offboard_stream_min_s.
-  double offboard_stream_min_rate_hz = 2.0;
-  double offboard_stream_min_s = 1.0;
+  Px4Params px4;
+  ArduPilotParams ardupilot;
   BatteryParams battery;
 
   // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
@@ -92,40 +221,10 @@ struct SimFcParams {
               .at_least(1.0)
               .at_most(243.0)
               .hint("UGVs 0..7 take ugv_system_id_base + k <= 250"));
-    visit("heartbeat_rate_hz", self.heartbeat_rate_hz,
-          Field("Hz", "HEARTBEAT").at_least(0.1).at_most(1000.0));
-    visit("attitude_rate_hz", self.attitude_rate_hz,
-          Field("Hz", "ATTITUDE_QUATERNION").at_least(0.1).at_most(1000.0));
-    visit("highres_imu_rate_hz", self.highres_imu_rate_hz,
-          Field("Hz", "HIGHRES_IMU, the UAV's own IMU").at_least(0.1).at_most(1000.0));
-    visit("attitude_target_rate_hz", self.attitude_target_rate_hz,
-          Field("Hz", "ATTITUDE_TARGET, what the rate loop flies").at_least(0.1).at_most(1000.0));
-    visit("extended_sys_state_rate_hz", self.extended_sys_state_rate_hz,
-          Field("Hz", "EXTENDED_SYS_STATE, the landed state").at_least(0.1).at_most(1000.0));
-    visit("sys_status_rate_hz", self.sys_status_rate_hz,
-          Field("Hz", "SYS_STATUS and BATTERY_STATUS").at_least(0.1).at_most(1000.0));
-    visit("com_of_loss_t_s", self.com_of_loss_t_s,
-          Field("s", "PX4 COM_OF_LOSS_T: no setpoint this long in OFFBOARD, armed: land")
-              .at_least(0.01)
-              .at_most(60.0));
-    visit("guid_timeout_s", self.guid_timeout_s,
-          Field("s",
-                "ArduPilot GUID_TIMEOUT: no setpoint this long in GUIDED_NOGPS: level, "
-                "height held")
-              .at_least(0.1)
-              .at_most(60.0));
-    visit("guid_level_hold_s", self.guid_level_hold_s,
-          Field("s", "ArduPilot: levelled this long after GUID_TIMEOUT, then LAND")
-              .at_least(0.0)
-              .at_most(600.0));
     visit("land_speed_m_s", self.land_speed_m_s,
           Field("m/s", "PX4 MPC_LAND_SPEED / ArduPilot LAND_SPEED").at_least(0.05).at_most(3.0));
-    visit("offboard_stream_min_rate_hz", self.offboard_stream_min_rate_hz,
-          Field("Hz", "OFFBOARD / GUIDED_NOGPS only after setpoints faster than this ...")
-              .at_least(0.1)
-              .at_most(100.0));
-    visit("offboard_stream_min_s", self.offboard_stream_min_s,
-          Field("s", "... for this long").at_least(0.0).at_most(10.0));
+    visit("px4", self.px4, Field("", "the simulated PX4 (cover-sim --fc px4)"));
+    visit("ardupilot", self.ardupilot, Field("", "the simulated ArduCopter (--fc ardupilot)"));
     visit("battery", self.battery, Field("", "the flight battery behind SYS_STATUS"));
   }
 
