@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "cover/clock/clock.hpp"
 #include "cover/mavlink/messages.hpp"
@@ -54,10 +55,27 @@ bool FcBridgeNode::start() {
 
 void FcBridgeNode::run() {
   while (!process::ShutdownSignal::requested()) {
-    clock_.wait(kHousekeepingPeriod);
+    clock_.wait(next_wait());
     if (const auto now = clock_.now_s()) housekeeping(*now);
   }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    spdlog::info("{}", bridge_.command_gaps().summary(options_.bridge.params.cmd_timeout_s));
+  }
   spdlog::info("stopping: {} frame(s) could not be written to the link", write_failures_);
+}
+
+// The housekeeping period, cut short so that a pass runs just after the command timeout
+// would expire: the agent's silence is then judged at the timeout, not up to a period later.
+// Lockstep keeps the period: its time comes in ticks.
+std::chrono::milliseconds FcBridgeNode::next_wait() const {
+  const double last = last_command_tick_s_.load();
+  const auto now = clock_.now_s();
+  if (lockstep() || !now || last < 0.0) return kHousekeepingPeriod;
+  const double until_s = last + options_.bridge.params.cmd_timeout_s - *now + 1e-3;
+  const auto until = std::chrono::milliseconds(static_cast<long>(std::ceil(until_s * 1e3)));
+  if (until_s <= 0.0 || until >= kHousekeepingPeriod) return kHousekeepingPeriod;
+  return std::max(until, std::chrono::milliseconds(1));
 }
 
 // --- the three inputs ------------------------------------------------------------------

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 
 #include <cstdint>
 #include <deque>
@@ -62,6 +63,7 @@ class FcBridgeNode {
   void on_request(const msg::FcRequest& request);
   void on_frame(const mavlink::Frame& frame, const mavlink::ParserStats& stats);
   void housekeeping(double now_s);
+  std::chrono::milliseconds next_wait() const;
   bool lockstep() const { return options_.clock == sim_clock::ClockMode::Lockstep; }
   void write_locked(const std::vector<mavlink::EncodedFrame>& frames);
   void take_events_locked(Events& events);

@@ -11,6 +11,7 @@
 #include "cover/fc_bridge/px4_events.hpp"
 #include "cover/fc_bridge/stream_monitor.hpp"
 #include "cover/mavlink/event_messages.hpp"
+#include "cover/mavlink/parameter_messages.hpp"
 #include "cover/mavlink/state_messages.hpp"
 #include "fake_autopilot.hpp"
 
@@ -209,6 +210,35 @@ TEST(Parameters, Px4DisarmDelayAndAbsentParameters) {
       EXPECT_TRUE(f.absent);  // asked param_read_tries times, never answered
       EXPECT_FALSE(f.ok);
     }
+  }
+}
+
+double finding_value(const FcStatus& s, const std::string& name) {
+  for (const ParameterFinding& f : s.parameters) {
+    if (f.name == name && f.known) return f.value;
+  }
+  return -999.0;
+}
+
+// PX4 copies an integer parameter's bytes into PARAM_VALUE's float (seen from real PX4 SITL:
+// COM_RC_IN_MODE 1 arrived as 1.4e-45); ArduPilot converts the value.
+TEST(Parameters, Px4SendsIntegersBytewiseArduPilotAsValues) {
+  for (const AutopilotKind kind : {AutopilotKind::Px4, AutopilotKind::ArduPilot}) {
+    BridgeRig rig(kind);
+    rig.run(1.0);
+    const bool px4 = kind == AutopilotKind::Px4;
+    mav::ParamValue value;
+    value.param_id = mav::param_id_from(px4 ? "NAV_DLL_ACT" : "FS_THR_ENABLE");
+    value.param_type = px4 ? mav::mav_param_type::kInt32 : mav::mav_param_type::kInt8;
+    value.param_value = mav::param_field_of(
+        2.0, value.param_type, px4 ? mav::ParamEncoding::Bytewise : mav::ParamEncoding::CCast);
+    if (px4) {
+      EXPECT_LT(value.param_value, 1e-40F);  // the bytes of int 2, as a float: denormal
+    } else {
+      EXPECT_EQ(value.param_value, 2.0F);
+    }
+    rig.bridge.on_frame(rig.autopilot.send(value), rig.t);
+    EXPECT_EQ(finding_value(rig.bridge.state(rig.t), px4 ? "NAV_DLL_ACT" : "FS_THR_ENABLE"), 2.0);
   }
 }
 

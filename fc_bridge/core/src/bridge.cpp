@@ -110,8 +110,11 @@ Bridge::Bridge(const BridgeConfig& config)
       sequencer_(config.params.offboard_stream_s, config.params.auto_arm, kSequencerRetry_s),
       streams_(stream_plan(config.autopilot, stream_rates(config.params)),
                config.params.stream_reask_s),
-      parameters_(parameter_rules(config.autopilot), config.params.param_read_timeout_s,
-                  config.params.param_read_tries, config.params.param_refresh_s),
+      parameters_(parameter_rules(config.autopilot),
+                  config.autopilot == AutopilotKind::Px4 ? mavlink::ParamEncoding::Bytewise
+                                                         : mavlink::ParamEncoding::CCast,
+                  config.params.param_read_timeout_s, config.params.param_read_tries,
+                  config.params.param_refresh_s),
       estimator_health_(config.autopilot),
       encoder_(config.params.system_id != 0 ? static_cast<std::uint8_t>(config.params.system_id)
                                             : kProvisionalSystemId,
@@ -269,7 +272,7 @@ void Bridge::on_parameter(const mavlink::Frame& frame, double now_s) {
     note(f.ok ? Notice::Level::Info
               : (f.weight == ParameterWeight::Blocking ? Notice::Level::Error
                                                        : Notice::Level::Warning),
-         "autopilot parameter " + name + " = " + format("%g", value.param_value) +
+         "autopilot parameter " + name + " = " + format("%g", f.value) +
              (f.ok ? std::string(" (ok)")
                    : std::string(" (COVER needs ") + f.needed + ": " + f.why + ")"));
   }
@@ -324,6 +327,8 @@ const std::vector<mavlink::EncodedFrame>& Bridge::on_agent_command(const AgentCo
   setpoint_sent_ = false;
   const double now = advance(now_s);
   if (!fresh(command)) return out_;
+  if (last_fresh_s_ >= 0.0) gaps_.add(now - last_fresh_s_);
+  last_fresh_s_ = now;
   supervisor_.on_command(command.handover, now);
   if (command.release_payload && !last_release_) {
     CommandSpec gripper;

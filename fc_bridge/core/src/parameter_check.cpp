@@ -17,9 +17,13 @@ const char* to_string(ParameterWeight weight) {
   return "info";
 }
 
-ParameterCheck::ParameterCheck(std::vector<ParameterRule> rules, double timeout_s, int tries,
-                               double refresh_s)
-    : rules_(std::move(rules)), timeout_s_(timeout_s), tries_(tries), refresh_s_(refresh_s) {
+ParameterCheck::ParameterCheck(std::vector<ParameterRule> rules, mavlink::ParamEncoding encoding,
+                               double timeout_s, int tries, double refresh_s)
+    : rules_(std::move(rules)),
+      encoding_(encoding),
+      timeout_s_(timeout_s),
+      tries_(tries),
+      refresh_s_(refresh_s) {
   findings_.reserve(rules_.size());
   for (const ParameterRule& rule : rules_) {
     ParameterFinding finding;
@@ -85,8 +89,9 @@ bool ParameterCheck::on_value(const mavlink::ParamValue& value, double now_s) {
       if (candidate != name) continue;
       readings_[i].done = true;
       readings_[i].deadline_s = -1.0;
-      const bool news = !findings_[i].known || findings_[i].value != value.param_value;
-      judge(i, name, value.param_value);
+      const double number = mavlink::param_value_of(value.param_value, value.param_type, encoding_);
+      const bool news = !findings_[i].known || findings_[i].value != number;
+      judge(i, name, number);
       complete_once_ = complete_once_ || complete();
       return news;
     }

@@ -1,6 +1,7 @@
 #include "cover/mavlink/parameter_messages.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include "byte_cursor.hpp"
 
@@ -18,6 +19,50 @@ std::array<char, 16> param_id_from(const std::string& name) {
 std::string param_id_string(const std::array<char, 16>& id) {
   const auto end = std::find(id.begin(), id.end(), '\0');
   return std::string(id.begin(), end);
+}
+
+namespace {
+
+// MAV_PARAM_TYPE: 1 UINT8, 2 INT8, 3 UINT16, 4 INT16, 5 UINT32, 6 INT32, 7 UINT64, 8 INT64,
+// 9 REAL32, 10 REAL64.
+double integer_from_bytes(std::uint32_t bits, std::uint8_t param_type) {
+  switch (param_type) {
+    case 1:
+      return static_cast<std::uint8_t>(bits);
+    case 2:
+      return static_cast<std::int8_t>(bits);
+    case 3:
+      return static_cast<std::uint16_t>(bits);
+    case 4:
+      return static_cast<std::int16_t>(bits);
+    case 5:
+      return bits;
+    default:
+      return static_cast<std::int32_t>(bits);
+  }
+}
+
+bool is_integer(std::uint8_t param_type) {
+  return param_type >= 1 && param_type <= 8;
+}
+
+}  // namespace
+
+double param_value_of(float field, std::uint8_t param_type, ParamEncoding encoding) {
+  if (encoding == ParamEncoding::CCast || !is_integer(param_type)) return field;
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &field, sizeof bits);
+  return integer_from_bytes(bits, param_type);
+}
+
+float param_field_of(double value, std::uint8_t param_type, ParamEncoding encoding) {
+  if (encoding == ParamEncoding::CCast || !is_integer(param_type)) {
+    return static_cast<float>(value);
+  }
+  const auto bits = static_cast<std::uint32_t>(static_cast<std::int64_t>(value));
+  float field = 0.0F;
+  std::memcpy(&field, &bits, sizeof field);
+  return field;
 }
 
 void ParamRequestRead::pack(std::uint8_t* payload) const {

@@ -8,6 +8,7 @@
 #include "cover/fc_bridge/agent_command.hpp"
 #include "cover/fc_bridge/autopilot_profile.hpp"
 #include "cover/fc_bridge/autopilot_session.hpp"
+#include "cover/fc_bridge/command_gaps.hpp"
 #include "cover/fc_bridge/command_sender.hpp"
 #include "cover/fc_bridge/estimator_health.hpp"
 #include "cover/fc_bridge/fc_bridge_params.hpp"
@@ -105,6 +106,8 @@ class Bridge {
   const std::vector<mavlink::EncodedFrame>& tick(double now_s);
 
   FcStatus state(double now_s) const;
+  // The gaps between the agent's fresh commands since start (the command timeout's margin).
+  const CommandGaps& command_gaps() const { return gaps_; }
   // Drained by the caller (it clears them).
   std::vector<Notice>& notices() { return notices_; }
   std::vector<OperatorReply>& replies() { return replies_; }
@@ -164,6 +167,8 @@ class Bridge {
   bool event_seen_ = false;
   std::uint16_t last_event_sequence_ = 0;
   bool hover_seeded_ = false;
+  CommandGaps gaps_;
+  double last_fresh_s_ = -1.0;
   double next_heartbeat_s_ = 0.0;
   std::uint64_t next_token_ = 1;
   std::vector<InFlight> in_flight_;

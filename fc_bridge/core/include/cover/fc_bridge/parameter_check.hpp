@@ -48,7 +48,8 @@ struct ParameterFinding {
 // nothing at all.
 class ParameterCheck {
  public:
-  ParameterCheck(std::vector<ParameterRule> rules, double timeout_s, int tries, double refresh_s);
+  ParameterCheck(std::vector<ParameterRule> rules, mavlink::ParamEncoding encoding,
+                 double timeout_s, int tries, double refresh_s);
 
   void restart(double now_s);
   std::optional<mavlink::ParamRequestRead> next_request(double now_s);
@@ -74,6 +75,7 @@ class ParameterCheck {
   std::vector<ParameterRule> rules_;
   std::vector<ParameterFinding> findings_;
   std::vector<Reading> readings_;
+  mavlink::ParamEncoding encoding_;
   double timeout_s_;
   int tries_;
   double refresh_s_;

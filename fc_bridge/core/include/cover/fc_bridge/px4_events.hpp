@@ -28,8 +28,8 @@ constexpr std::uint32_t px4_event_id(const char* name) {
   return (1U << 24) | (hash & 0xFFFFFFU);
 }
 
-// The text of the events an operator of COVER meets (commander's arming, mode, failsafe
-// and landing events, the mode requirement checks), with their arguments rendered;
+// The text of the events an operator of COVER meets (the commander's arming, mode, failsafe
+// and landing events, its arming and health checks), with their arguments rendered;
 // others are named by id.
 EventText describe_px4_event(const mavlink::Event& event);
 

@@ -8,8 +8,16 @@ namespace cover::mavlink {
 
 // The parameter protocol (common.xml): a companion asks for one parameter by name and the
 // autopilot answers with its value. The 16-byte name is not NUL-terminated when all 16 are
-// used. Values travel as a float whatever their type (MAV_PARAM_TYPE): both PX4 and
-// ArduPilot send integers as their value cast to float ("C cast"), not as bytes.
+// used. Values travel in a float field whatever their type (MAV_PARAM_TYPE), in one of two
+// encodings (the autopilot's MAV_PROTOCOL_CAPABILITY_PARAM_ENCODE_*): PX4 copies an
+// integer's bytes into the field ("bytewise": INT32 1 reads as the float 1.4e-45);
+// ArduPilot converts it ("C cast": INT32 1 is 1.0F).
+enum class ParamEncoding { Bytewise, CCast };
+
+// The value of a PARAM_VALUE / PARAM_SET as a number, decoded by its type and encoding.
+double param_value_of(float field, std::uint8_t param_type, ParamEncoding encoding);
+// The float field that carries `value` of `param_type` in `encoding`.
+float param_field_of(double value, std::uint8_t param_type, ParamEncoding encoding);
 
 // A parameter's name as the wire carries it, and back.
 std::array<char, 16> param_id_from(const std::string& name);
