@@ -21,24 +21,16 @@ class ArduCopter : public ::testing::Test {
   FirmwareLookup lookup_;
 };
 
-TEST_F(ArduCopter, LinkStreamsParametersAndOperatorCommands) {
-  link_streams_parameters_and_operator_commands(arducopter_profile(), build());
+TEST_F(ArduCopter, LinkStreamsAndParameters) {
+  link_streams_and_parameters(arducopter_profile(), build());
 }
 
 TEST_F(ArduCopter, WrongParametersAreNamedAndBlockFlight) {
   wrong_parameters_are_named_and_block_flight(arducopter_profile(), build());
 }
 
-TEST_F(ArduCopter, HoverRateStepAndAgentSilentLand) {
-  hover_rate_step_and_agent_silent_land(arducopter_profile(), build());
-}
-
-TEST_F(ArduCopter, FirmwareFailsafeWhenTheBridgeDies) {
-  firmware_failsafe_when_the_bridge_dies(arducopter_profile(), build());
-}
-
-TEST_F(ArduCopter, PilotModeChangeIsReportedAndNotTakenBack) {
-  pilot_mode_change_is_reported_and_not_taken_back(arducopter_profile(), build());
+TEST_F(ArduCopter, FlightFromCoverCommands) {
+  flight_from_cover_commands(arducopter_profile(), build());
 }
 
 }  // namespace

@@ -49,7 +49,8 @@ FirmwareProfile arducopter_profile() {
   p.flight_params = {{"FS_THR_ENABLE", "0"},
                      {"ATC_ANGLE_BOOST", "0"},
                      {"GUID_OPTIONS", "8"},
-                     {"GUID_TIMEOUT", "3"}};
+                     {"GUID_TIMEOUT", "3"},
+                     {"EK3_GPS_CHECK", "0"}};
   p.wrong_params = {{"ATC_ANGLE_BOOST", "1"},  // thrust compensated twice
                     {"GUID_OPTIONS", "0"},     // thrust read as a climb rate
                     {"FS_THR_ENABLE", "1"}};   // arming needs an RC receiver

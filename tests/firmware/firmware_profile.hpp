@@ -60,10 +60,11 @@ bool is_land_command(Firmware firmware, const mav::CommandLong& command);
 // A command that takes or gives the vehicle: a mode change, arming, landing.
 bool is_control_command(const mav::CommandLong& command);
 
-// The normalised thrust that hovers the firmware's vehicle, as the firmware knows it:
+// The normalised thrust that hovers the firmware's vehicle, as its parameters say:
 // PX4 SIH: m g / (4 T_max) from SIH_MASS and SIH_T_MAX (SIH's rotor thrust is T_max times
-// the motor command, linear); ArduCopter: MOT_THST_HOVER, which it learns in flight
-// (MOT_HOVER_LEARN 2). Read over the monitor's link; nullopt when it does not answer.
+// the motor command, linear); ArduCopter: MOT_THST_HOVER, which it learns in flight under
+// its own altitude control (MOT_HOVER_LEARN 2). Read over the monitor's link; nullopt when
+// it does not answer.
 std::optional<double> firmware_hover_thrust(Firmware firmware, FirmwareMonitor& monitor);
 
 }  // namespace cover::firmware::test

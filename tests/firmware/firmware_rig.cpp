@@ -194,7 +194,10 @@ void FirmwareRig::agent_flies(AgentStream::Policy policy) {
 }
 
 std::int64_t FirmwareRig::agent_falls_silent() {
-  return agent_ ? agent_->fall_silent() : 0;
+  if (!agent_) return 0;
+  const std::int64_t last_ns = agent_->fall_silent();
+  agent_.reset();  // a later agent_flies starts a new agent, as a restarted one
+  return last_ns;
 }
 
 void FirmwareRig::kill_bridge() {

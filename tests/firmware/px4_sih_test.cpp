@@ -21,24 +21,16 @@ class Px4Sih : public ::testing::Test {
   FirmwareLookup lookup_;
 };
 
-TEST_F(Px4Sih, LinkStreamsParametersAndOperatorCommands) {
-  link_streams_parameters_and_operator_commands(px4_sih_profile(), build());
+TEST_F(Px4Sih, LinkStreamsAndParameters) {
+  link_streams_and_parameters(px4_sih_profile(), build());
 }
 
 TEST_F(Px4Sih, WrongParametersAreNamedAndBlockFlight) {
   wrong_parameters_are_named_and_block_flight(px4_sih_profile(), build());
 }
 
-TEST_F(Px4Sih, HoverRateStepAndAgentSilentLand) {
-  hover_rate_step_and_agent_silent_land(px4_sih_profile(), build());
-}
-
-TEST_F(Px4Sih, FirmwareFailsafeWhenTheBridgeDies) {
-  firmware_failsafe_when_the_bridge_dies(px4_sih_profile(), build());
-}
-
-TEST_F(Px4Sih, PilotModeChangeIsReportedAndNotTakenBack) {
-  pilot_mode_change_is_reported_and_not_taken_back(px4_sih_profile(), build());
+TEST_F(Px4Sih, FlightFromCoverCommands) {
+  flight_from_cover_commands(px4_sih_profile(), build());
 }
 
 }  // namespace
