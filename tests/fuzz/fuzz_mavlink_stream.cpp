@@ -2,8 +2,9 @@
 // port or a UDP socket, in any chunking, with and without a signing key.
 // Contract: no crash; every delivered frame has a known id, a payload no longer than its
 // message's and zero-filled past it, and decodes as its message; every candidate is
-// delivered or refused exactly once, and every byte is accounted for (a delivered frame's,
-// a refused candidate's start marker, garbage, or pending); feeding the same bytes in one
+// delivered, skipped whole (an unknown id followed by a start marker) or refused exactly
+// once, and every byte is accounted for (a delivered or skipped frame's, a refused
+// candidate's start marker, garbage, or pending); feeding the same bytes in one
 // call or in random chunks gives the same frames and the same counts.
 #include <algorithm>
 #include <array>
@@ -12,9 +13,12 @@
 #include <string>
 #include <vector>
 
+#include "cover/mavlink/event_messages.hpp"
 #include "cover/mavlink/message_table.hpp"
 #include "cover/mavlink/messages.hpp"
+#include "cover/mavlink/parameter_messages.hpp"
 #include "cover/mavlink/parser.hpp"
+#include "cover/mavlink/state_messages.hpp"
 #include "fuzz_input.hpp"
 
 namespace {
@@ -80,6 +84,33 @@ void decode_any(const mav::Frame& frame) {
       require(text.has_value() && text->text_string().size() <= 50, "statustext decodes");
       break;
     }
+    case mav::ParamValue::kId: {
+      const auto value = mav::decode<mav::ParamValue>(frame);
+      require(value.has_value() && mav::param_id_string(value->param_id).size() <= 16,
+              "param_value decodes");
+      break;
+    }
+    case mav::ParamRequestRead::kId:
+      require(mav::decode<mav::ParamRequestRead>(frame).has_value(), "param_request decodes");
+      break;
+    case mav::ParamSet::kId:
+      require(mav::decode<mav::ParamSet>(frame).has_value(), "param_set decodes");
+      break;
+    case mav::Event::kId:
+      require(mav::decode<mav::Event>(frame).has_value(), "event decodes");
+      break;
+    case mav::CurrentEventSequence::kId:
+      require(mav::decode<mav::CurrentEventSequence>(frame).has_value(), "event seq decodes");
+      break;
+    case mav::EstimatorStatus::kId:
+      require(mav::decode<mav::EstimatorStatus>(frame).has_value(), "estimator decodes");
+      break;
+    case mav::EkfStatusReport::kId:
+      require(mav::decode<mav::EkfStatusReport>(frame).has_value(), "ekf decodes");
+      break;
+    case mav::LocalPositionNed::kId:
+      require(mav::decode<mav::LocalPositionNed>(frame).has_value(), "local position decodes");
+      break;
     default:
       break;  // known to the table (ATTITUDE, SYSTEM_TIME) without a struct
   }
@@ -162,9 +193,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Run pieces = parse(data, size, options, chunks);
 
   const mav::ParserStats& s = whole.stats;
-  require(s.candidates == s.frames + s.refusals(), "each candidate delivered or refused once");
+  require(s.candidates == s.frames + s.unknown_frames + s.refusals(),
+          "each candidate delivered, skipped or refused once");
   require(s.frames == whole.frames.size(), "frames counted as delivered");
-  const std::uint64_t accounted = s.refusals() + s.garbage_bytes + whole.pending;
+  const std::uint64_t accounted =
+      s.unknown_frame_bytes + s.refusals() + s.garbage_bytes + whole.pending;
   require(accounted <= size, "no byte counted twice");
   if (whole.delivered_bytes_exact) {
     require(whole.delivered_bytes_min + accounted == size, "every byte accounted for");
@@ -175,6 +208,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const mav::ParserStats& p = pieces.stats;
   require(p.frames == s.frames && p.garbage_bytes == s.garbage_bytes &&
               p.crc_errors == s.crc_errors && p.unknown_ids == s.unknown_ids &&
+              p.unknown_frames == s.unknown_frames &&
               p.bad_length == s.bad_length && p.signature_errors == s.signature_errors &&
               p.unsigned_refused == s.unsigned_refused && p.sequence_gaps == s.sequence_gaps,
           "chunking changes no count");
