@@ -21,13 +21,13 @@ FirmwareProfile px4_sih_profile() {
       // Without RC, PX4's default reaction to lost setpoints (Position) falls through to
       // NAV_RCL_ACT (Return): docs/flight-controller.md asks for Land.
       {"COM_OBL_RC_ACT", "4"},
-      // No ulog (13 MB a minute with SIH) in the test's scratch folder.
-      {"SDLOG_MODE", "-1"},
+      // No logger (a ulog of 13 MB a minute with SIH) in the test's scratch folder.
+      {"SDLOG_BACKEND", "0"},
   };
   p.wrong_params = {{"COM_OBL_RC_ACT", "6"},  // terminate: drops the UAV
                     {"NAV_DLL_ACT", "2"},     // a ground-station link made an arming need
                     {"COM_OF_LOSS_T", "5"},   // PX4 would fly stale setpoints for 5 s
-                    {"SDLOG_MODE", "-1"}};
+                    {"SDLOG_BACKEND", "0"}};
   p.wrong_names = {"COM_OBL_RC_ACT", "NAV_DLL_ACT", "COM_OF_LOSS_T"};
   p.blocking_names = {"COM_OBL_RC_ACT"};
   p.bridge_hover_start = 0.54;  // SIH's default quad (1 kg, 4 x 5 N) hovers at 0.490

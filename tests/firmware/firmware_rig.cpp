@@ -151,11 +151,10 @@ bool FirmwareRig::connect_monitor(std::chrono::milliseconds timeout) {
     double hz;
     bool needed;
   };
-  const Ask asks[] = {{mav::Heartbeat::kId, 50.0, false},
-                      {mav::LocalPositionNed::kId, 50.0, true},
-                      {mav::AttitudeQuaternion::kId, 50.0, true},
-                      {mav::ExtendedSysState::kId, 5.0, true},
-                      {mav::SysStatus::kId, 2.0, true}};
+  const Ask asks[] = {
+      {mav::Heartbeat::kId, 50.0, false},         {mav::LocalPositionNed::kId, 50.0, true},
+      {mav::AttitudeQuaternion::kId, 50.0, true}, {mav::HighresImu::kId, 50.0, false},
+      {mav::ExtendedSysState::kId, 5.0, true},    {mav::SysStatus::kId, 2.0, true}};
   bool all_needed = true;
   for (const Ask& ask : asks) {
     const auto result = monitor_->request_stream(ask.id, ask.hz);

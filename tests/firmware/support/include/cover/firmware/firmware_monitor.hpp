@@ -60,6 +60,7 @@ class FirmwareMonitor {
   std::vector<Timed<mavlink::LocalPositionNed>> positions_since(std::int64_t since_ns) const;
   std::optional<Timed<mavlink::AttitudeQuaternion>> attitude() const;
   std::vector<Timed<mavlink::AttitudeQuaternion>> attitudes_since(std::int64_t since_ns) const;
+  std::vector<Timed<mavlink::HighresImu>> imus_since(std::int64_t since_ns) const;
   std::optional<mavlink::ExtendedSysState> extended_state() const;
   std::optional<mavlink::SysStatus> sys_status() const;
   std::vector<Timed<std::string>> texts() const;  // STATUSTEXT, "severity: text"
@@ -95,6 +96,7 @@ class FirmwareMonitor {
   std::vector<Timed<mavlink::Heartbeat>> heartbeats_;
   std::vector<Timed<mavlink::LocalPositionNed>> positions_;
   std::vector<Timed<mavlink::AttitudeQuaternion>> attitudes_;
+  std::vector<Timed<mavlink::HighresImu>> imus_;
   std::optional<mavlink::ExtendedSysState> extended_state_;
   std::optional<mavlink::SysStatus> sys_status_;
   std::vector<Timed<std::string>> texts_;
