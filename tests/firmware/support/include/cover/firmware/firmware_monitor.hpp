@@ -30,6 +30,8 @@ struct ParamReading {
   std::array<std::uint8_t, 4> bytes{};
   // The number it means. PX4 puts an integer's bytes in the float field (its
   // PARAM_ENCODE_BYTEWISE: param_get into param_value), ArduPilot the integer cast to float.
+  // Decoded here, not by the codec's helper the bridge uses: the tests compare the bridge's
+  // values with these, and a shared decoding would hide a shared mistake.
   double value(bool bytewise_integers) const;
 };
 
