@@ -70,14 +70,14 @@ class FirmwareMonitor {
   double rate_hz(std::uint32_t message_id, std::int64_t from_ns, std::int64_t to_ns) const;
 
   // A COMMAND_LONG to the firmware, sent again (confirmation + 1) every 0.5 s until its
-  // COMMAND_ACK; the result, or nullopt after `timeout` (scaled by COVER_TEST_TIME_SCALE).
+  // COMMAND_ACK; the result, or nullopt after `timeout` (a test scales it: COVER_TEST_TIME_SCALE).
   std::optional<std::uint8_t> command(std::uint16_t command, const std::array<float, 7>& params,
                                       std::chrono::milliseconds timeout);
   // SET_MESSAGE_INTERVAL for this link: the result.
   std::optional<std::uint8_t> request_stream(std::uint32_t message_id, double rate_hz);
   // DO_SET_MODE with a custom mode (PX4: main and sub mode; ArduCopter: the mode number).
   std::optional<std::uint8_t> set_mode(float custom_main, float custom_sub = 0.0F);
-  // PARAM_REQUEST_READ by name, asked again every 0.5 s; nullopt after `timeout` (scaled).
+  // PARAM_REQUEST_READ by name, asked again every 0.5 s; nullopt after `timeout`.
   std::optional<ParamReading> read_param(const std::string& name,
                                          std::chrono::milliseconds timeout);
 

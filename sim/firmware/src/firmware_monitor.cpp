@@ -1,12 +1,28 @@
 #include "cover/firmware/firmware_monitor.hpp"
 
+#include <chrono>
 #include <cstring>
+#include <functional>
+#include <thread>
 
 #include "cover/clock/clock.hpp"
 #include "cover/firmware/sitl_ports.hpp"
 #include "cover/mavlink/parameter_messages.hpp"
 #include "cover/mavlink/protocol.hpp"
-#include "cover/test/wait_until.hpp"
+
+namespace {
+
+// Polls `condition` every 5 ms until it holds or `timeout` passes (then one last look).
+bool poll_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!condition()) {
+    if (std::chrono::steady_clock::now() >= deadline) return condition();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));  // a condition with a deadline
+  }
+  return true;
+}
+
+}  // namespace
 
 namespace cover::firmware {
 namespace {
@@ -234,7 +250,7 @@ std::optional<std::uint8_t> FirmwareMonitor::command(std::uint16_t command,
   const std::int64_t asked_ns = clock::monotonic_ns();
   std::optional<std::uint8_t> result;
   auto next_send = std::chrono::steady_clock::now();
-  test::wait_until(
+  poll_until(
       [&] {
         {
           std::lock_guard<std::mutex> lock(mutex_);
@@ -282,7 +298,7 @@ std::optional<ParamReading> FirmwareMonitor::read_param(const std::string& name,
   const std::int64_t asked_ns = clock::monotonic_ns();
   std::optional<ParamReading> reading;
   auto next_send = std::chrono::steady_clock::now();
-  test::wait_until(
+  poll_until(
       [&] {
         {
           std::lock_guard<std::mutex> lock(mutex_);
