@@ -1,5 +1,5 @@
 // cover-fc-bridge against the real ArduCopter (SITL, its built-in multicopter physics): a fresh one
-// per test, found through COVER_ARDUPILOT_SITL (tests/firmware/support/include/cover/firmware/
+// per test, found through COVER_ARDUPILOT_SITL (sim/firmware/include/cover/firmware/
 // firmware_build.hpp). Without one the tests skip, saying how to point at a build; with
 // COVER_REQUIRE_FIRMWARE=1 (CI) they fail instead.
 #include <gtest/gtest.h>

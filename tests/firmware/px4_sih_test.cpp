@@ -1,5 +1,5 @@
 // cover-fc-bridge against the real PX4 (SITL, its built-in SIH physics): a fresh PX4 per
-// test, found through COVER_PX4_SITL (tests/firmware/support/include/cover/firmware/
+// test, found through COVER_PX4_SITL (sim/firmware/include/cover/firmware/
 // firmware_build.hpp). Without one the tests skip, saying how to point at a build; with
 // COVER_REQUIRE_FIRMWARE=1 (CI) they fail instead.
 #include <gtest/gtest.h>
