@@ -28,16 +28,31 @@ bool is_identifier(const std::string& text) {
   return only_chars(text, "_") && !std::isdigit(static_cast<unsigned char>(text[0]));
 }
 
-// The flight-controller bridge: kept running by default in standing and field launches.
-bool is_fc_bridge(const std::string& executable) {
-  return std::filesystem::path(executable).filename() == "cover-fc-bridge";
+bool executable_named(const std::string& executable, const char* name) {
+  return std::filesystem::path(executable).filename() == name;
 }
 
-// `respawn` and `keep_running` default by the launch's kind where the file does not say.
-void apply_kind_defaults(ProcessSpec& spec, const config::YamlReader& process, LaunchKind kind) {
+// The flight-controller bridge: kept running by default in standing and field launches.
+bool is_fc_bridge(const std::string& executable) {
+  return executable_named(executable, "cover-fc-bridge");
+}
+
+// A process whose samples a flying UAV waits on: the UGV agents (IMU) and the motion-capture
+// relay (relative states). Restarted after kSensorRespawnDelay_s by default.
+bool is_sensor_agent(const std::string& executable) {
+  return executable_named(executable, "cover-ugv-agent") ||
+         executable_named(executable, "cover-mocap-relay");
+}
+
+// `respawn` and `keep_running` default by the launch's kind, `respawn_delay_s` by the
+// process's role, where the file does not say.
+void apply_defaults(ProcessSpec& spec, const config::YamlReader& process, LaunchKind kind) {
   if (!process.has("respawn")) spec.respawn.enabled = serves_until_stopped(kind) && !spec.ends_run;
   if (!process.has("keep_running")) {
     spec.keep_running = serves_until_stopped(kind) && is_fc_bridge(spec.executable);
+  }
+  if (!process.has("respawn_delay_s") && is_sensor_agent(spec.executable)) {
+    spec.respawn.delay_s = kSensorRespawnDelay_s;
   }
 }
 
@@ -64,7 +79,7 @@ ProcessSpec parse_process(const YAML::Node& node, const std::string& context, La
   process.optional("realtime_priority", spec.realtime_priority);
   process.optional("cpu_affinity", spec.cpu_affinity);
   process.reject_unknown_keys();
-  apply_kind_defaults(spec, process, kind);
+  apply_defaults(spec, process, kind);
   return spec;
 }
 
