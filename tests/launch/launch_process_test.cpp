@@ -138,6 +138,30 @@ launch:
   expect_all_gone(report);
 }
 
+// {state_dir} (a task database's home, issue 31) is made before anything starts, and the
+// report names every variable's value as the processes got it.
+TEST_F(LaunchProcess, StateDirIsMadeAndTheReportNamesEveryVariable) {
+  const fs::path state = dir_ / "state";
+  const auto result = run(R"(
+launch:
+  name: stateful
+  kind: standing
+  grace_period_s: 0.3
+  variables: {db: "{state_dir}/tasks.db", clock: lockstep}
+  processes:
+    - {name: tm, executable: fake_process, args: [--mode=exit, "--db={db}"], ends_run: true}
+)",
+                          {"--json"}, {"XDG_STATE_HOME=" + state.string()});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::string db = (state / "cover" / "tasks.db").string();
+  EXPECT_TRUE(fs::is_directory(state / "cover"));
+  const auto report = result.json();
+  EXPECT_EQ(report["variables"]["db"], db) << report.dump();
+  EXPECT_EQ(report["variables"]["clock"], "lockstep") << report.dump();
+  EXPECT_TRUE(contains(log_of("tm"), "arg: --db=" + db + "\n")) << log_of("tm");
+  EXPECT_TRUE(contains(launch_log(), "variables: clock=lockstep db=" + db)) << launch_log();
+}
+
 TEST_F(LaunchProcess, EarlyDeathStopsTheRestAndExits4) {
   const auto result = run(R"(
 launch:

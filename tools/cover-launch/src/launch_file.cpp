@@ -98,6 +98,28 @@ void validate_arguments(const ProcessSpec& spec, const std::set<std::string>& kn
   }
 }
 
+}  // namespace
+
+// A variable's value may use the built-in placeholders ({state_dir}/tasks.db), not other
+// variables: one level of expansion, no order to define.
+void check_variable_value(const std::string& key, const std::string& value) {
+  const std::string context = "launch.variables." + key;
+  std::vector<std::string> names;
+  try {
+    names = placeholder_names(value);
+  } catch (const std::invalid_argument& e) {
+    throw config::ConfigError(context + ": '" + value + "': " + e.what());
+  }
+  const auto& builtins = builtin_placeholders();
+  for (const auto& name : names) {
+    config::check(std::find(builtins.begin(), builtins.end(), name) != builtins.end(), context,
+                  "'" + value + "' uses {" + name +
+                      "}: a variable's value may use only the built-in placeholders");
+  }
+}
+
+namespace {
+
 void validate_respawn(const ProcessSpec& spec, const std::string& context) {
   const RespawnPolicy& respawn = spec.respawn;
   config::check(!(respawn.enabled && spec.ends_run), context,
@@ -161,7 +183,8 @@ void validate_process(const ProcessSpec& spec, const std::set<std::string>& know
 }  // namespace
 
 const std::vector<std::string>& builtin_placeholders() {
-  static const std::vector<std::string> names{"run_dir", "run_id", "domain", "config_dir"};
+  static const std::vector<std::string> names{"run_dir", "run_id", "domain", "config_dir",
+                                              "state_dir"};
   return names;
 }
 
@@ -176,6 +199,7 @@ void LaunchFile::validate() const {
     config::check(is_identifier(key), "launch.variables", "bad variable name '" + key + "'");
     config::check(known.insert(key).second, "launch.variables",
                   "'" + key + "' is a built-in placeholder and cannot be redefined");
+    check_variable_value(key, value);
   }
   std::set<std::string> names;
   int ends_run_count = 0;
