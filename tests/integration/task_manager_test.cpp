@@ -29,8 +29,10 @@
 #include "cover/mission/task.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/task_manager/task_store.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/wire/task.hpp"
 #include "manager_client.hpp"
 #include "process_support.hpp"
@@ -707,6 +709,35 @@ TEST(TaskManager, WithABridgeATaskWaitsForTheAutopilotSayingWhy) {
   EXPECT_EQ(state_of(nlohmann::json::parse(after.lines.back().second, nullptr, false)),
             "MANAGED_DISPATCHED")
       << after.text();
+}
+
+// Issue 31: the standing system wrote cover_tasks.db into whatever folder it was started
+// from (a repository's root). Without --db the manager keeps its tasks in the user's state
+// directory ($XDG_STATE_HOME/cover), which it makes; with none it says so and exits 3.
+TEST(TaskManager, WithoutDbItsTasksGoToTheUsersStateDirectory) {
+  constexpr int kDomain = 179;
+  const auto claim = cover::test::claim_domain(kDomain);
+  const fs::path state = cover::test::scratch_path("state");
+  auto options = quiet("fastdds", kDomain, "manager_default_db.log");
+  options.extra_env.push_back("XDG_STATE_HOME=" + state.string());
+  ChildProcess manager({bin("cover-task-manager")}, options);
+  const fs::path db = state / "cover" / "tasks.db";
+  const std::string log = cover::test::scratch_path("manager_default_db.log");
+  EXPECT_TRUE(cover::test::wait_until(
+      [&] {
+        return cover::test::read_text(log).find("database " + db.string()) != std::string::npos;
+      },
+      20s))
+      << cover::test::read_text(log);
+  EXPECT_TRUE(fs::exists(db));
+  EXPECT_EQ(manager.terminate(10s, SIGINT), 0);
+
+  auto homeless = quiet("fastdds", kDomain, "manager_no_state.log");
+  homeless.extra_env.insert(homeless.extra_env.end(), {"XDG_STATE_HOME=", "HOME=relative"});
+  ChildProcess lost({bin("cover-task-manager")}, homeless);
+  EXPECT_EQ(lost.wait(scaled(20s)), std::optional<int>(3));
+  const std::string why = cover::test::read_text(cover::test::scratch_path("manager_no_state.log"));
+  EXPECT_NE(why.find("no state directory"), std::string::npos) << why;
 }
 
 }  // namespace
