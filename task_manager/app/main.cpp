@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cover/config/config_error.hpp"
+#include "cover/config/state_dir.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/dds_error.hpp"
@@ -20,7 +21,21 @@ namespace {
 
 constexpr const char* kExitCodes =
     "Exit codes: 0 stopped by SIGINT/SIGTERM; 2 usage or configuration error;\n"
-    "3 the database cannot be opened (path, permissions, a newer schema) or DDS cannot start.";
+    "3 the database cannot be opened (path, permissions, a newer schema, no state directory for\n"
+    "the default one) or DDS cannot start.";
+
+// tasks.db in the user's state directory, which is created if missing: never the folder
+// the manager happens to be started from (issue 31). No such directory is a database that
+// cannot be opened (exit 3), not a configuration error.
+std::string default_database() {
+  try {
+    const std::string dir = cover::config::default_state_dir();
+    cover::config::create_state_dir(dir);
+    return dir + "/tasks.db";
+  } catch (const cover::config::ConfigError& e) {
+    throw cover::task_manager::StoreError(std::string("default database: ") + e.what());
+  }
+}
 
 }  // namespace
 
@@ -28,12 +43,13 @@ int main(int argc, char** argv) {
   cover::process::ShutdownSignal::install();
   CLI::App app{"cover-task-manager: task queues per UAV, persisted, dispatched and followed"};
   app.footer(kExitCodes);
-  std::string db_path = "cover_tasks.db";
+  std::string db_path;  // empty: tasks.db in the user's state directory
   std::string config_path = cover::config::default_config_dir() + "/task_manager.yaml";
   cover::task_manager::ManagerOptions options;
   cover::dds::DdsCliOptions dds;
-  app.add_option("--db", db_path, "SQLite database (created if missing; WAL, synchronous FULL)")
-      ->capture_default_str();
+  app.add_option("--db", db_path,
+                 "SQLite database (created if missing; WAL, synchronous FULL); default "
+                 "$XDG_STATE_HOME/cover/tasks.db, else ~/.local/state/cover/tasks.db");
   app.add_option("--config", config_path, "limits and timeouts")->capture_default_str();
   app.add_option("--max-uavs", options.max_uavs, "UAV ids 0..N-1 are served")
       ->check(CLI::Range(1, cover::fleet::kMaxUavs))
@@ -43,6 +59,7 @@ int main(int argc, char** argv) {
   cover::logging::init("task_manager");
   try {
     const auto limits = cover::task_manager::TaskLimits::load_file(config_path);
+    if (db_path.empty()) db_path = default_database();
     cover::task_manager::TaskStore store(db_path);
     const auto participant_options = dds.resolve("cover-task-manager");
     cover::dds::Participant participant(participant_options);

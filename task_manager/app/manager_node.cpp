@@ -9,6 +9,7 @@
 #include "cover/clock/clock.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/task_manager/flyability.hpp"
+#include "cover/task_manager/submission_answer.hpp"
 #include "cover/wire/task.hpp"
 #include "managed_task_msg.hpp"
 
@@ -201,22 +202,32 @@ msg::ManagerReply ManagerNode::submit(const msg::ManagerRequest& request, double
   }
   const TaskStore::SubmitResult result =
       dispatcher_.submit(task, request.submitter, request.request_id, fleet_.view(), now_s);
-  const TaskRecord& r = result.record;
-  const bool rejected = r.state == TaskState::Rejected;
-  std::string message;
-  if (!result.created) {
-    message = "task '" + r.task_id + "' is already known: " + to_string(r.state);
-  } else if (rejected) {
-    message = "rejected: " + r.reason;
-    spdlog::warn("task '{}' from {} rejected: {}", r.task_id, request.submitter, r.reason);
-  } else {
-    message = "queued for UAV " + std::to_string(r.uav_id);
-    spdlog::info("task '{}' from {} queued for UAV {} (position {})", r.task_id, request.submitter,
-                 r.uav_id, r.queue_position);
-  }
-  msg::ManagerReply reply = reply_to(request, !rejected, message);
-  reply.tasks.push_back(to_msg(r));
+  const SubmissionAnswer answer = answer_submission(task, result);
+  log_submission(request, result, answer);
+  msg::ManagerReply reply = reply_to(request, answer.ok, answer.message);
+  reply.tasks.push_back(to_msg(result.record));
   return reply;
+}
+
+void ManagerNode::log_submission(const msg::ManagerRequest& request,
+                                 const TaskStore::SubmitResult& result,
+                                 const SubmissionAnswer& answer) const {
+  const TaskRecord& r = result.record;
+  const char* replacing = result.replaced_rejected ? " (replacing a rejected submission)" : "";
+  if (!result.created && answer.ok) {
+    spdlog::info(
+        "task '{}' from {}: the same as the task known under its id ({}), answered as "
+        "the first time",
+        r.task_id, request.submitter, to_string(r.state));
+  } else if (!result.created) {
+    spdlog::warn("task '{}' from {} refused: {}", r.task_id, request.submitter, answer.message);
+  } else if (r.state == TaskState::Rejected) {
+    spdlog::warn("task '{}' from {} rejected{}: {}", r.task_id, request.submitter, replacing,
+                 r.reason);
+  } else {
+    spdlog::info("task '{}' from {} queued for UAV {} (position {}){}", r.task_id,
+                 request.submitter, r.uav_id, r.queue_position, replacing);
+  }
 }
 
 msg::ManagerReply ManagerNode::abort(const msg::ManagerRequest& request, double now_s) {

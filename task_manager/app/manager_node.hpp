@@ -11,6 +11,7 @@
 #include "cover/dds/topics.hpp"
 #include "cover/fleet/fleet_size.hpp"
 #include "cover/task_manager/dispatcher.hpp"
+#include "cover/task_manager/submission_answer.hpp"
 #include "cover/task_manager/task_store.hpp"
 #include "fleet_watch.hpp"
 
@@ -53,6 +54,8 @@ class ManagerNode {
   void answer_interim(const msg::ManagerRequest& request, const std::string& why);
   void handle(const msg::ManagerRequest& request, double now_s);
   msg::ManagerReply submit(const msg::ManagerRequest& request, double now_s);
+  void log_submission(const msg::ManagerRequest& request, const TaskStore::SubmitResult& result,
+                      const SubmissionAnswer& answer) const;
   msg::ManagerReply abort(const msg::ManagerRequest& request, double now_s);
   msg::ManagerReply query(const msg::ManagerRequest& request) const;
   void step(double now_s);

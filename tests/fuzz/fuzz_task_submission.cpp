@@ -4,7 +4,8 @@
 // Contract: a submission that cannot be recorded throws std::invalid_argument and stores
 // nothing; any other is stored Queued exactly when it is flyable (every point finite and
 // within the limits, limits positive, the chain valid, its UAV and UGVs up) and Rejected
-// with a readable reason otherwise; a repeat returns the stored record unchanged.
+// with a readable reason otherwise; a repeat of an accepted task returns the stored record
+// unchanged, one of a submission rejected at once is judged anew and replaces it.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -87,13 +88,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   require(!recordable, "recorded an unrecordable submission: " + recordable.value_or(""));
   require(result.record.task_id == task.task_id, "the record has another id");
-  if (before) {
+  if (before && before->accepted) {
     require(!result.created && result.record.state == before->state &&
                 result.record.reason == before->reason,
             "a repeat changed the stored task");
     return 0;
   }
+  // New, or replacing a submission rejected at once (it holds no id).
   require(result.created, "a new task was not created");
+  require(result.replaced_rejected == before.has_value(), "replaced_rejected is wrong");
   const auto why = tmg::why_not_flyable(task, live, limits, kNow_s);
   if (result.record.state == tmg::TaskState::Queued) {
     require(!why, "queued a task that is not flyable: " + why.value_or(""));

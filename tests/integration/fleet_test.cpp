@@ -2,7 +2,8 @@
 // two UGV agents (SimSystem), a UAV agent, a flight-controller bridge (no autopilot on its
 // link) and the task manager. Every kind of process is listed with a sane age and state;
 // one killed turns stale in the next listings of --watch; an empty domain says what was
-// listened for and exits 3. Domains 165..169.
+// listened for and exits 3; a process discovered but not heard by the bound is listed as
+// still listened to. Domains 165 and 166.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
@@ -16,6 +17,8 @@
 #include <vector>
 
 #include "cover/dds/domain_claim.hpp"
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
@@ -225,7 +228,12 @@ TEST(Fleet, NothingOnTheDomainSaysWhatWasListenedForAndExitsThree) {
   EXPECT_EQ(text.code, 3);
   EXPECT_TRUE(text.lines.empty());
   const std::string said = file_text(text.log_path);
-  EXPECT_NE(said.find("nothing heard on DDS domain 166 within 0.50 s"), std::string::npos) << said;
+  // A first listing lasts one discovery period (Fast DDS's 3 s announcements, + 0.5 s), a
+  // shorter --listen-s or not: a process not discovered yet cannot be waited for.
+  const std::string within = "nothing heard on DDS domain 166 within ";
+  const std::size_t at = said.find(within);
+  ASSERT_NE(at, std::string::npos) << said;
+  EXPECT_GE(std::stod(said.substr(at + within.size())), 3.5) << said;
   EXPECT_NE(said.find("cover/uav/<u>/status"), std::string::npos) << said;
   EXPECT_NE(said.find("cover/ugv/<k>/status"), std::string::npos) << said;
   EXPECT_NE(said.find("cover/time/request"), std::string::npos) << said;
@@ -236,6 +244,36 @@ TEST(Fleet, NothingOnTheDomainSaysWhatWasListenedForAndExitsThree) {
   const Json doc = Json::parse(json.lines[0], nullptr, false);
   ASSERT_TRUE(doc.contains("rows")) << json.lines[0];
   EXPECT_TRUE(doc["rows"].empty());
+  EXPECT_LT(doc["listened_s"].get<double>(), 3.5 + 1.0) << "nothing heard: nothing waited for";
+}
+
+// A writer of UAV 2's status matched, never a sample, its process named in the clock
+// exchange: the listing waits for its status up to its bound, then says so instead of a
+// state it has not heard. The same for a task manager's reply writer that never answers.
+TEST(Fleet, AProcessDiscoveredButNotHeardIsListedAsStillListenedTo) {
+  const int domain = 166;
+  const auto claim = cover::test::claim_domain(domain);
+  cover::dds::ParticipantOptions options;
+  options.vendor = cover::dds::Vendor::Cyclone;
+  options.domain_id = domain;
+  cover::dds::Participant silent(options);
+  auto status = silent.make_writer(cover::dds::topics::uav_status(2));
+  auto replies = silent.make_writer(cover::dds::topics::manager_reply());
+  const CliRun run = cover_cli(domain, {"fleet", "--json", "--listen-s", "0.5"});
+  EXPECT_EQ(run.code, 0) << "something is there";
+  ASSERT_EQ(run.lines.size(), 1u);
+  const Json doc = Json::parse(run.lines[0], nullptr, false);
+  const Json* uav = row_of(doc, "uav-agent", 2);
+  ASSERT_NE(uav, nullptr) << doc.dump(2);
+  EXPECT_EQ((*uav)["state"], "still listening: no status heard yet") << doc.dump(2);
+  EXPECT_EQ((*uav)["messages"], 0);
+  const Json* manager = row_of(doc, "task-manager");
+  ASSERT_NE(manager, nullptr) << doc.dump(2);
+  EXPECT_EQ((*manager)["state"], "still listening: no answer to the query yet") << doc.dump(2);
+  // Listened to its bound: the discovery period (3.5 s), then 2 s for the late ones.
+  EXPECT_GE(doc["listened_s"].get<double>(), 5.5) << doc.dump(2);
+  EXPECT_LE(doc["listened_s"].get<double>(), (5.5 + 0.2) * cover::test::time_scale())
+      << doc.dump(2);
 }
 
 }  // namespace

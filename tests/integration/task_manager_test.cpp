@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -29,8 +31,10 @@
 #include "cover/mission/task.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/task_manager/task_store.hpp"
+#include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/wire/task.hpp"
 #include "manager_client.hpp"
 #include "process_support.hpp"
@@ -155,6 +159,15 @@ std::string state_of(const nlohmann::json& reply) {
   if (reply.contains("tasks") && !reply["tasks"].empty()) return reply["tasks"][0]["state"];
   if (reply.contains("state")) return reply["state"];  // a watch line is the record itself
   return "";
+}
+
+// "MANAGED_DISPATCHED" -> "dispatched", as the manager's messages name a state.
+std::string state_word(const std::string& managed) {
+  const std::string prefix = "MANAGED_";
+  if (managed.rfind(prefix, 0) != 0) return "";
+  std::string word = managed.substr(prefix.size());
+  for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return word;
 }
 
 TEST(TaskManager, SubmitWatchStatusListAndAbortFromAGroundStation) {
@@ -566,6 +579,7 @@ class LoneManager {
   ~LoneManager() { manager_->terminate(10s, SIGINT); }
   int stop() { return manager_->terminate(10s, SIGINT); }
   int domain() const { return domain_; }
+  const std::string& db() const { return db_; }
 
   // `cover ARGS` on this domain: its exit code and stdout lines, each with the time since
   // the command started.
@@ -661,6 +675,77 @@ TEST(TaskManager, ASubmissionNamingAnUnheardVehicleIsAnsweredAtOnceThenDecided) 
   EXPECT_EQ(final_reply.value("message", ""), "queued for UAV 0") << accepted.text();
 }
 
+// Issue 31: a task naming UGV 7 was rejected; the same file corrected and submitted again
+// was refused, "task 'hop' is already known: rejected". A submission rejected at once holds
+// no id now; an accepted task holds its id: the same content again is answered as the
+// first time, other content is refused naming the known task's state and what differs.
+TEST(TaskManager, ARejectedSubmissionHoldsNoIdAndAReusedIdIsAnsweredByItsContent) {
+  // A short grace: the submission naming UGV 7 waits for it that long, then is rejected.
+  LoneManager manager(218, "  restart_grace_s: 2.0\n");
+  FakeFleet fleet(manager.domain(), {0}, {0, 1});
+  const auto last_reply = [](const LoneManager::Output& out) {
+    return out.lines.empty() ? nlohmann::json()
+                             : nlohmann::json::parse(out.lines.back().second, nullptr, false);
+  };
+  const auto rejected = manager.cover({"submit", manager.task_file("hop", 7), "--json"});
+  ASSERT_EQ(rejected.code, 1) << rejected.text();
+  const auto rejected_reply = last_reply(rejected);
+  EXPECT_EQ(state_of(rejected_reply), "MANAGED_REJECTED") << rejected.text();
+  EXPECT_NE(rejected_reply.value("message", "").find("UGV 7 is not publishing its IMU"),
+            std::string::npos)
+      << rejected.text();
+
+  // The same file corrected (to_ugv 1), the same id: judged anew, accepted.
+  const std::string corrected = manager.task_file("hop", 1);
+  const auto accepted = manager.cover({"submit", corrected, "--json"});
+  EXPECT_EQ(accepted.code, 0) << accepted.text();
+  const auto accepted_reply = last_reply(accepted);
+  EXPECT_EQ(accepted_reply.value("message", ""), "queued for UAV 0") << accepted.text();
+  EXPECT_EQ(state_of(accepted_reply), "MANAGED_QUEUED") << accepted.text();
+
+  // Again, the same content: answered as the first time (a station that lost the answer).
+  const auto repeat = manager.cover({"submit", corrected, "--json"});
+  EXPECT_EQ(repeat.code, 0) << repeat.text();
+  EXPECT_EQ(last_reply(repeat).value("message", ""), "queued for UAV 0") << repeat.text();
+
+  // Other content under the id: refused, naming the known task's state and the change.
+  std::string text;
+  {
+    std::ifstream in(corrected);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  text.replace(text.find("vmax_m_s: 1.5"), 13, "vmax_m_s: 1.0");
+  std::ofstream(corrected) << text;
+  const auto other = manager.cover({"submit", corrected, "--json"});
+  EXPECT_EQ(other.code, 1) << other.text();
+  const auto other_reply = last_reply(other);
+  const std::string message = other_reply.value("message", "");
+  const std::string known_state = state_word(state_of(other_reply));
+  EXPECT_FALSE(known_state.empty()) << other.text();
+  EXPECT_EQ(message.rfind("task 'hop' is already known: " + known_state + " (", 0), 0u) << message;
+  EXPECT_NE(message.find("processes[0].vmax_m_s 1.5 -> 1.0"), std::string::npos) << message;
+
+  // The store, read beside the running manager: one task under the id, the rejected
+  // submission kept whole, the id's history from the rejection on.
+  cover::task_manager::TaskStore store(manager.db());
+  ASSERT_EQ(store.list(true).size(), 1u);
+  const auto record = store.find("hop");
+  ASSERT_TRUE(record.has_value());
+  EXPECT_TRUE(record->accepted);
+  EXPECT_EQ(record->task.processes.at(0).to_ugv, 1);
+  EXPECT_EQ(record->task.processes.at(0).vmax_m_s, 1.5);
+  const auto kept = store.replaced_rejections("hop");
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].task.processes.at(0).to_ugv, 7);
+  EXPECT_NE(kept[0].reason.find("UGV 7 is not publishing its IMU"), std::string::npos);
+  const auto history = store.history("hop");
+  ASSERT_GE(history.size(), 2u);
+  EXPECT_EQ(history[0].to, cover::task_manager::TaskState::Rejected);
+  EXPECT_EQ(history[1].from, cover::task_manager::TaskState::Rejected);
+  EXPECT_EQ(history[1].to, cover::task_manager::TaskState::Queued);
+  EXPECT_EQ(manager.stop(), 0);
+}
+
 // Where a flight-controller bridge reports the UAV's autopilot, a task waits in the queue
 // until the autopilot is armed and in OFFBOARD, and `cover list` / `cover status` say why.
 TEST(TaskManager, WithABridgeATaskWaitsForTheAutopilotSayingWhy) {
@@ -707,6 +792,35 @@ TEST(TaskManager, WithABridgeATaskWaitsForTheAutopilotSayingWhy) {
   EXPECT_EQ(state_of(nlohmann::json::parse(after.lines.back().second, nullptr, false)),
             "MANAGED_DISPATCHED")
       << after.text();
+}
+
+// Issue 31: the standing system wrote cover_tasks.db into whatever folder it was started
+// from (a repository's root). Without --db the manager keeps its tasks in the user's state
+// directory ($XDG_STATE_HOME/cover), which it makes; with none it says so and exits 3.
+TEST(TaskManager, WithoutDbItsTasksGoToTheUsersStateDirectory) {
+  constexpr int kDomain = 179;
+  const auto claim = cover::test::claim_domain(kDomain);
+  const fs::path state = cover::test::scratch_path("state");
+  auto options = quiet("fastdds", kDomain, "manager_default_db.log");
+  options.extra_env.push_back("XDG_STATE_HOME=" + state.string());
+  ChildProcess manager({bin("cover-task-manager")}, options);
+  const fs::path db = state / "cover" / "tasks.db";
+  const std::string log = cover::test::scratch_path("manager_default_db.log");
+  EXPECT_TRUE(cover::test::wait_until(
+      [&] {
+        return cover::test::read_text(log).find("database " + db.string()) != std::string::npos;
+      },
+      20s))
+      << cover::test::read_text(log);
+  EXPECT_TRUE(fs::exists(db));
+  EXPECT_EQ(manager.terminate(10s, SIGINT), 0);
+
+  auto homeless = quiet("fastdds", kDomain, "manager_no_state.log");
+  homeless.extra_env.insert(homeless.extra_env.end(), {"XDG_STATE_HOME=", "HOME=relative"});
+  ChildProcess lost({bin("cover-task-manager")}, homeless);
+  EXPECT_EQ(lost.wait(scaled(20s)), std::optional<int>(3));
+  const std::string why = cover::test::read_text(cover::test::scratch_path("manager_no_state.log"));
+  EXPECT_NE(why.find("no state directory"), std::string::npos) << why;
 }
 
 }  // namespace

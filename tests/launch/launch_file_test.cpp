@@ -245,6 +245,29 @@ launch:
   EXPECT_FALSE(sitl.processes[0].keep_running);
 }
 
+// A sensor agent's samples are what a flying UAV waits on: its restart must be heard inside
+// the failsafe ladder's hover budget (1.2 s after the death), which the general 1.0 s delay
+// alone nearly used up (issue 31, item 6).
+TEST(LaunchFile, SensorAgentsRespawnAfterAShortDelay) {
+  const LaunchFile file = parse(R"(
+launch:
+  name: standing
+  kind: standing
+  processes:
+    - {name: ugv0, executable: cover-ugv-agent}
+    - {name: ugv1, executable: /opt/cover/bin/cover-ugv-agent}
+    - {name: mocap, executable: cover-mocap-relay}
+    - {name: uav0, executable: cover-uav-agent}
+    - {name: ugv2, executable: cover-ugv-agent, respawn_delay_s: 2.0}
+)");
+  const auto& p = file.processes;
+  for (const int i : {0, 1, 2}) {
+    EXPECT_DOUBLE_EQ(p[i].respawn.delay_s, 0.1) << p[i].name;
+  }
+  EXPECT_DOUBLE_EQ(p[3].respawn.delay_s, 1.0) << "other processes keep the general default";
+  EXPECT_DOUBLE_EQ(p[4].respawn.delay_s, 2.0) << "an explicit respawn_delay_s stands";
+}
+
 TEST(LaunchFile, KindErrors) {
   const auto contains = [](const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
@@ -276,6 +299,18 @@ TEST(LaunchFile, ShippedSystemIsAStandingLaunch) {
     EXPECT_EQ(process.respawn.enabled, !process.ends_run) << process.name;
     EXPECT_EQ(process.ends_run, process.name == "sim") << process.name;
   }
+  // A restarted UGV agent is heard by the UAV agent in tens of milliseconds when both run
+  // Cyclone DDS; a Fast DDS reader heard a restarted Cyclone writer up to 1.1 s late, past
+  // the hover budget (docs/dds-vendors.md).
+  const auto vendor_of = [&](const std::string& name) {
+    for (const auto& process : file.processes) {
+      if (process.name == name) return process.dds;
+    }
+    return std::string("missing");
+  };
+  EXPECT_EQ(vendor_of("ugv0"), "cyclone");
+  EXPECT_EQ(vendor_of("ugv1"), "cyclone");
+  EXPECT_EQ(vendor_of("uav0"), "cyclone");
 }
 
 // The documented example must stay a valid launch file.

@@ -7,7 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "cover/config/config_error.hpp"
 #include "cover/launch/dds_override.hpp"
 #include "cover/launch/executable_lookup.hpp"
 #include "cover/launch/launch_plan.hpp"
@@ -18,7 +21,9 @@
 #include "cover/launch/run_naming.hpp"
 #include "cover/launch/security_identity.hpp"
 #include "cover/launch/shm_cleanup.hpp"
+#include "cover/test/scoped_env.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "launch_plan_support.hpp"
 
 namespace cover::launch {
 namespace {
@@ -154,6 +159,58 @@ TEST(LaunchPlan, ExpandsBuiltinsAndSetsEnvironment) {
   options.variables = {};
   options.domain_id = 233;
   EXPECT_THROW(make_plan(file, options), std::invalid_argument);
+}
+
+// A variable's value may use the built-in placeholders, {state_dir} among them: the
+// standing system's task database goes to the user's state directory, and the plan (so the
+// report) holds every value as the processes get it.
+TEST(LaunchPlan, VariablesExpandTheBuiltinsStateDirAmongThem) {
+  const cover::test::ScopedEnv state("XDG_STATE_HOME", "/srv/state");
+  LaunchFile file = testing::parse(R"(
+launch:
+  name: standing
+  kind: standing
+  variables: {db: "{state_dir}/tasks.db", log: "{run_dir}/x.log", plain: "a"}
+  processes:
+    - {name: tm, executable: cover-task-manager, args: ["--db={db}", "--log={log}"]}
+)");
+  LaunchPlan plan = make_plan(file, testing::options_in("/runs/r"));
+  EXPECT_EQ(plan.state_dir, "/srv/state/cover");
+  EXPECT_EQ(plan.variables.at("db"), "/srv/state/cover/tasks.db");
+  EXPECT_EQ(plan.variables.at("plain"), "a");
+  EXPECT_EQ(plan.processes[0].args,
+            (std::vector<std::string>{"--db=/srv/state/cover/tasks.db", "--log=/runs/r/x.log"}));
+
+  LaunchOptions in_run = testing::options_in("/runs/r");
+  in_run.variables = {{"db", "{run_dir}/tasks.db"}};
+  plan = make_plan(file, in_run);
+  EXPECT_EQ(plan.variables.at("db"), "/runs/r/tasks.db");
+  EXPECT_EQ(plan.state_dir, "") << "no {state_dir} left: none needed";
+
+  in_run.variables = {{"db", "{plain}/tasks.db"}};  // a variable is not a built-in
+  EXPECT_THROW(make_plan(file, in_run), std::invalid_argument);
+  EXPECT_THROW(testing::parse("launch: {name: a, variables: {db: '{seed}/x'}, processes: "
+                              "[{name: p, executable: x, ends_run: true}]}"),
+               config::ConfigError);
+}
+
+// Issue 31: system.yaml wrote cover_tasks.db into whatever folder it was started from.
+TEST(LaunchPlan, ShippedSystemKeepsItsTasksInTheStateDirectory) {
+  const std::string state = cover::test::scratch_path("state");
+  const cover::test::ScopedEnv xdg("XDG_STATE_HOME", state.c_str());
+  const LaunchFile file =
+      LaunchFile::load_file(std::string(COVER_SOURCE_DIR) + "/config/launch/system.yaml");
+  const LaunchPlan plan = make_plan(file, testing::options_in("/runs/system"));
+  const std::string db = state + "/cover/tasks.db";
+  EXPECT_EQ(plan.state_dir, state + "/cover");
+  EXPECT_EQ(plan.variables.at("db"), db);
+  bool found = false;
+  for (const auto& process : plan.processes) {
+    if (process.name != "task_manager") continue;
+    found = true;
+    EXPECT_EQ(process.args, std::vector<std::string>{"--db=" + db});
+  }
+  EXPECT_TRUE(found) << "system.yaml has no task_manager";
 }
 
 // A secure launch gives each process its identity by role, or its `identity:` key.

@@ -105,6 +105,63 @@ launch:
   expect_all_gone(report);
 }
 
+// The README lets users export COVER_DDS and COVER_DDS_DOMAIN: a launch still gives each
+// process the vendor and domain of its file and flags, and reports what they run (issue
+// 31: ugv0 reported on Cyclone DDS ran Fast DDS, the bench's domain lost to an export).
+TEST_F(LaunchProcess, ExportedDdsAndDomainGiveWayToTheLaunch) {
+  const auto result = run(R"(
+launch:
+  name: exported
+  grace_period_s: 0.3
+  processes:
+    - name: sim
+      executable: fake_process
+      args: [--mode=exit, "--await={run_dir}/ugv0.ready", "--await={run_dir}/ugv1.ready"]
+      ends_run: true
+    - {name: ugv0, executable: fake_process, args: ["--ready={run_dir}/ugv0.ready"]}
+    - {name: ugv1, executable: fake_process, args: ["--ready={run_dir}/ugv1.ready"]}
+)",
+                          {"--json", "--dds", "ugv*=cyclone", "--domain", "17"},
+                          {"COVER_DDS=fastdds", "COVER_DDS_DOMAIN=150"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto report = result.json();
+  for (const auto& process : report.at("processes")) {
+    const std::string name = process.at("name");
+    const std::string log = log_of(name);
+    EXPECT_TRUE(contains(log, "COVER_DDS=" + process.at("dds").get<std::string>() + "\n"))
+        << name << " runs another vendor than its report's:\n"
+        << log;
+    EXPECT_TRUE(contains(log, "COVER_DDS_DOMAIN=17\n")) << name << ":\n" << log;
+  }
+  EXPECT_EQ(report["processes"][1]["dds"], "cyclone");
+  EXPECT_EQ(report["processes"][2]["dds"], "cyclone");
+  expect_all_gone(report);
+}
+
+// {state_dir} (a task database's home, issue 31) is made before anything starts, and the
+// report names every variable's value as the processes got it.
+TEST_F(LaunchProcess, StateDirIsMadeAndTheReportNamesEveryVariable) {
+  const fs::path state = dir_ / "state";
+  const auto result = run(R"(
+launch:
+  name: stateful
+  kind: standing
+  grace_period_s: 0.3
+  variables: {db: "{state_dir}/tasks.db", clock: lockstep}
+  processes:
+    - {name: tm, executable: fake_process, args: [--mode=exit, "--db={db}"], ends_run: true}
+)",
+                          {"--json"}, {"XDG_STATE_HOME=" + state.string()});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::string db = (state / "cover" / "tasks.db").string();
+  EXPECT_TRUE(fs::is_directory(state / "cover"));
+  const auto report = result.json();
+  EXPECT_EQ(report["variables"]["db"], db) << report.dump();
+  EXPECT_EQ(report["variables"]["clock"], "lockstep") << report.dump();
+  EXPECT_TRUE(contains(log_of("tm"), "arg: --db=" + db + "\n")) << log_of("tm");
+  EXPECT_TRUE(contains(launch_log(), "variables: clock=lockstep db=" + db)) << launch_log();
+}
+
 TEST_F(LaunchProcess, EarlyDeathStopsTheRestAndExits4) {
   const auto result = run(R"(
 launch:

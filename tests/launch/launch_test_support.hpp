@@ -89,10 +89,13 @@ class LaunchProcess : public ::testing::Test {
   }
 
   // `own_group`: the launcher leads a process group, which a test may signal as a whole.
+  // `env`: "KEY=value" in the launcher's environment, as a user exports them.
   std::unique_ptr<cover::process::ChildProcess> start(std::vector<std::string> args,
-                                                      bool own_group = false) {
+                                                      bool own_group = false,
+                                                      std::vector<std::string> env = {}) {
     args.insert(args.begin(), COVER_LAUNCH);
     cover::process::SpawnOptions options;
+    options.extra_env = std::move(env);
     options.capture_stdout = true;
     options.new_process_group = own_group;
     options.log_file = (dir_ / "launcher.stderr").string();
@@ -115,10 +118,11 @@ class LaunchProcess : public ::testing::Test {
     return result;
   }
 
-  LaunchResult run(const std::string& yaml, std::vector<std::string> flags = {}) {
+  LaunchResult run(const std::string& yaml, std::vector<std::string> flags = {},
+                   std::vector<std::string> env = {}) {
     std::vector<std::string> args{write_launch(yaml), "--run-dir", run_dir_.string()};
     args.insert(args.end(), flags.begin(), flags.end());
-    auto launcher = start(args);
+    auto launcher = start(args, /*own_group=*/false, std::move(env));
     return finish(*launcher);
   }
 

@@ -11,12 +11,14 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "cover/test/process_alive.hpp"
 #include "cover/test/scratch_dir.hpp"
@@ -51,6 +53,27 @@ TEST(ChildProcess, RunsTheCommandAndReadsItsLines) {
   EXPECT_EQ(child.read_line(10s), std::nullopt);  // EOF
   EXPECT_EQ(child.wait(10s), std::optional<int>(3));
   EXPECT_EQ(child.killed_by_signal(), 0);
+}
+
+// An entry of extra_env replaces the parent's value of its key: the child sees the key
+// once, with the given value (getenv() returns a key's first entry, so an appended one was
+// lost to a value the user exported: issue 31, item 1).
+TEST(ChildProcess, ExtraEnvironmentReplacesTheParentsValue) {
+  ASSERT_EQ(setenv("COVER_CHILD_OVERRIDE", "parent", 1), 0);
+  SpawnOptions options;
+  options.capture_stdout = true;
+  options.extra_env = {"COVER_CHILD_OVERRIDE=first", "COVER_CHILD_OVERRIDE=child",
+                       "COVER_CHILD_ADDED=added"};
+  // env(1) itself, not a shell: a shell would tidy a doubled key before passing it on.
+  ChildProcess child({"/usr/bin/env"}, options);
+  unsetenv("COVER_CHILD_OVERRIDE");
+  std::vector<std::string> ours;
+  while (const auto line = child.read_line(10s)) {
+    if (line->rfind("COVER_CHILD_", 0) == 0) ours.push_back(*line);
+  }
+  EXPECT_EQ(ours,
+            (std::vector<std::string>{"COVER_CHILD_OVERRIDE=child", "COVER_CHILD_ADDED=added"}));
+  EXPECT_EQ(child.wait(10s), std::optional<int>(0));
 }
 
 // Pinned before exec: the program and what it runs see only the CPUs asked for; a CPU the

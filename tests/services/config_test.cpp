@@ -1,9 +1,13 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <filesystem>
 #include <fstream>
+#include <string>
 
+#include "cover/config/state_dir.hpp"
 #include "cover/config/yaml_reader.hpp"
+#include "cover/test/scoped_env.hpp"
 #include "cover/test/scratch_dir.hpp"
 
 using cover::config::ConfigError;
@@ -118,4 +122,43 @@ TEST(YamlText, ParsesFromMemoryAndNamesTheSource) {
   }
   const YAML::Node typo = cover::config::parse_yaml("planner: {}\nplaner: {}\n", "input.yaml");
   EXPECT_THROW(cover::config::open_section(typo, "input.yaml", "planner", false), ConfigError);
+}
+
+using cover::test::ScopedEnv;
+
+// The state directory follows the XDG Base Directory specification, never the working
+// directory (issue 31: cover_tasks.db in a repository's root).
+TEST(StateDir, XdgStateHomeThenHomeNeverTheWorkingFolder) {
+  {
+    ScopedEnv xdg("XDG_STATE_HOME", "/srv/state");
+    ScopedEnv home("HOME", "/home/pilot");
+    EXPECT_EQ(cover::config::default_state_dir(), "/srv/state/cover");
+  }
+  {
+    ScopedEnv xdg("XDG_STATE_HOME", nullptr);
+    ScopedEnv home("HOME", "/home/pilot");
+    EXPECT_EQ(cover::config::default_state_dir(), "/home/pilot/.local/state/cover");
+  }
+  {
+    ScopedEnv xdg("XDG_STATE_HOME", "relative/state");  // ignored, as the specification asks
+    ScopedEnv home("HOME", "/home/pilot");
+    EXPECT_EQ(cover::config::default_state_dir(), "/home/pilot/.local/state/cover");
+  }
+  {
+    ScopedEnv xdg("XDG_STATE_HOME", "");
+    ScopedEnv home("HOME", nullptr);
+    EXPECT_THROW(cover::config::default_state_dir(), cover::config::ConfigError);
+  }
+}
+
+TEST(StateDir, CreatedPrivateWhenMissing) {
+  const std::string dir = cover::test::scratch_path("state/cover");
+  cover::config::create_state_dir(dir);
+  ASSERT_TRUE(std::filesystem::is_directory(dir));
+  EXPECT_EQ(std::filesystem::status(dir).permissions() & std::filesystem::perms::all,
+            std::filesystem::perms::owner_all);
+  EXPECT_NO_THROW(cover::config::create_state_dir(dir));  // already there
+  std::ofstream(cover::test::scratch_path("file")) << "x";
+  EXPECT_THROW(cover::config::create_state_dir(cover::test::scratch_path("file/cover")),
+               cover::config::ConfigError);
 }

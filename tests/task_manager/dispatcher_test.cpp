@@ -147,18 +147,33 @@ TEST_F(DispatcherTest, WithoutABridgeNothingWaitsForAnAutopilot) {
             "waiting for UAV 1: flight-controller link lost (no autopilot HEARTBEAT)");
 }
 
-TEST_F(DispatcherTest, UnflyableTaskIsRejectedAndARepeatReturnsTheStoredRecord) {
+// Issue 31: a submission rejected at once holds no id; an accepted task holds it for good.
+TEST_F(DispatcherTest, ARejectedSubmissionHoldsNoIdAndAnAcceptedTaskHoldsItsId) {
   const auto rejected = submit("t1", 0, 10.0);  // UAV 0 never heard
   EXPECT_TRUE(rejected.created);
   EXPECT_EQ(rejected.record.state, TaskState::Rejected);
+  EXPECT_FALSE(rejected.record.accepted);
   EXPECT_EQ(rejected.record.reason, "UAV 0 is not up (never heard)");
+  const auto rejected_again = submit("t1", 0, 10.5);  // still not heard: judged anew
+  EXPECT_TRUE(rejected_again.created);
+  EXPECT_TRUE(rejected_again.replaced_rejected);
+  EXPECT_EQ(rejected_again.record.state, TaskState::Rejected);
   hear(0, 11.0);
-  const auto repeat = submit("t1", 0, 11.0);
-  EXPECT_FALSE(repeat.created);
-  EXPECT_EQ(repeat.record.state, TaskState::Rejected);
-  EXPECT_TRUE(step(11.0).dispatch.empty());
-  EXPECT_EQ(submit("t2", 0, 11.0).record.state, TaskState::Queued);
-  EXPECT_FALSE(submit("t2", 0, 11.0).created);
+  const auto accepted = submit("t1", 0, 11.0);
+  EXPECT_TRUE(accepted.created);
+  EXPECT_TRUE(accepted.replaced_rejected);
+  EXPECT_EQ(accepted.record.state, TaskState::Queued);
+  EXPECT_TRUE(accepted.record.accepted);
+  EXPECT_EQ(accepted.record.reason, "queued for UAV 0");
+  EXPECT_EQ(store_->replaced_rejections("t1").size(), 2u);
+  const Actions actions = step(11.0);
+  ASSERT_EQ(actions.dispatch.size(), 1u);
+  EXPECT_EQ(actions.dispatch[0].record.task_id, "t1");
+  const auto repeat = submit("t1", 0, 12.0);
+  EXPECT_FALSE(repeat.created) << "an accepted task holds its id";
+  EXPECT_EQ(repeat.record.state, TaskState::Dispatched);
+  EXPECT_EQ(submit("t2", 0, 12.0).record.state, TaskState::Queued);
+  EXPECT_FALSE(submit("t2", 0, 12.0).created);
 }
 
 TEST_F(DispatcherTest, TwoUavsAreServedAtOnceEachFromItsQueueInOrder) {

@@ -206,6 +206,125 @@ TEST_F(TaskStoreTest, RejectedSubmissionIsRecordedWithItsReason) {
   EXPECT_EQ(store.history("bad")[0].to, TaskState::Rejected);
 }
 
+// Issue 31: a submission rejected at once holds no id. The next one with its id replaces
+// it, whatever its content; the rejected one is kept whole, its history stays the id's.
+TEST_F(TaskStoreTest, ARejectedSubmissionIsReplacedByTheNextWithItsIdAndKept) {
+  TaskStore store(path());
+  mission::Task wrong = make_task("hop");
+  wrong.processes[0].to_ugv = 7;
+  const auto first =
+      store.submit(wrong, "alice", "r1", TaskState::Rejected, "UGV 7 is not publishing", 1.0);
+  EXPECT_TRUE(first.created);
+  EXPECT_FALSE(first.replaced_rejected);
+  EXPECT_FALSE(first.record.accepted);
+  EXPECT_FALSE(store.find("hop")->accepted);
+  const auto again =
+      store.submit(wrong, "alice", "r2", TaskState::Rejected, "UGV 7 is still down", 2.0);
+  EXPECT_TRUE(again.created);
+  EXPECT_TRUE(again.replaced_rejected);
+  EXPECT_GT(again.record.queue_position, first.record.queue_position);
+  const auto corrected =
+      store.submit(make_task("hop"), "bob", "r3", TaskState::Queued, "queued for UAV 0", 3.0);
+  EXPECT_TRUE(corrected.created);
+  EXPECT_TRUE(corrected.replaced_rejected);
+  EXPECT_TRUE(corrected.record.accepted);
+  expect_same_record(corrected.record, *store.find("hop"));
+  EXPECT_EQ(store.find("hop")->task.processes[0].to_ugv, 1);
+  EXPECT_EQ(store.list(true).size(), 1u);
+  EXPECT_EQ(store.next_queued(0)->task_id, "hop");
+
+  const auto kept = store.replaced_rejections("hop");
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].request_id, "r1");
+  EXPECT_EQ(kept[0].reason, "UGV 7 is not publishing");
+  EXPECT_EQ(kept[0].task.processes[0].to_ugv, 7);
+  EXPECT_EQ(kept[0].submitted_s, 1.0);
+  EXPECT_EQ(kept[0].queue_position, first.record.queue_position);
+  EXPECT_EQ(kept[0].state, TaskState::Rejected);
+  EXPECT_FALSE(kept[0].accepted);
+  EXPECT_EQ(kept[1].request_id, "r2");
+  EXPECT_EQ(kept[1].reason, "UGV 7 is still down");
+
+  const auto history = store.history("hop");
+  ASSERT_EQ(history.size(), 3u);
+  EXPECT_EQ(history[0].from, TaskState::Rejected);
+  EXPECT_EQ(history[0].to, TaskState::Rejected);
+  EXPECT_EQ(history[0].reason, "UGV 7 is not publishing");
+  EXPECT_EQ(history[1].from, TaskState::Rejected);
+  EXPECT_EQ(history[1].to, TaskState::Rejected);
+  EXPECT_EQ(history[2].from, TaskState::Rejected);
+  EXPECT_EQ(history[2].to, TaskState::Queued);
+  EXPECT_EQ(history[2].reason, "queued for UAV 0");
+
+  // Accepted, it holds its id: another submission changes nothing.
+  const auto held = store.submit(wrong, "carol", "r4", TaskState::Rejected, "no", 4.0);
+  EXPECT_FALSE(held.created);
+  expect_same_record(corrected.record, held.record);
+  EXPECT_EQ(store.replaced_rejections("hop").size(), 2u);
+  EXPECT_TRUE(store.replaced_rejections("other").empty());
+}
+
+// A version 1 file, as the previous release wrote it: a submission rejected at once, a task
+// the UAV agent rejected, one queued. Opened, it is version 2 with every task, row and
+// history kept; only the one rejected at once lets its id go.
+TEST_F(TaskStoreTest, MigratesAVersion1FileKeepingEverythingAndFreeingOnlyIdsRejectedAtOnce) {
+  {
+    RawDb raw(path());
+    raw.exec(
+        "CREATE TABLE tasks (task_id TEXT PRIMARY KEY NOT NULL, uav_id INTEGER NOT NULL,"
+        " queue_position INTEGER NOT NULL UNIQUE, state TEXT NOT NULL, submitter TEXT NOT NULL,"
+        " request_id TEXT NOT NULL, task_json TEXT NOT NULL, submitted_s REAL NOT NULL,"
+        " updated_s REAL NOT NULL, reason TEXT NOT NULL DEFAULT '');"
+        "CREATE TABLE task_history (id INTEGER PRIMARY KEY, task_id TEXT NOT NULL REFERENCES"
+        " tasks(task_id), from_state TEXT NOT NULL, to_state TEXT NOT NULL, time_s REAL NOT NULL,"
+        " reason TEXT NOT NULL);"
+        "CREATE TABLE schema_version (version INTEGER NOT NULL);"
+        "INSERT INTO schema_version VALUES (1);");
+    const auto task = [](const std::string& id) { return task_to_json(make_task(id)); };
+    raw.exec("INSERT INTO tasks VALUES ('at-once', 0, 1, 'rejected', 'ops', 'r1', '" +
+             task("at-once") + "', 10.0, 10.0, 'UGV 7 is not publishing its IMU')");
+    raw.exec(
+        "INSERT INTO task_history (task_id, from_state, to_state, time_s, reason) VALUES"
+        " ('at-once', 'rejected', 'rejected', 10.0, 'UGV 7 is not publishing its IMU')");
+    raw.exec("INSERT INTO tasks VALUES ('by-agent', 0, 2, 'rejected', 'ops', 'r2', '" +
+             task("by-agent") + "', 11.0, 13.0, 'unknown UGV 1')");
+    raw.exec(
+        "INSERT INTO task_history (task_id, from_state, to_state, time_s, reason) VALUES"
+        " ('by-agent', 'queued', 'queued', 11.0, 'queued for UAV 0'),"
+        " ('by-agent', 'queued', 'dispatched', 12.0, 'sent'),"
+        " ('by-agent', 'dispatched', 'rejected', 13.0, 'unknown UGV 1')");
+    raw.exec("INSERT INTO tasks VALUES ('waiting', 0, 3, 'queued', 'ops', 'r3', '" +
+             task("waiting") + "', 14.0, 14.0, 'queued for UAV 0')");
+    raw.exec(
+        "INSERT INTO task_history (task_id, from_state, to_state, time_s, reason) VALUES"
+        " ('waiting', 'queued', 'queued', 14.0, 'queued for UAV 0')");
+  }
+  TaskStore store(path());
+  EXPECT_EQ(store.schema_version(), 2);
+  const auto all = store.list(true);
+  ASSERT_EQ(all.size(), 3u);
+  EXPECT_EQ(all[0].task_id, "at-once");
+  EXPECT_FALSE(all[0].accepted);
+  EXPECT_EQ(all[0].reason, "UGV 7 is not publishing its IMU");
+  EXPECT_EQ(all[0].request_id, "r1");
+  EXPECT_EQ(all[1].task_id, "by-agent");
+  EXPECT_TRUE(all[1].accepted);
+  EXPECT_EQ(all[1].state, TaskState::Rejected);
+  EXPECT_EQ(all[1].updated_s, 13.0);
+  EXPECT_TRUE(all[2].accepted);
+  EXPECT_EQ(store.history("at-once").size(), 1u);
+  EXPECT_EQ(store.history("by-agent").size(), 3u);
+  EXPECT_EQ(store.history("waiting").size(), 1u);
+
+  EXPECT_TRUE(
+      store.submit(make_task("at-once"), "ops", "r4", TaskState::Queued, "q", 20.0).created);
+  EXPECT_EQ(store.replaced_rejections("at-once").at(0).reason, "UGV 7 is not publishing its IMU");
+  EXPECT_FALSE(
+      store.submit(make_task("by-agent"), "ops", "r5", TaskState::Queued, "q", 20.0).created)
+      << "a task the agent rejected was accepted first: it holds its id";
+  EXPECT_EQ(store.find("by-agent")->state, TaskState::Rejected);
+}
+
 TEST_F(TaskStoreTest, ReopenAfterCloseKeepsEverything) {
   TaskRecord before;
   {
@@ -234,7 +353,8 @@ TEST_F(TaskStoreTest, SchemaVersionTableIsCreatedAndStatesAreReadableText) {
     store.submit(make_task("a"), "s", "", TaskState::Queued, "", 1.0);
   }
   RawDb raw(path());
-  EXPECT_EQ(raw.scalar("SELECT version FROM schema_version"), "1");
+  EXPECT_EQ(raw.scalar("SELECT version FROM schema_version"),
+            std::to_string(TaskStore::kSchemaVersion));
   EXPECT_EQ(raw.scalar("SELECT COUNT(*) FROM schema_version"), "1");
   EXPECT_EQ(raw.scalar("SELECT state FROM tasks WHERE task_id = 'a'"), "queued");
   EXPECT_EQ(raw.scalar("SELECT to_state FROM task_history WHERE task_id = 'a'"), "queued");
@@ -242,10 +362,11 @@ TEST_F(TaskStoreTest, SchemaVersionTableIsCreatedAndStatesAreReadableText) {
 
 TEST_F(TaskStoreTest, FileFromANewerSchemaIsRefused) {
   { TaskStore store(path()); }
-  RawDb(path()).exec("UPDATE schema_version SET version = 2");
+  RawDb(path()).exec("UPDATE schema_version SET version = " +
+                     std::to_string(TaskStore::kSchemaVersion + 1));
   try {
     TaskStore store(path());
-    FAIL() << "opened a file from schema 2";
+    FAIL() << "opened a file from a newer schema";
   } catch (const StoreError& e) {
     EXPECT_NE(std::string(e.what()).find("written by a newer version"), std::string::npos)
         << e.what();
@@ -268,7 +389,7 @@ TEST_F(TaskStoreTest, MigratesAVersion0FileKeepingItsTasks) {
              task_to_json(make_task("old-2", 1)) + "', 110.0, 110.0)");
   }
   TaskStore store(path());
-  EXPECT_EQ(store.schema_version(), 1);
+  EXPECT_EQ(store.schema_version(), TaskStore::kSchemaVersion);
   const auto old = store.find("old-1");
   ASSERT_TRUE(old.has_value());
   EXPECT_EQ(old->state, TaskState::Succeeded);
@@ -287,7 +408,7 @@ TEST_F(TaskStoreTest, MigratesAnEmptyFile) {
   std::ofstream(path()).close();
   ASSERT_TRUE(std::filesystem::exists(path()));
   TaskStore store(path());
-  EXPECT_EQ(store.schema_version(), 1);
+  EXPECT_EQ(store.schema_version(), TaskStore::kSchemaVersion);
   EXPECT_TRUE(store.list(true).empty());
 }
 

@@ -119,21 +119,75 @@ TEST(FleetView, OneIdClaimedByTwoHostsListsBothAndUnknownNamesAreProcesses) {
   const FleetRow* ugv = find(rows, FleetKind::UgvAgent, 1);
   ASSERT_NE(ugv, nullptr);
   EXPECT_EQ(ugv->processes.size(), 2u);
-  EXPECT_EQ(ugv->state, "heard in the clock exchange only");
+  EXPECT_EQ(ugv->state, "still listening: no status heard yet");
   std::size_t processes = 0;
   for (const FleetRow& r : rows) processes += r.kind == FleetKind::Process ? 1 : 0;
   EXPECT_EQ(processes, 3u);
 }
 
-TEST(FleetView, TheNewestRowsFirstMessageExtendsAListing) {
+// A listing ends when every process heard is described: before, it would print a state it
+// has not had time to hear ("heard in the clock exchange only" for a UAV agent whose
+// status had not come yet, "did not answer the query" for a task manager asked too early).
+TEST(FleetView, AListingIsSettledOnceEveryProcessHeardIsDescribedAndNamed) {
   FleetView view;
-  EXPECT_EQ(view.newest_first_heard_ns(), -1);
-  view.heard_peer("a/cover-sim", 2 * kS);
-  view.heard_peer("a/cover-sim", 3 * kS);  // the same row again: not new
-  EXPECT_EQ(view.newest_first_heard_ns(), 2 * kS);
-  msg::UgvStatus ugv;
-  view.heard(ugv, {}, 5 * kS);
-  EXPECT_EQ(view.newest_first_heard_ns(), 5 * kS);
+  EXPECT_TRUE(view.settled(0, kS)) << "nothing heard: nothing to wait for";
+  view.heard_peer("h/cover-uav-agent-0", 1 * kS);
+  EXPECT_FALSE(view.settled(1 * kS, kS)) << "named, its status not heard";
+  EXPECT_EQ(view.rows(1 * kS).at(0).state, "still listening: no status heard yet");
+  msg::UavStatus uav;
+  view.heard(uav, {}, 2 * kS);
+  EXPECT_TRUE(view.settled(2 * kS, kS));
+  EXPECT_EQ(view.rows(2 * kS).at(0).state, "idle, disarmed");
+
+  // The task manager: named by its clock requests, described by its answer to the query.
+  view.heard_peer("h/cover-task-manager", 3 * kS);
+  EXPECT_FALSE(view.settled(3 * kS, kS));
+  const auto rows = view.rows(3 * kS);
+  const FleetRow* manager = find(rows, FleetKind::TaskManager);
+  ASSERT_NE(manager, nullptr);
+  EXPECT_EQ(manager->state, "still listening: no answer to the query yet");
+  view.heard(msg::ManagerReply{}, {}, 4 * kS);
+  EXPECT_TRUE(view.settled(4 * kS, kS));
+
+  // A process known only by its clock requests has nothing more to say.
+  view.heard_peer("laptop/my-tool", 5 * kS);
+  EXPECT_TRUE(view.settled(5 * kS, kS));
+}
+
+TEST(FleetView, ADiscoveredWriterIsARowStillListenedToUntilItsStatusComes) {
+  FleetView view;
+  view.discovered(FleetKind::UgvAgent, 3, 1 * kS);
+  view.discovered(FleetKind::UgvAgent, 3, 2 * kS);  // still the first discovery
+  view.discovered(FleetKind::Sim, std::nullopt, 1 * kS);
+  EXPECT_FALSE(view.settled(9 * kS, kS));
+  const auto rows = view.rows(2 * kS);
+  ASSERT_EQ(rows.size(), 2u);
+  const FleetRow* ugv = find(rows, FleetKind::UgvAgent, 3);
+  ASSERT_NE(ugv, nullptr);
+  EXPECT_EQ(ugv->state, "still listening: no status heard yet");
+  EXPECT_DOUBLE_EQ(ugv->age_s, 1.0) << "since its discovery";
+  EXPECT_EQ(ugv->messages, 0u);
+  msg::UgvStatus status;
+  status.ugv_id = 3;
+  view.heard(status, {}, 3 * kS);
+  msg::SimClock tick;
+  view.heard(tick, {}, 3 * kS);
+  // Described, not named yet: waited for within the naming grace, from its discovery.
+  EXPECT_FALSE(view.settled(3 * kS, 5 * kS));
+  EXPECT_TRUE(view.settled(3 * kS, 2 * kS)) << "past the grace: listed unnamed";
+  view.heard_peer("h/cover-ugv-agent-3", 3 * kS);
+  view.heard_peer("h/cover-sim", 3 * kS);
+  EXPECT_TRUE(view.settled(3 * kS, 5 * kS));
+  ASSERT_EQ(view.rows(3 * kS).size(), 2u) << "the simulator's clock joined to its name";
+}
+
+TEST(FleetView, AnUnnamedRowSettlesAfterTheNamingGrace) {
+  FleetView view;
+  msg::SimClock tick;  // no UAV agent asks the simulator: nobody names it
+  view.heard(tick, {}, 1 * kS);
+  EXPECT_FALSE(view.settled(1 * kS + kS / 2, kS));
+  EXPECT_TRUE(view.settled(2 * kS, kS));
+  EXPECT_TRUE(view.rows(2 * kS).at(0).processes.empty());
 }
 
 TEST(FleetView, TableAndJsonCarryEveryRow) {

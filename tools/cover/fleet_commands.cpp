@@ -4,7 +4,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <functional>
 #include <iostream>
 #include <mutex>
 #include <set>
@@ -23,8 +26,33 @@
 namespace cover::cli {
 namespace {
 
-// How often a listing looks whether a new row extends it.
+// How often a listing looks whether it may end.
 constexpr std::chrono::milliseconds kListenStep{50};
+// Fast DDS's announcement period when config/dds.yaml leaves announcement_period_s at 0.
+// A Fast DDS process did not answer a new listener's announcements on loopback (measured:
+// the simulator, the UAV agent and the task manager were discovered together 0.3 to 3.0 s
+// after a listener started, at their next periodic announcement), so a first listing lasts
+// one period: a process not discovered yet cannot be waited for by name.
+constexpr double kFastDdsAnnouncementPeriod_s = 3.0;
+// After the discovery: its endpoints matched within 0.1 s in those runs.
+constexpr double kEndpointMatching_s = 0.5;
+// The longest a first listing waits beyond that for the processes it heard to be described:
+// two periods of the slowest message it relies on (UGV agents' status and the clock
+// exchange, 1 Hz).
+constexpr double kDescribeWait_s = 2.0;
+
+FleetKind kind_of(const msg::UavStatus&) {
+  return FleetKind::UavAgent;
+}
+FleetKind kind_of(const msg::FcState&) {
+  return FleetKind::FcBridge;
+}
+FleetKind kind_of(const msg::UgvStatus&) {
+  return FleetKind::UgvAgent;
+}
+FleetKind kind_of(const msg::SimClock&) {
+  return FleetKind::Sim;
+}
 
 }  // namespace
 
@@ -33,7 +61,7 @@ constexpr std::chrono::milliseconds kListenStep{50};
 class FleetListener {
  public:
   FleetListener(dds::Participant& participant, const FleetSize& size, double listen_s)
-      : participant_(participant), view_(listen_s) {
+      : participant_(participant), view_(listen_s), naming_grace_ns_(clock::s_to_ns(listen_s)) {
     for_each_fleet_topic_of<msg::UavStatus>(size, [&](const auto& t) { listen(t); });
     for_each_fleet_topic_of<msg::FcState>(size, [&](const auto& t) { listen(t); });
     for_each_fleet_topic_of<msg::UgvStatus>(size, [&](const auto& t) { listen(t); });
@@ -54,9 +82,25 @@ class FleetListener {
     std::lock_guard<std::mutex> lock(mutex_);
     view_.heard(reply, dds::to_json(reply), clock::monotonic_ns());
   }
-  std::int64_t newest_first_heard_ns() const {
+  // Readers that matched a writer are rows from then on, heard or not; the task manager
+  // too once its reply writer matched `manager`'s reader.
+  // The matched counts are read before the view's lock is taken: a vendor holds its
+  // reader's lock while it calls the reader's callback, which takes the view's.
+  void note_discoveries(const ManagerClient& manager) {
+    std::vector<const Matched*> found;
+    for (const Matched& m : matched_) {
+      if (m.writers()) found.push_back(&m);
+    }
+    const bool manager_found = manager.manager_discovered();
+    const std::int64_t now_ns = clock::monotonic_ns();
     std::lock_guard<std::mutex> lock(mutex_);
-    return view_.newest_first_heard_ns();
+    for (const Matched* m : found) view_.discovered(m->kind, m->id, now_ns);
+    if (manager_found) view_.discovered(FleetKind::TaskManager, {}, now_ns);
+  }
+  // Every process heard is described (FleetView::settled).
+  bool settled() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return view_.settled(clock::monotonic_ns(), naming_grace_ns_);
   }
   std::vector<FleetRow> rows() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -70,15 +114,28 @@ class FleetListener {
   }
 
  private:
+  // A reader of one status topic: its kind and id (the simulator's clock has none), and
+  // whether a writer matched it.
+  struct Matched {
+    FleetKind kind;
+    std::optional<std::uint32_t> id;
+    std::function<bool()> writers;
+  };
+
+  // The readers of one type are made in id order (for_each_fleet_topic_of).
   template <typename T>
   void listen(const dds::Topic<T>& topic) {
     const dds::TopicInfo* info = dds::find_topic(topic.name());
     listened_for_.insert(info ? info->pattern : topic.name());
-    std::get<std::vector<dds::Reader<T>>>(readers_).push_back(
-        participant_.make_reader(topic, [this](const T& sample) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          view_.heard(sample, dds::to_json(sample), clock::monotonic_ns());
-        }));
+    auto& readers = std::get<std::vector<dds::Reader<T>>>(readers_);
+    const auto id = static_cast<std::uint32_t>(readers.size());
+    readers.push_back(participant_.make_reader(topic, [this](const T& sample) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      view_.heard(sample, dds::to_json(sample), clock::monotonic_ns());
+    }));
+    const FleetKind kind = kind_of(T{});
+    matched_.push_back({kind, kind == FleetKind::Sim ? std::nullopt : std::optional(id),
+                        [&readers, id] { return readers[id].matched_writers() > 0; }});
   }
   void heard_peers(std::initializer_list<std::string> names) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -90,7 +147,9 @@ class FleetListener {
   dds::Participant& participant_;
   mutable std::mutex mutex_;
   FleetView view_;
+  std::int64_t naming_grace_ns_;
   std::set<std::string> listened_for_;
+  std::vector<Matched> matched_;
   std::tuple<std::vector<dds::Reader<msg::UavStatus>>, std::vector<dds::Reader<msg::FcState>>,
              std::vector<dds::Reader<msg::UgvStatus>>, std::vector<dds::Reader<msg::SimClock>>>
       readers_;
@@ -101,15 +160,11 @@ class FleetListener {
 namespace {
 
 // Asks the task manager for its tasks not ended; a fleet without one is no error.
-void query_manager(ManagerClient& client, FleetListener& listener) {
+msg::ManagerRequest manager_query() {
   msg::ManagerRequest request;
   request.kind = msg::ManagerRequestKind::MANAGER_QUERY;
   request.include_final = false;
-  try {
-    listener.heard(client.call(request));
-  } catch (const ManagerUnreachable&) {
-    // Absent from the listing, or "did not answer the query" when its clock requests came.
-  }
+  return request;
 }
 
 }  // namespace
@@ -121,9 +176,11 @@ FleetCommand::FleetCommand(CLI::App& app) {
       "failsafe, task, autopilot");
   fleet_
       ->add_option("--listen-s", listen_s_,
-                   "seconds to listen before listing (the slowest status, UGV agents' and the "
-                   "clock exchange, comes once a second); a process first heard late is "
-                   "listened to that long too, up to twice in all; --watch: the refresh period")
+                   "seconds to listen at least (the slowest status, UGV agents' and the clock "
+                   "exchange, comes once a second). The first listing lasts one DDS discovery "
+                   "period at least (config/dds.yaml announcement_period_s + 0.5 s; Fast DDS "
+                   "announces every 3 s when it is 0), then until every process heard is "
+                   "described, up to 2 s more. --watch: the refresh period after it")
       ->check(CLI::Range(0.1, 600.0))
       ->capture_default_str();
   fleet_->add_flag("--watch", watch_, "list again every --listen-s until SIGINT/SIGTERM");
@@ -134,25 +191,41 @@ FleetCommand::FleetCommand(CLI::App& app) {
   dds_.add_to(*fleet_);
   fleet_->footer(
       "A row is STALE when its last message is older than three periods of its slowest one.\n"
+      "A process discovered whose status has not come by the end says \"still listening\".\n"
       "Exit: 0 something heard (--watch: stopped by SIGINT/SIGTERM), 2 usage, 3 nothing heard\n"
       "(what was listened for is printed).");
 }
 
-// One listing's wait: --listen-s, longer while rows keep appearing (each new one gets
-// --listen-s, up to twice --listen-s in all). False on SIGINT/SIGTERM.
-bool FleetCommand::listen(FleetListener& listener, ManagerClient& manager) const {
+// One listing's wait: at least `window`; then until every process heard is described
+// (FleetListener::settled), at most `bound`. The task manager is asked all along (a
+// manager discovered late missed the first copies). False on SIGINT/SIGTERM.
+bool FleetCommand::listen(FleetListener& listener, ManagerClient& manager, const Window& window) {
   const std::int64_t start_ns = clock::monotonic_ns();
-  const std::int64_t window_ns = clock::s_to_ns(listen_s_);
-  query_manager(manager, listener);
+  manager.start(manager_query());
+  bool answered = false;
   while (true) {
-    const std::int64_t end_ns =
-        std::min(start_ns + 2 * window_ns,
-                 std::max(start_ns + window_ns, listener.newest_first_heard_ns() + window_ns));
-    const std::int64_t left_ns = end_ns - clock::monotonic_ns();
-    if (left_ns <= 0) return true;
-    const auto step = std::min(kListenStep, std::chrono::milliseconds(left_ns / 1'000'000 + 1));
-    if (process::ShutdownSignal::wait_for(step)) return false;
+    if (!answered) {
+      if (const auto reply = manager.answer()) {
+        listener.heard(*reply);
+        answered = true;
+      }
+    }
+    listener.note_discoveries(manager);
+    const std::int64_t listened_ns = clock::monotonic_ns() - start_ns;
+    if (listened_ns >= clock::s_to_ns(window.bound_s)) return true;
+    if (listened_ns >= clock::s_to_ns(window.min_s) && listener.settled()) return true;
+    if (process::ShutdownSignal::wait_for(kListenStep)) return false;
   }
+}
+
+// The first listing lasts one discovery period, the fleet's announcement period (config/
+// dds.yaml, the same for every process), then waits for what it discovered late. A
+// --watch listing after it hears a fleet already discovered: --listen-s, no more.
+FleetCommand::Window FleetCommand::first_window(const dds::ParticipantOptions& options) const {
+  const double announcement_s = options.announcement_period_s > 0.0 ? options.announcement_period_s
+                                                                    : kFastDdsAnnouncementPeriod_s;
+  const double min_s = std::max(listen_s_, announcement_s + kEndpointMatching_s);
+  return {min_s, min_s + kDescribeWait_s};
 }
 
 bool FleetCommand::chosen() const {
@@ -166,23 +239,29 @@ int FleetCommand::run() {
   ManagerClient manager(participant, clock::to_milliseconds(listen_s_));
   const bool terminal = watch_ && !json_ && isatty(STDOUT_FILENO) != 0;
   bool heard_any = false;
+  Window window = first_window(options);
   while (true) {
-    if (!listen(listener, manager)) {
+    const std::int64_t started_ns = clock::monotonic_ns();
+    if (!listen(listener, manager, window)) {
       if (!watch_) return kFleetInterrupted;
       break;
     }
+    const double listened_s = static_cast<double>(clock::monotonic_ns() - started_ns) / 1e9;
+    window = {listen_s_, listen_s_};
     const std::vector<FleetRow> rows = listener.rows();
     heard_any = heard_any || !rows.empty();
+    char listened[32];
+    std::snprintf(listened, sizeof listened, "%.2f", listened_s);
     const std::string nothing =
-        "nothing heard on DDS domain " + std::to_string(options.domain_id) + " within " +
-        std::to_string(listen_s_).substr(0, 4) + " s; listened for " + listener.listened_for() +
-        " and a task manager's answer on " + dds::topics::manager_reply().name() +
-        " (is the fleet on this domain and network?)";
+        "nothing heard on DDS domain " + std::to_string(options.domain_id) + " within " + listened +
+        " s; listened for " + listener.listened_for() + " and a task manager's answer on " +
+        dds::topics::manager_reply().name() + " (is the fleet on this domain and network?)";
     if (json_) {
       nlohmann::ordered_json doc;
       doc["domain"] = options.domain_id;
       doc["vendor"] = dds::vendor_name(options.vendor);
       doc["listen_s"] = listen_s_;
+      doc["listened_s"] = listened_s;
       doc["rows"] = fleet_json(rows);
       std::cout << doc.dump() << std::endl;
       if (rows.empty() && !watch_) std::cerr << "cover fleet: " << nothing << "\n";

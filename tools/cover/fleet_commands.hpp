@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cover/dds/cli_options.hpp"
+#include "cover/dds/participant_options.hpp"
 #include "fleet_topics.hpp"
 
 namespace CLI {
@@ -33,7 +34,14 @@ class FleetCommand {
   int run();
 
  private:
-  bool listen(FleetListener& listener, ManagerClient& manager) const;
+  // How long a listing listens: at least min_s, then until every process heard is
+  // described, at most bound_s.
+  struct Window {
+    double min_s = 0.0;
+    double bound_s = 0.0;
+  };
+  static bool listen(FleetListener& listener, ManagerClient& manager, const Window& window);
+  Window first_window(const dds::ParticipantOptions& options) const;
 
   CLI::App* fleet_ = nullptr;
   double listen_s_ = 1.5;

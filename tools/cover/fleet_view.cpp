@@ -196,10 +196,23 @@ void FleetView::heard_peer(const std::string& name, std::int64_t at_ns) {
   e.processes.insert(name);
 }
 
-std::int64_t FleetView::newest_first_heard_ns() const {
-  std::int64_t newest = -1;
-  for (const auto& [key, entry] : entries_) newest = std::max(newest, entry.first_ns);
-  return newest;
+void FleetView::discovered(FleetKind kind, std::optional<std::uint32_t> id, std::int64_t at_ns) {
+  Entry& e = entries_[Key{kind, id ? static_cast<std::int64_t>(*id) : -1, ""}];
+  if (e.first_ns < 0) e.first_ns = at_ns;
+}
+
+// Its status heard; a kind with none to hear (a process known only by its clock requests)
+// is described by its name.
+bool FleetView::described(FleetKind kind, const Entry& entry) {
+  return entry.status_ns >= 0 || kind == FleetKind::MocapRelay || kind == FleetKind::Process;
+}
+
+bool FleetView::settled(std::int64_t now_ns, std::int64_t naming_grace_ns) const {
+  for (const auto& [key, entry] : merged()) {
+    if (!described(std::get<0>(key), entry)) return false;
+    if (entry.processes.empty() && now_ns - entry.first_ns < naming_grace_ns) return false;
+  }
+  return true;
 }
 
 // A status without a name (the simulator's clock, the task manager's reply) belongs to the
@@ -224,6 +237,7 @@ std::map<FleetView::Key, FleetView::Entry> FleetView::merged() const {
     Entry& target = *named.front();
     const Entry& anonymous = it->second;
     target.status_ns = std::max(target.status_ns, anonymous.status_ns);
+    target.first_ns = std::min(target.first_ns, anonymous.first_ns);
     target.messages += anonymous.messages;
     target.state = anonymous.state;
     target.failsafe = anonymous.failsafe;
@@ -241,17 +255,19 @@ FleetRow FleetView::row(const Key& key, const Entry& e, std::int64_t now_ns) con
   r.processes.assign(e.processes.begin(), e.processes.end());
   // A vehicle's age is its status's: an agent whose loop hung may still answer clocks.
   // The task manager has no status of its own: its clock requests count as much.
+  // Discovered and nothing heard yet: since its discovery.
   const bool status_heard = e.status_ns >= 0;
   const std::int64_t last = r.kind == FleetKind::TaskManager || !status_heard
-                                ? std::max(e.status_ns, e.peer_ns)
+                                ? std::max({e.status_ns, e.peer_ns, e.first_ns})
                                 : e.status_ns;
   r.age_s = static_cast<double>(std::max<std::int64_t>(0, now_ns - last)) / kNsPerS;
   r.stale_after_s = stale_after_s(r.kind, status_heard, manager_query_period_s_);
   r.stale = r.age_s > r.stale_after_s;
   r.messages = e.messages;
   r.state = !e.state.empty()                   ? e.state
-            : r.kind == FleetKind::TaskManager ? "did not answer the query"
-                                               : "heard in the clock exchange only";
+            : described(r.kind, e)             ? "heard in the clock exchange only"
+            : r.kind == FleetKind::TaskManager ? "still listening: no answer to the query yet"
+                                               : "still listening: no status heard yet";
   r.failsafe = e.failsafe;
   r.task = e.task;
   r.autopilot = e.autopilot;

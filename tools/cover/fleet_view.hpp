@@ -53,12 +53,18 @@ class FleetView {
   // A process named in the clock exchange ("host/cover-uav-agent-0"), asking or answering:
   // the only periodic message of the task manager, the simulator's name, the hosts.
   void heard_peer(const std::string& name, std::int64_t at_ns);
+  // A writer of the kind's status (the task manager: of its replies) matched one of the
+  // command's readers: a process is there, its first message not heard yet. A row from
+  // then on (nothing but a row to wait for: the first call counts).
+  void discovered(FleetKind kind, std::optional<std::uint32_t> id, std::int64_t at_ns);
 
   bool empty() const { return entries_.empty(); }
-  // When the newest row was first heard, -1 when none was: a process discovered late in a
-  // listing (discovery across DDS vendors takes up to ~1 s) is listened to a while longer,
-  // so that the 1 Hz messages naming and describing it arrive.
-  std::int64_t newest_first_heard_ns() const;
+  // True when every row heard so far has been described: its status heard (the task
+  // manager: its answer to the query), and named in the clock exchange or first heard at
+  // least `naming_grace_ns` ago (the names come once a second, and nobody names a
+  // simulator no UAV agent asks). A listing that ends before prints "still listening" for
+  // the rows without a status rather than a state it has not had time to hear.
+  bool settled(std::int64_t now_ns, std::int64_t naming_grace_ns) const;
   std::vector<FleetRow> rows(std::int64_t now_ns) const;
 
  private:
@@ -68,7 +74,7 @@ class FleetView {
   struct Entry {
     std::int64_t status_ns = -1;  // its own status topic, -1: none heard
     std::int64_t peer_ns = -1;    // the clock exchange, -1: none heard
-    std::int64_t first_ns = -1;   // its first message of either
+    std::int64_t first_ns = -1;   // its first message of either, or its discovery
     std::uint64_t messages = 0;
     std::set<std::string> processes;
     std::string state;
@@ -80,6 +86,7 @@ class FleetView {
 
   Entry& status_entry(FleetKind kind, std::int64_t id, std::int64_t at_ns);
   std::map<Key, Entry> merged() const;
+  static bool described(FleetKind kind, const Entry& entry);
   FleetRow row(const Key& key, const Entry& entry, std::int64_t now_ns) const;
 
   double manager_query_period_s_;

@@ -56,6 +56,35 @@ std::string ManagerClient::next_request_id() {
          std::to_string(++counter_);
 }
 
+void ManagerClient::address(msg::ManagerRequest& request) {
+  request.request_id = next_request_id();
+  request.submitter = submitter();
+  request.stamp_ns = clock::system_ns();
+  std::lock_guard<std::mutex> lock(mutex_);
+  awaited_id_ = request.request_id;
+  reply_.reset();
+  interim_.reset();
+}
+
+void ManagerClient::start(msg::ManagerRequest request) {
+  address(request);
+  started_ = std::move(request);
+  next_send_ = std::chrono::steady_clock::now();
+}
+
+std::optional<msg::ManagerReply> ManagerClient::answer() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (reply_) return reply_;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (started_ && now >= next_send_) {
+    writer_.write(*started_);
+    next_send_ = now + kResendPeriod;
+  }
+  return std::nullopt;
+}
+
 bool ManagerClient::wait_for_answer(std::unique_lock<std::mutex>& lock,
                                     std::chrono::steady_clock::time_point until) {
   return arrived_.wait_until(lock, until,
@@ -73,15 +102,7 @@ msg::ManagerReply ManagerClient::call(msg::ManagerRequest request,
     throw ManagerUnreachable("no task manager reachable within " + seconds_text(timeout_) +
                              " s (is cover-task-manager running on this DDS domain?)");
   }
-  request.request_id = next_request_id();
-  request.submitter = submitter();
-  request.stamp_ns = clock::system_ns();
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    awaited_id_ = request.request_id;
-    reply_.reset();
-    interim_.reset();
-  }
+  address(request);
   // Sent again until answered: a manager whose reader matched this writer a moment after
   // the writer matched it misses the first copy (volatile). The manager answers a repeated
   // request id with its first reply, so a request is carried out once.

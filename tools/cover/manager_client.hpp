@@ -39,12 +39,23 @@ class ManagerClient {
   // or a held request was not decided within the decision timeout.
   msg::ManagerReply call(msg::ManagerRequest request, const InterimHandler& on_interim = {});
 
+  // The same request and resends without the wait, for a caller that listens to other
+  // topics meanwhile (cover fleet): start() sends `request` under a new id; each answer()
+  // sends it again when a resend period has passed (a manager discovered later missed the
+  // earlier copies) and returns the final reply once it came. The caller decides how long.
+  void start(msg::ManagerRequest request);
+  std::optional<msg::ManagerReply> answer();
+  // A task manager's reply writer is matched: a manager is on the domain.
+  bool manager_discovered() const { return reader_.matched_writers() > 0; }
+
   dds::Participant& participant() { return participant_; }
   // "user@host", recorded with a submission.
   static std::string submitter();
 
  private:
   std::string next_request_id();
+  // Gives `request` a new id, its submitter and stamp, and awaits the answer to that id.
+  void address(msg::ManagerRequest& request);
 
   void on_reply(const msg::ManagerReply& reply);
 
@@ -60,8 +71,10 @@ class ManagerClient {
   std::mutex mutex_;
   std::condition_variable arrived_;
   std::string awaited_id_;
-  std::optional<msg::ManagerReply> reply_;    // the final one
-  std::optional<msg::ManagerReply> interim_;  // the latest interim one not yet reported
+  std::optional<msg::ManagerReply> reply_;      // the final one
+  std::optional<msg::ManagerReply> interim_;    // the latest interim one not yet reported
+  std::optional<msg::ManagerRequest> started_;  // start()'s request, re-sent by answer()
+  std::chrono::steady_clock::time_point next_send_;
   dds::Writer<msg::ManagerRequest> writer_;
   dds::Reader<msg::ManagerReply> reader_;  // last: its callback uses the members above
 };

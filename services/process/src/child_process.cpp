@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <initializer_list>
@@ -31,6 +32,28 @@ struct ChildSetup {
   int error_fd = -1;   // where the child writes its errno when it cannot exec
   pid_t parent = -1;
 };
+
+// "KEY" of "KEY=value" (the whole entry when it has no '=').
+std::string env_key(const std::string& entry) {
+  return entry.substr(0, entry.find('='));
+}
+
+// The parent's environment with `extra` laid over it: an extra entry replaces every entry
+// of the parent's with its key, and a later extra entry an earlier one. Appended instead, a
+// key would be there twice and getenv(), which returns the first, would give the child the
+// parent's value: a launcher's COVER_DDS_DOMAIN lost to the one the user exported.
+std::vector<std::string> child_environment(const std::vector<std::string>& extra) {
+  std::vector<std::string> env;
+  for (char** entry = environ; *entry; ++entry) env.emplace_back(*entry);
+  for (const auto& entry : extra) {
+    const std::string key = env_key(entry);
+    env.erase(std::remove_if(env.begin(), env.end(),
+                             [&](const std::string& existing) { return env_key(existing) == key; }),
+              env.end());
+    env.push_back(entry);
+  }
+  return env;
+}
 
 void close_all(std::initializer_list<int> fds) {
   for (const int fd : fds) {
@@ -137,9 +160,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const SpawnOpti
   setup.options = &options;
   for (const auto& arg : argv) setup.args.push_back(const_cast<char*>(arg.c_str()));
   setup.args.push_back(nullptr);
-  std::vector<std::string> env_storage;
-  for (char** e = environ; *e; ++e) env_storage.emplace_back(*e);
-  env_storage.insert(env_storage.end(), options.extra_env.begin(), options.extra_env.end());
+  std::vector<std::string> env_storage = child_environment(options.extra_env);
   for (auto& entry : env_storage) setup.env.push_back(entry.data());
   setup.env.push_back(nullptr);
 

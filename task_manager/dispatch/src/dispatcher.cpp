@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "cover/task_manager/flyability.hpp"
+#include "cover/task_manager/submission_answer.hpp"
 
 namespace cover::task_manager {
 namespace {
@@ -39,12 +40,15 @@ TaskStore::SubmitResult Dispatcher::submit(const mission::Task& task, const std:
                                            const std::string& request_id, const LiveView& live,
                                            double now_s) {
   if (auto why = why_not_recordable(task, submitter, request_id)) throw std::invalid_argument(*why);
-  if (auto existing = store_.find(task.task_id)) return {false, std::move(*existing)};
+  // A task accepted holds its id; a submission rejected at once holds nothing: judged anew.
+  if (auto existing = store_.find(task.task_id); existing && existing->accepted) {
+    return {false, false, std::move(*existing)};
+  }
   if (auto why = why_not_flyable(task, live, limits_, now_s)) {
     return store_.submit(task, submitter, request_id, TaskState::Rejected, *why, now_s);
   }
-  return store_.submit(task, submitter, request_id, TaskState::Queued,
-                       "queued for " + uav_name(task.uav_id), now_s);
+  return store_.submit(task, submitter, request_id, TaskState::Queued, queued_message(task.uav_id),
+                       now_s);
 }
 
 Dispatcher::AbortResult Dispatcher::abort(const std::string& task_id, const std::string& reason,

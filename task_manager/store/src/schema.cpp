@@ -58,9 +58,38 @@ void to_version_1(sqlite3* db) {
   sqlite::exec(db, "CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");
 }
 
+// Version 2: a submission rejected at once holds no task id (issue 31: a corrected file
+// submitted again under the id was refused as "already known: rejected"). `accepted` tells
+// a task queued at submission, which holds its id for good, from one rejected at once,
+// which a new submission with its id replaces; the replaced one moves, whole, to
+// rejected_submissions. A task of an older file was accepted unless it was rejected and
+// never anything else (a task the UAV agent rejected was queued first).
+void to_version_2(sqlite3* db) {
+  if (!column_exists(db, "tasks", "accepted")) {
+    sqlite::exec(db, "ALTER TABLE tasks ADD COLUMN accepted INTEGER NOT NULL DEFAULT 1");
+  }
+  sqlite::exec(db,
+               "UPDATE tasks SET accepted = 0 WHERE state = 'rejected' AND NOT EXISTS"
+               " (SELECT 1 FROM task_history h WHERE h.task_id = tasks.task_id"
+               " AND h.to_state <> 'rejected')");
+  sqlite::exec(db,
+               "CREATE TABLE IF NOT EXISTS rejected_submissions ("
+               " id INTEGER PRIMARY KEY,"
+               " task_id TEXT NOT NULL,"
+               " uav_id INTEGER NOT NULL,"
+               " queue_position INTEGER NOT NULL,"
+               " submitter TEXT NOT NULL,"
+               " request_id TEXT NOT NULL,"
+               " task_json TEXT NOT NULL,"
+               " submitted_s REAL NOT NULL,"
+               " reason TEXT NOT NULL)");
+  sqlite::exec(db,
+               "CREATE INDEX IF NOT EXISTS rejected_by_task ON rejected_submissions (task_id, id)");
+}
+
 using Migration = void (*)(sqlite3*);
 // kMigrations[i] takes a file from version i to version i + 1. Append, never edit.
-const std::vector<Migration> kMigrations = {&to_version_1};
+const std::vector<Migration> kMigrations = {&to_version_1, &to_version_2};
 
 void write_version(sqlite3* db, int version) {
   sqlite::exec(db, "DELETE FROM schema_version");

@@ -18,7 +18,7 @@ constexpr int kBusyTimeout_ms = 5000;
 
 constexpr const char* kRecordColumns =
     "SELECT task_id, uav_id, queue_position, state, submitter, request_id, task_json,"
-    " submitted_s, updated_s, reason FROM tasks ";
+    " submitted_s, updated_s, reason, accepted FROM tasks ";
 
 TaskState state_from_text(const std::string& text) {
   const auto state = parse_task_state(text);
@@ -38,6 +38,7 @@ TaskRecord read_record(const sqlite::Statement& row) {
   record.submitted_s = row.real(7);
   record.updated_s = row.real(8);
   record.reason = row.text(9);
+  record.accepted = row.integer(10) != 0;
   return record;
 }
 
@@ -66,12 +67,17 @@ std::int64_t next_queue_position(sqlite3* db) {
   return query.integer(0);
 }
 
-void insert_record(sqlite3* db, const TaskRecord& r) {
-  sqlite::Statement insert(db,
-                           "INSERT INTO tasks (task_id, uav_id, queue_position, state, submitter,"
-                           " request_id, task_json, submitted_s, updated_s, reason)"
-                           " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  insert.bind(1, r.task_id)
+// INSERT or, for a record that replaces a rejected submission, UPDATE: the same columns.
+void write_record(sqlite3* db, const TaskRecord& r, bool replace) {
+  const char* sql = replace
+                        ? "UPDATE tasks SET uav_id = ?2, queue_position = ?3, state = ?4,"
+                          " submitter = ?5, request_id = ?6, task_json = ?7, submitted_s = ?8,"
+                          " updated_s = ?9, reason = ?10, accepted = ?11 WHERE task_id = ?1"
+                        : "INSERT INTO tasks (task_id, uav_id, queue_position, state, submitter,"
+                          " request_id, task_json, submitted_s, updated_s, reason, accepted)"
+                          " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)";
+  sqlite::Statement write(db, sql);
+  write.bind(1, r.task_id)
       .bind(2, r.uav_id)
       .bind(3, r.queue_position)
       .bind(4, std::string(to_string(r.state)))
@@ -81,7 +87,18 @@ void insert_record(sqlite3* db, const TaskRecord& r) {
       .bind(8, r.submitted_s)
       .bind(9, r.updated_s)
       .bind(10, r.reason)
+      .bind(11, r.accepted ? 1 : 0)
       .run();
+}
+
+// The rejected submission a new one replaces, kept whole.
+void keep_rejected(sqlite3* db, const std::string& task_id) {
+  sqlite::Statement copy(db,
+                         "INSERT INTO rejected_submissions (task_id, uav_id, queue_position,"
+                         " submitter, request_id, task_json, submitted_s, reason)"
+                         " SELECT task_id, uav_id, queue_position, submitter, request_id,"
+                         " task_json, submitted_s, reason FROM tasks WHERE task_id = ?");
+  copy.bind(1, task_id).run();
 }
 
 // Connection settings are per connection, so they are set on every open. WAL lets readers
@@ -142,7 +159,8 @@ TaskStore::SubmitResult TaskStore::submit(const mission::Task& task, const std::
                      to_string(initial));
   }
   sqlite::Transaction transaction(db_);
-  if (auto existing = find(task.task_id)) return {false, std::move(*existing)};
+  const auto existing = find(task.task_id);
+  if (existing && existing->accepted) return {false, false, std::move(*existing)};
   TaskRecord record;
   record.task_id = task.task_id;
   record.uav_id = task.uav_id;
@@ -154,10 +172,12 @@ TaskStore::SubmitResult TaskStore::submit(const mission::Task& task, const std::
   record.submitted_s = now_s;
   record.updated_s = now_s;
   record.reason = reason;
-  insert_record(db_, record);
-  append_history(db_, record.task_id, initial, initial, now_s, reason);
+  record.accepted = initial == TaskState::Queued;
+  if (existing) keep_rejected(db_, task.task_id);
+  write_record(db_, record, existing.has_value());
+  append_history(db_, record.task_id, existing ? existing->state : initial, initial, now_s, reason);
   transaction.commit();
-  return {true, std::move(record)};
+  return {true, existing.has_value(), std::move(record)};
 }
 
 bool TaskStore::set_state(const std::string& task_id, TaskState to, const std::string& reason,
@@ -252,6 +272,31 @@ std::vector<StateChange> TaskStore::history(const std::string& task_id) const {
                        query.real(2), query.text(3)});
   }
   return changes;
+}
+
+std::vector<TaskRecord> TaskStore::replaced_rejections(const std::string& task_id) const {
+  sqlite::Statement query(db_,
+                          "SELECT uav_id, queue_position, submitter, request_id, task_json,"
+                          " submitted_s, reason FROM rejected_submissions WHERE task_id = ?"
+                          " ORDER BY id");
+  query.bind(1, task_id);
+  std::vector<TaskRecord> records;
+  while (query.step()) {
+    TaskRecord r;
+    r.task_id = task_id;
+    r.uav_id = static_cast<int>(query.integer(0));
+    r.queue_position = query.integer(1);
+    r.state = TaskState::Rejected;
+    r.submitter = query.text(2);
+    r.request_id = query.text(3);
+    r.task = task_from_json(query.text(4));
+    r.submitted_s = query.real(5);
+    r.updated_s = r.submitted_s;
+    r.reason = query.text(6);
+    r.accepted = false;
+    records.push_back(std::move(r));
+  }
+  return records;
 }
 
 }  // namespace cover::task_manager

@@ -28,16 +28,31 @@ bool is_identifier(const std::string& text) {
   return only_chars(text, "_") && !std::isdigit(static_cast<unsigned char>(text[0]));
 }
 
-// The flight-controller bridge: kept running by default in standing and field launches.
-bool is_fc_bridge(const std::string& executable) {
-  return std::filesystem::path(executable).filename() == "cover-fc-bridge";
+bool executable_named(const std::string& executable, const char* name) {
+  return std::filesystem::path(executable).filename() == name;
 }
 
-// `respawn` and `keep_running` default by the launch's kind where the file does not say.
-void apply_kind_defaults(ProcessSpec& spec, const config::YamlReader& process, LaunchKind kind) {
+// The flight-controller bridge: kept running by default in standing and field launches.
+bool is_fc_bridge(const std::string& executable) {
+  return executable_named(executable, "cover-fc-bridge");
+}
+
+// A process whose samples a flying UAV waits on: the UGV agents (IMU) and the motion-capture
+// relay (relative states). Restarted after kSensorRespawnDelay_s by default.
+bool is_sensor_agent(const std::string& executable) {
+  return executable_named(executable, "cover-ugv-agent") ||
+         executable_named(executable, "cover-mocap-relay");
+}
+
+// `respawn` and `keep_running` default by the launch's kind, `respawn_delay_s` by the
+// process's role, where the file does not say.
+void apply_defaults(ProcessSpec& spec, const config::YamlReader& process, LaunchKind kind) {
   if (!process.has("respawn")) spec.respawn.enabled = serves_until_stopped(kind) && !spec.ends_run;
   if (!process.has("keep_running")) {
     spec.keep_running = serves_until_stopped(kind) && is_fc_bridge(spec.executable);
+  }
+  if (!process.has("respawn_delay_s") && is_sensor_agent(spec.executable)) {
+    spec.respawn.delay_s = kSensorRespawnDelay_s;
   }
 }
 
@@ -64,7 +79,7 @@ ProcessSpec parse_process(const YAML::Node& node, const std::string& context, La
   process.optional("realtime_priority", spec.realtime_priority);
   process.optional("cpu_affinity", spec.cpu_affinity);
   process.reject_unknown_keys();
-  apply_kind_defaults(spec, process, kind);
+  apply_defaults(spec, process, kind);
   return spec;
 }
 
@@ -82,6 +97,28 @@ void validate_arguments(const ProcessSpec& spec, const std::set<std::string>& kn
     }
   }
 }
+
+}  // namespace
+
+// A variable's value may use the built-in placeholders ({state_dir}/tasks.db), not other
+// variables: one level of expansion, no order to define.
+void check_variable_value(const std::string& key, const std::string& value) {
+  const std::string context = "launch.variables." + key;
+  std::vector<std::string> names;
+  try {
+    names = placeholder_names(value);
+  } catch (const std::invalid_argument& e) {
+    throw config::ConfigError(context + ": '" + value + "': " + e.what());
+  }
+  const auto& builtins = builtin_placeholders();
+  for (const auto& name : names) {
+    config::check(std::find(builtins.begin(), builtins.end(), name) != builtins.end(), context,
+                  "'" + value + "' uses {" + name +
+                      "}: a variable's value may use only the built-in placeholders");
+  }
+}
+
+namespace {
 
 void validate_respawn(const ProcessSpec& spec, const std::string& context) {
   const RespawnPolicy& respawn = spec.respawn;
@@ -146,7 +183,8 @@ void validate_process(const ProcessSpec& spec, const std::set<std::string>& know
 }  // namespace
 
 const std::vector<std::string>& builtin_placeholders() {
-  static const std::vector<std::string> names{"run_dir", "run_id", "domain", "config_dir"};
+  static const std::vector<std::string> names{"run_dir", "run_id", "domain", "config_dir",
+                                              "state_dir"};
   return names;
 }
 
@@ -161,6 +199,7 @@ void LaunchFile::validate() const {
     config::check(is_identifier(key), "launch.variables", "bad variable name '" + key + "'");
     config::check(known.insert(key).second, "launch.variables",
                   "'" + key + "' is a built-in placeholder and cannot be redefined");
+    check_variable_value(key, value);
   }
   std::set<std::string> names;
   int ends_run_count = 0;

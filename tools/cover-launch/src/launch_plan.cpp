@@ -1,8 +1,10 @@
 #include "cover/launch/launch_plan.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
+#include "cover/config/state_dir.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/security_options.hpp"
 #include "cover/launch/live_view.hpp"
@@ -23,7 +25,38 @@ void apply_variables(LaunchFile& file, const std::map<std::string, std::string>&
       // A value for a variable no argument uses would be silently ignored.
       throw std::invalid_argument("the launch file declares no variable '" + key + "'");
     }
+    try {
+      check_variable_value(key, value);
+    } catch (const config::ConfigError& e) {
+      throw std::invalid_argument(std::string("--var: ") + e.what());
+    }
     variable->second = value;
+  }
+}
+
+bool uses_placeholder(const std::string& text, const std::string& name) {
+  const auto names = placeholder_names(text);
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// Whether any variable or argument names {state_dir}: only then must the user have one.
+bool uses_state_dir(const LaunchFile& file) {
+  for (const auto& [key, value] : file.variables) {
+    if (uses_placeholder(value, "state_dir")) return true;
+  }
+  for (const auto& spec : file.processes) {
+    for (const auto& arg : spec.args) {
+      if (uses_placeholder(arg, "state_dir")) return true;
+    }
+  }
+  return false;
+}
+
+// The variables' values with the built-in placeholders in them expanded.
+void expand_variables(std::map<std::string, std::string>& variables,
+                      const PlaceholderValues& builtins) {
+  for (auto& [key, value] : variables) {
+    value = expand_argument(value, builtins).value_or("");
   }
 }
 
@@ -83,11 +116,19 @@ LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options) {
         (fs::path(file.directory) / file.security).lexically_normal().string();
   }
 
+  PlaceholderValues builtins;
+  builtins["run_dir"] = plan.run_dir;
+  builtins["run_id"] = plan.run_id;
+  builtins["domain"] = std::to_string(options.domain_id);
+  builtins["config_dir"] = config::default_config_dir();
+  if (uses_state_dir(file)) {
+    plan.state_dir = config::default_state_dir();
+    builtins["state_dir"] = plan.state_dir;
+  }
+  expand_variables(file.variables, builtins);
+  plan.variables = file.variables;
   PlaceholderValues values(file.variables.begin(), file.variables.end());
-  values["run_dir"] = plan.run_dir;
-  values["run_id"] = plan.run_id;
-  values["domain"] = std::to_string(options.domain_id);
-  values["config_dir"] = config::default_config_dir();
+  values.insert(builtins.begin(), builtins.end());
   for (const auto& spec : file.processes) {
     plan.processes.push_back(
         plan_process(spec, values, options.domain_id, plan.security_directory));

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "cover/config/config_error.hpp"
+#include "cover/config/state_dir.hpp"
 #include "cover/dds/security_check.hpp"
 #include "cover/launch/exit_codes.hpp"
 #include "cover/launch/hangup_guard.hpp"
@@ -48,8 +49,10 @@ Launch file (YAML, see config/launch/example.yaml and docs/launch.md):
                              or CAP_SYS_NICE; not applied when {clock} is lockstep
         cpu_affinity: [1]    pin it (and its threads) to these CPUs; not applied when {clock}
                              is lockstep
-  Placeholders: {run_dir} {run_id} {domain} {config_dir} and every variable; an argument
-  whose placeholder is empty is dropped. {{ and }} are literal braces.
+  Placeholders: {run_dir} {run_id} {domain} {config_dir} {state_dir} and every variable;
+  an argument whose placeholder is empty is dropped. {{ and }} are literal braces. A
+  variable's value may use the built-in ones ({state_dir}: $XDG_STATE_HOME/cover, else
+  ~/.local/state/cover, created when used); --json and launch.log give every value.
 
 Kinds: mission (default): any process that dies for good ends the run (exit 4). standing
   and field: a dying process is respawned by default; one that dies for good is logged and
@@ -164,18 +167,31 @@ void check_security(const LaunchPlan& plan) {
 }
 
 // Creates the run folder with launch.log, and removes a result.json of an earlier run
-// there, which would otherwise be reported as this run's.
+// there, which would otherwise be reported as this run's. Creates the state directory
+// when the launch uses it: a process must not fail on a folder missing on a fresh account.
 void prepare_run_dir(const LaunchPlan& plan) {
   std::filesystem::create_directories(plan.run_dir);
   cover::logging::add_file((std::filesystem::path(plan.run_dir) / "launch.log").string());
   const auto stale = std::filesystem::path(plan.run_dir) / "result.json";
   if (std::filesystem::remove(stale)) spdlog::warn("removed {} of an earlier run", stale.string());
+  if (!plan.state_dir.empty()) cover::config::create_state_dir(plan.state_dir);
+}
+
+// "clock=realtime db=/home/u/.local/state/cover/tasks.db": what the processes were given.
+std::string variables_text(const LaunchPlan& plan) {
+  std::string text;
+  for (const auto& [key, value] : plan.variables) {
+    text += (text.empty() ? "" : " ") + key + "=" + value;
+  }
+  return text.empty() ? "none" : text;
 }
 
 int run(const LaunchPlan& plan, bool json) {
   spdlog::info("launch {} ({}): run id {}, run dir {}, domain {}, DDS-Security {}", plan.name,
                to_string(plan.kind), plan.run_id, plan.run_dir, plan.domain_id,
                plan.security_directory.empty() ? "off" : plan.security_directory);
+  spdlog::info("variables: {}{}", variables_text(plan),
+               plan.state_dir.empty() ? "" : " (state directory " + plan.state_dir + ")");
   const RunOutcome outcome = supervise(plan);
   if (json) {
     std::cout << make_report(plan, outcome).dump() << std::endl;

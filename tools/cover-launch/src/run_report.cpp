@@ -39,6 +39,7 @@ nlohmann::json make_report(const LaunchPlan& plan, const RunOutcome& outcome) {
          {"cpu_s", process.cpu_s ? nlohmann::json(*process.cpu_s) : nlohmann::json(nullptr)}});
   }
   report["processes"] = std::move(processes);
+  report["variables"] = plan.variables;
   report["run_dir"] = plan.run_dir;
   report["run_id"] = plan.run_id;
   report["leftover_segments"] = outcome.leftover_segments;
@@ -49,6 +50,9 @@ nlohmann::json make_report(const LaunchPlan& plan, const RunOutcome& outcome) {
 std::string make_summary(const LaunchPlan& plan, const RunOutcome& outcome) {
   std::ostringstream text;
   text << "run " << plan.run_id << " in " << plan.run_dir << "\n";
+  for (const auto& [key, value] : plan.variables) {
+    text << "  {" << key << "} = " << (value.empty() ? "\"\"" : value) << "\n";
+  }
   for (const auto& process : outcome.processes) {
     text << "  " << process.name << " (" << process.dds << "): ";
     if (!process.pid) {

@@ -11,8 +11,10 @@ namespace cover::process {
 // How a child is started beyond its argv. The defaults give the parent's stdin, stdout,
 // stderr and process group.
 struct SpawnOptions {
-  std::vector<std::string> extra_env;  // "KEY=value", added to the parent's environment
-  bool capture_stdout = false;         // a pipe read with ChildProcess::read_line
+  // "KEY=value", laid over the parent's environment: an entry replaces the parent's value of
+  // its key (and a later entry an earlier one), so the child's getenv() sees it.
+  std::vector<std::string> extra_env;
+  bool capture_stdout = false;  // a pipe read with ChildProcess::read_line
   // Truncated and opened in the child for stderr, and for stdout unless it is captured: a
   // supervisor keeps one log per process without relaying bytes itself.
   std::string log_file;
@@ -56,9 +58,9 @@ struct SpawnOptions {
 // start children from the main thread, or from a thread that outlives them.
 class ChildProcess {
  public:
-  // `argv[0]` is the executable path. `extra_env` entries ("KEY=value") are added to the
-  // parent's environment. Throws std::runtime_error when the child cannot be started (no
-  // such executable, a log file that cannot be opened), naming why.
+  // `argv[0]` is the executable path. `extra_env` entries ("KEY=value") replace the
+  // parent's values of their keys, or are added. Throws std::runtime_error when the child cannot be
+  // started (no such executable, a log file that cannot be opened), naming why.
   ChildProcess(const std::vector<std::string>& argv, const std::vector<std::string>& extra_env = {},
                bool capture_stdout = false);
   ChildProcess(const std::vector<std::string>& argv, const SpawnOptions& options);

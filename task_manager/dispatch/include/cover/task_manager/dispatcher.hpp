@@ -42,7 +42,10 @@ class Dispatcher {
   const TaskLimits& limits() const { return limits_; }
 
   // Validates (why_not_flyable) and stores: Queued, or Rejected with the reason. Idempotent
-  // by task id: a repeat returns the stored record, created = false, whatever the live view.
+  // by the id of a task accepted: a repeat returns the stored record, created = false,
+  // whatever the live view (answer_submission tells a repeat from other content under the
+  // id). A submission rejected at once holds no id: the next one with it is judged anew
+  // and replaces it.
   // A submission that cannot be recorded (why_not_recordable) throws std::invalid_argument
   // and stores nothing: check it first.
   TaskStore::SubmitResult submit(const mission::Task& task, const std::string& submitter,

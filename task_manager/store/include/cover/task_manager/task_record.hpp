@@ -20,9 +20,16 @@ struct TaskRecord {
   double submitted_s = 0.0;
   double updated_s = 0.0;
   std::string reason;  // of the last state change
+  // Queued at submission: the task holds its id for good, whatever becomes of it. False for
+  // a submission rejected at once, which holds nothing: a new submission with its id
+  // replaces it (TaskStore::submit), as a service keyed by client ids saves no result for
+  // a request that failed validation.
+  bool accepted = true;
 };
 
 // One row of a task's history; the submission is the first (from == to == initial state).
+// A submission that replaced a rejected one under the same id follows that one's rows, from
+// rejected to its own initial state.
 struct StateChange {
   std::string task_id;
   TaskState from = TaskState::Queued;

@@ -21,7 +21,7 @@ namespace cover::task_manager {
 // file; SQLite serialises them, waiting up to the busy timeout).
 class TaskStore {
  public:
-  static constexpr int kSchemaVersion = 1;
+  static constexpr int kSchemaVersion = 2;
 
   // Opens or creates the file and creates or migrates its schema. Throws StoreError (with
   // SQLite's message and the path) when it cannot, or when a newer version wrote the file.
@@ -40,11 +40,16 @@ class TaskStore {
 
   struct SubmitResult {
     bool created = false;
+    // It replaced a submission rejected under the same id (kept: rejected_submissions).
+    bool replaced_rejected = false;
     TaskRecord record;
   };
-  // Idempotent by task_id: the same id again returns the stored record, created = false,
-  // and changes nothing. `initial` is Queued or Rejected (a rejected submission is recorded
-  // too, with its reason); anything else throws StoreError.
+  // Idempotent by task_id for accepted tasks: the id of a task accepted (queued) at
+  // submission again returns the stored record, created = false, and changes nothing. A
+  // submission rejected at once holds no id: the next one with its id replaces it (the
+  // rejected one moves to rejected_submissions, its history stays the id's, followed by a
+  // row from rejected to the new initial state). `initial` is Queued or Rejected (a
+  // rejected submission is recorded too, with its reason); anything else throws StoreError.
   SubmitResult submit(const mission::Task& task, const std::string& submitter,
                       const std::string& request_id, TaskState initial, const std::string& reason,
                       double now_s);
@@ -68,6 +73,9 @@ class TaskStore {
   std::vector<TaskRecord> in_states(std::initializer_list<TaskState> states) const;  // queue order
   std::optional<TaskRecord> next_queued(int uav_id) const;  // lowest queue_position, Queued
   std::vector<StateChange> history(const std::string& task_id) const;  // oldest first
+  // The rejected submissions later ones with the same id replaced, oldest first (state
+  // Rejected, accepted false, updated_s their submission time).
+  std::vector<TaskRecord> replaced_rejections(const std::string& task_id) const;
 
  private:
   std::string path_;

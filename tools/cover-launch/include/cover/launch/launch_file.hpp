@@ -71,7 +71,12 @@ struct LaunchFile {
   static LaunchFile load_file(const std::string& path);  // throws ConfigError
 };
 
-// Placeholders every launch file may use besides its own variables.
+// Placeholders every launch file may use besides its own variables: run_dir, run_id,
+// domain, config_dir, state_dir.
 const std::vector<std::string>& builtin_placeholders();
+
+// Throws ConfigError unless `value` (of variable `key`, from the file or a --var flag) is
+// well formed and uses only built-in placeholders.
+void check_variable_value(const std::string& key, const std::string& value);
 
 }  // namespace cover::launch

@@ -58,12 +58,19 @@ struct LaunchPlan {
   std::string launch_dir;
   int domain_id = 0;
   std::string security_directory;  // absolute; empty: plain DDS
+  // The user's state directory ({state_dir}, config/state_dir.hpp) when the file or a flag
+  // uses it, created before anything starts; empty otherwise.
+  std::string state_dir;
+  // Every variable's value as the processes get it (flags applied, built-in placeholders
+  // expanded): the run's report names them, e.g. where the task database is.
+  std::map<std::string, std::string> variables;
   double grace_period_s = 3.0;
   std::vector<PlannedProcess> processes;
 };
 
-// Applies `options` to `file` and expands every argument. Throws std::invalid_argument
-// on a bad override, domain or variable (a usage error).
+// Applies `options` to `file` and expands every variable and argument. Throws
+// std::invalid_argument on a bad override, domain or variable (a usage error), and
+// config::ConfigError when {state_dir} is used and the user has none.
 LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options);
 
 }  // namespace cover::launch

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <netinet/in.h>
+
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "cover/firmware/timed.hpp"
+#include "cover/mavlink/messages.hpp"
+#include "cover/mavlink/parser.hpp"
+
+namespace cover::firmware {
+
+// A transparent UDP relay on the companion link, between the firmware and cover-fc-bridge:
+// it binds the port the firmware sends its onboard link to (14540 + N), passes every
+// datagram on to the bridge's udpin port unchanged, and the bridge's answers back to the
+// firmware. On the way it reads the frames (one loopback hop more, tens of microseconds):
+// what the bridge receives, message by message with its arrival time (the stream rates the
+// firmware gives the bridge), the firmware's COMMAND_ACKs, and what the bridge sends
+// (COMMAND_LONGs, setpoints). The firmware's answers to the bridge go only to the link the
+// command came on, so this is where the test sees them.
+class LinkTap {
+ public:
+  // Throws std::runtime_error when `firmware_side_port` cannot be bound.
+  LinkTap(int firmware_side_port, int bridge_port);
+  ~LinkTap();
+  LinkTap(const LinkTap&) = delete;
+  LinkTap& operator=(const LinkTap&) = delete;
+
+  // Frames of `message_id` from the firmware that arrived in [from_ns, to_ns), per second.
+  double rate_hz(std::uint32_t message_id, std::int64_t from_ns, std::int64_t to_ns) const;
+  std::size_t frames_from_firmware(std::uint32_t message_id) const;
+  std::vector<Timed<mavlink::CommandAck>> acks() const;       // firmware -> bridge
+  std::vector<Timed<mavlink::CommandLong>> commands() const;  // bridge -> firmware
+  // The newest SET_ATTITUDE_TARGET the bridge sent, and how many.
+  std::optional<Timed<mavlink::SetAttitudeTarget>> last_setpoint() const;
+  std::uint64_t setpoints() const;
+
+ private:
+  void run();
+  void from_firmware(const std::uint8_t* data, std::size_t size, const sockaddr_in& sender);
+  void from_bridge(const std::uint8_t* data, std::size_t size);
+
+  int firmware_fd_ = -1;  // bound to the companion port: the firmware's peer
+  int bridge_fd_ = -1;    // an ephemeral port: the bridge's peer
+  sockaddr_in bridge_{};
+  mutable std::mutex mutex_;
+  std::optional<sockaddr_in> firmware_;  // where the firmware sends from
+  mavlink::StreamParser firmware_parser_;
+  mavlink::StreamParser bridge_parser_;
+  std::map<std::uint32_t, std::vector<std::int64_t>> arrivals_;
+  std::vector<Timed<mavlink::CommandAck>> acks_;
+  std::vector<Timed<mavlink::CommandLong>> commands_;
+  std::optional<Timed<mavlink::SetAttitudeTarget>> last_setpoint_;
+  std::uint64_t setpoints_ = 0;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace cover::firmware
