@@ -238,8 +238,8 @@ cover::sim::MavlinkRunOptions mavlink_options(const CommandLine& cli,
     }
     if (!mode || !(t_s >= 0.0)) {
       throw cover::config::ConfigError(
-          "--fc-mode-switch: expected T_S:MODE with T_S >= 0 and MODE one of MANUAL, STABILIZE, "
-          "POSCTL, LOITER, OFFBOARD, GUIDED_NOGPS, LAND, AUTO.LAND (got '" +
+          "--fc-mode-switch: expected T_S:MODE with T_S >= 0 and MODE one of AUTO.LOITER, BRAKE, "
+          "MANUAL, STABILIZE, POSCTL, LOITER, OFFBOARD, GUIDED_NOGPS, LAND, AUTO.LAND (got '" +
           cli.fc_mode_switch + "')");
     }
     m.mode_switch_time_s = t_s;
