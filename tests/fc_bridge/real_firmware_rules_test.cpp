@@ -82,6 +82,22 @@ TEST(Streams, AStreamThatDoesNotComeIsNamedAskedAgainAndClearedWhenItComes) {
   EXPECT_TRUE(rig.noticed("every stream asked of the autopilot arrives"));
 }
 
+TEST(Streams, AOneHertzStreamMeasuresOneHertz) {
+  StreamMonitor monitor({{mav::BatteryStatus::kId, "BATTERY_STATUS", 1.0}}, 5.0);
+  monitor.restart(0.0);
+  ASSERT_TRUE(monitor.next_request(0.0).has_value());
+  monitor.on_result(CommandOutcome::Accepted, "accepted", 0.01);
+  for (int second = 0; second <= 6; ++second) monitor.on_frame(mav::BatteryStatus::kId, second);
+  const auto states = monitor.states(6.0);
+  ASSERT_EQ(states.size(), 1U);
+  EXPECT_NEAR(states[0].measured_hz, 1.0, 1e-9);  // each frame counted once
+  EXPECT_TRUE(states[0].arriving);
+  EXPECT_EQ(monitor.missing_summary(6.0), "");
+  // Missing after 5 of its periods without a frame.
+  EXPECT_NE(monitor.missing_summary(12.0).find("BATTERY_STATUS (asked 1 Hz, none for 6.0 s)"),
+            std::string::npos);
+}
+
 TEST(Streams, AskedAgainAfterTheAutopilotComesBack) {
   BridgeRig rig(AutopilotKind::Px4);
   rig.run(2.0);

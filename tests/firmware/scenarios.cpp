@@ -517,9 +517,10 @@ void hover_on_the_estimate(FirmwareRig& rig, double before, std::int64_t airborn
   ::testing::Test::RecordProperty("hover_estimate_error_percent", std::to_string(100.0 * error));
   if (fw == Firmware::Px4) {
     if (vz_max > kHoverVzLimit_m_s) {
-      std::printf("hover: PX4 SIH |vz| max %.3f m/s is over the %.1f m/s target (known, see "
-                  "kPx4SihHoverVzBound_m_s)\n",
-                  vz_max, kHoverVzLimit_m_s);
+      std::printf(
+          "hover: PX4 SIH |vz| max %.3f m/s is over the %.1f m/s target (known, see "
+          "kPx4SihHoverVzBound_m_s)\n",
+          vz_max, kHoverVzLimit_m_s);
     }
     EXPECT_LE(vz_max, kPx4SihHoverVzBound_m_s) << context(rig);
   } else {

@@ -68,7 +68,10 @@ void StreamMonitor::on_frame(std::uint32_t message_id, double now_s) {
   for (Track& track : tracks_) {
     if (track.state.request.message_id != message_id) continue;
     track.last_frame_s = now_s;
-    if (track.window_start_s < 0.0) track.window_start_s = now_s;
+    if (track.window_start_s < 0.0) {  // the first frame opens the window, uncounted
+      track.window_start_s = now_s;
+      return;
+    }
     ++track.window_frames;
     roll_window(track, now_s);
     return;
@@ -85,7 +88,8 @@ double StreamMonitor::allowed_silence_s(const Track& track) const {
   return std::max(kMinSilence_s, kSilencePeriods / track.state.request.rate_hz);
 }
 
-// The rate: frames over a window closed every kWindow_s of arrivals.
+// The rate: the frames after the one that opened the window, over the time since it; the
+// frame that closes a window opens the next (counted once: a 1 Hz stream reads 1 Hz).
 void StreamMonitor::roll_window(Track& track, double now_s) {
   if (now_s - track.window_start_s < kWindow_s) return;
   track.state.measured_hz = track.window_frames / (now_s - track.window_start_s);

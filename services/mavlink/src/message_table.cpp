@@ -10,7 +10,7 @@ namespace {
 // CURRENT_EVENT_SEQUENCE, which it lacks, against the CRC rule over common.xml's fields) and
 // ardupilotmega.xml's EKF_STATUS_REPORT. ATTITUDE and SYSTEM_TIME have no struct but
 // autopilots stream them on every link: knowing them lets their checksum be checked.
-constexpr std::array<MessageInfo, 24> kMessages{{
+constexpr std::array<MessageInfo, 23> kMessages{{
     {0, 50, 9, "HEARTBEAT"},
     {1, 124, 43, "SYS_STATUS"},
     {2, 137, 12, "SYSTEM_TIME"},
