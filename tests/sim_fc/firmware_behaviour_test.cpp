@@ -1,5 +1,5 @@
 // The simulated autopilots against what real PX4 SITL and ArduCopter SITL did with COVER's
-// bridge (shared/sitl/README.md, docs/autopilots.md "Our simulated autopilots and the real
+// bridge (docs/autopilots.md, measured on real SITL, docs/autopilots.md "Our simulated autopilots and the real
 // firmware"): streams and SET_MESSAGE_INTERVAL, the lockstep closing IMU, who says what and
 // when, the parameters and their types, auto-disarm, the estimator's state. Each decoded
 // with our codec and, where the bridge reads it, with the bridge's own decoders.

@@ -439,7 +439,7 @@ TEST(SimulatedAutopilot, AnswersTimesyncAndReleasesThePayloadOnTheGripperCommand
   EXPECT_TRUE(bench.send(elsewhere).frames.empty());  // not addressed to it: silence
 }
 
-// PX4 SITL's onboard link without a request, over 2 s (shared/sitl/README.md).
+// PX4 SITL's onboard link without a request, over 2 s (docs/autopilots.md, measured on real SITL).
 TEST(SimulatedAutopilot, Px4StreamsItsOnboardSetAndHeartbeatsStopOnInjection) {
   AutopilotBench bench(AutopilotProfile::Px4);
   bench.idle(2.0);

@@ -34,7 +34,7 @@ constexpr std::uint32_t kPropulsion = 0x40000000;
 constexpr std::uint32_t kImuBaroMag =
     sensor::kGyro3d | sensor::kAccel3d | sensor::kMag3d | sensor::kAbsolutePressure;
 
-// SYS_STATUS sensor bits as PX4 SITL and ArduCopter SITL sent them (shared/sitl), without
+// SYS_STATUS sensor bits as PX4 SITL and ArduCopter SITL sent them (real SITL, docs/autopilots.md), without
 // GPS and RC receiver (the simulated vehicle has neither). PX4 reports the AHRS healthy
 // without declaring it present; ArduPilot enables and passes it (and its pre-arm check)
 // once EKF3 has aligned.

@@ -4,7 +4,7 @@ namespace cover::sim::fc {
 
 using config::check;
 
-// Measured on PX4 SITL's onboard link (shared/sitl/README.md, 2026-12-04): ATTITUDE 98-100,
+// Measured on PX4 SITL's onboard link (docs/autopilots.md, measured on real SITL, 2026-12-04): ATTITUDE 98-100,
 // ATTITUDE_QUATERNION 49.8, HIGHRES_IMU 49.8, ATTITUDE_TARGET 10, EXTENDED_SYS_STATE 5,
 // SYS_STATUS 5, BATTERY_STATUS 0.5-0.6, ESTIMATOR_STATUS 1, HEARTBEAT 1, ALTITUDE and
 // VFR_HUD 10 Hz.

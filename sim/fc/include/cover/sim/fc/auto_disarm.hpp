@@ -21,7 +21,7 @@ struct AutoDisarmStep {
   std::optional<AutoDisarmCause> disarm;
 };
 
-// The firmwares' own auto-disarm, both measured with COVER's bridge (shared/sitl/README.md):
+// The firmwares' own auto-disarm, both measured with COVER's bridge (docs/autopilots.md, measured on real SITL):
 // PX4 "Disarmed by preflight inaction" 11 s after arming on the ground and "Disarmed by
 // landing" 2 s after touchdown (PX4 Commander: _auto_disarm_landed); ArduCopter "Disarming
 // motors" DISARM_DELAY after arming when it stayed landed at zero throttle

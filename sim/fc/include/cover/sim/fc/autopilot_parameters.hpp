@@ -20,7 +20,7 @@ struct AutopilotParameter {
 
 // The parameters a simulated autopilot answers PARAM_REQUEST_READ for: those COVER's bridge
 // reads (docs/flight-controller.md), with the types the real firmware gives them (read from
-// PX4 SITL and ArduCopter SITL, shared/sitl), their values from config/sim/sim_fc.yaml.
+// PX4 SITL and ArduCopter SITL, docs/autopilots.md), their values from config/sim/sim_fc.yaml.
 class AutopilotParameters {
  public:
   AutopilotParameters(AutopilotProfile profile, const SimFcParams& params, std::uint8_t system_id);

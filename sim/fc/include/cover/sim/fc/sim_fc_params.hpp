@@ -62,7 +62,7 @@ struct StreamRates {
   double codec_unknown_hz = 0.0;
 
   // PX4's "onboard" link (mavlink_main.cpp MAVLINK_MODE_ONBOARD), as measured from PX4 SITL
-  // (shared/sitl/README.md): ATTITUDE 98, ATTITUDE_QUATERNION and HIGHRES_IMU 49, ...
+  // (docs/autopilots.md, measured on real SITL): ATTITUDE 98, ATTITUDE_QUATERNION and HIGHRES_IMU 49, ...
   static StreamRates px4_onboard();
   // ArduCopter: every stream rate 0 on every port; HEARTBEAT only.
   static StreamRates ardupilot_default() { return StreamRates{}; }
