@@ -122,6 +122,18 @@ TEST(ParticipantOptionsFile, ShippedConfigIsValid) {
   EXPECT_NO_THROW(options.validate());
 }
 
+// A process joining a running system (a recorder, `cover echo`) learns each participant
+// that missed answering its first announcement at that participant's next one: every
+// shipped process announces at least twice a second, so a late joiner knows the whole
+// system within about half a second (Fast DDS's default, 3 s, gave a recorder its first
+// sample up to 3.3 s after it started).
+TEST(ParticipantOptionsFile, ShippedConfigAnnouncesOftenEnoughForALateJoiner) {
+  const auto options =
+      ParticipantOptions::load_file(std::string(COVER_SOURCE_DIR) + "/config/dds.yaml");
+  EXPECT_GT(options.announcement_period_s, 0.0) << "0 is the vendor's default: Fast DDS 3 s";
+  EXPECT_LE(options.announcement_period_s, 0.5);
+}
+
 TEST(ParticipantOptionsFile, ProfileReplacesTheNetworkKeys) {
   const auto file = write_temp_yaml(
       "dds_profiles.yaml",

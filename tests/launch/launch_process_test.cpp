@@ -162,6 +162,35 @@ launch:
   EXPECT_TRUE(contains(launch_log(), "variables: clock=lockstep db=" + db)) << launch_log();
 }
 
+// A tool beside the launch (cover-bench mocap) finds the run by what the launch says: its
+// identity is in <run_dir>/run.json while the processes run (the ends_run process waits
+// for it), and names the run id its processes were given.
+TEST_F(LaunchProcess, RunJsonNamesTheRunWhileItsProcessesRun) {
+  const auto result = run(R"(
+launch:
+  name: identity
+  grace_period_s: 0.3
+  processes:
+    - name: sim
+      executable: fake_process
+      args: [--mode=exit, "--await={run_dir}/run.json", "--run-id={run_id}"]
+      ends_run: true
+)",
+                          {"--json", "--domain", "23"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto report = result.json();
+  const auto identity = nlohmann::json::parse(read_text(run_dir_ / "run.json"), nullptr, false);
+  ASSERT_TRUE(identity.is_object()) << read_text(run_dir_ / "run.json");
+  EXPECT_EQ(identity.at("run_id"), report.at("run_id"));
+  EXPECT_TRUE(contains(log_of("sim"), "arg: --run-id=" + identity.at("run_id").get<std::string>()));
+  EXPECT_EQ(identity.at("name"), "identity");
+  EXPECT_EQ(identity.at("kind"), "mission");
+  EXPECT_EQ(identity.at("domain"), 23);
+  EXPECT_EQ(identity.at("run_dir"), run_dir_.string());
+  EXPECT_TRUE(identity.at("launcher_pid").is_number_integer());
+  EXPECT_FALSE(std::filesystem::exists(run_dir_ / "run.json.partial"));
+}
+
 TEST_F(LaunchProcess, EarlyDeathStopsTheRestAndExits4) {
   const auto result = run(R"(
 launch:

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -28,6 +29,7 @@
 #include "cover/launch/launch_file.hpp"
 #include "cover/process/child_process.hpp"
 #include "launch_run.hpp"
+#include "not_measured.hpp"
 #include "vendor_mix.hpp"
 
 namespace {
@@ -100,13 +102,32 @@ std::unique_ptr<cover::bench::ConcurrentFloor> start_floor(const cover::bench::V
   return floor;
 }
 
+// NaN (not measured) when either side is missing.
 double ratio(double value, const nlohmann::json& floor, const char* key) {
-  if (!floor.is_object() || floor[key].get<double>() <= 0.0) return 0.0;
+  if (!floor.is_object() || !floor[key].is_number() || floor[key].get<double>() <= 0.0) {
+    return NAN;
+  }
   return value / floor[key].get<double>();
 }
 
+// NaN (not measured) when the report has no such number.
 double number(const nlohmann::json& j, const char* key) {
-  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : 0.0;
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
+}
+
+// How a launch ended, for a reason: its report may be empty (the launcher gave none).
+std::string outcome(const nlohmann::json& report) {
+  if (report.empty()) return "the launch gave no result";
+  return report.value("success", false) ? "the mission succeeded" : "the mission failed";
+}
+
+std::string row_name(const cover::bench::VendorMix& mix, bool secure) {
+  return std::string(mix.name) + (secure ? " secure" : " plain");
+}
+
+// A JSON figure for the table: formatted, or "not measured" for null.
+std::string text(const nlohmann::json& value, const char* format) {
+  return cover::bench::figure_text(format, value.is_number() ? value.get<double>() : NAN);
 }
 
 int run(const std::vector<std::string>& args) {
@@ -131,6 +152,7 @@ int run(const std::vector<std::string>& args) {
                      : std::vector<std::string>{"--var", "method=" + method};
 
   nlohmann::json out{{"latency", nlohmann::json::array()}, {"lockstep", nlohmann::json::array()}};
+  cover::bench::NotMeasured missing;
   for (const bool secure : {false, true}) {
     for (const cover::bench::VendorMix& mix : cover::bench::vendor_mixes()) {
       if (secure && !one_vendor(mix)) continue;
@@ -146,27 +168,41 @@ int run(const std::vector<std::string>& args) {
       if (!fleet.empty()) std::filesystem::remove_all(fleet);
       const nlohmann::json latency =
           r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();
-      const double p50 = number(latency, "p50");
-      const double p99 = number(latency, "p99");
+      const int samples = latency.value("samples", 0);
+      const double p50 = samples > 0 ? number(latency, "p50") : NAN;
+      const double p99 = samples > 0 ? number(latency, "p99") : NAN;
+      if (samples == 0) {
+        missing.add("latency, " + row_name(mix, secure) +
+                    ": the run reported no sensor-to-command sample (" + outcome(r) + ")");
+      }
+      if (running_floor && !floor.is_object()) {
+        missing.add("floor of " + std::string(mix.name) + ": no round trip came back");
+      }
       out["latency"].push_back(
           {{"mix", mix.name},
            {"secure", secure},
            {"success", r.is_object() && r.value("success", false) && (!secure || !fleet.empty())},
-           {"p50_ms", p50},
-           {"p99_ms", p99},
-           {"samples", latency.value("samples", 0)},
+           {"p50_ms", cover::bench::figure_json(p50)},
+           {"p99_ms", cover::bench::figure_json(p99)},
+           {"samples", samples},
            {"floor", floor},
-           {"p50_over_floor", ratio(p50, floor, "p50_ms")},
-           {"p99_over_floor", ratio(p99, floor, "p99_ms")}});
+           {"p50_over_floor", cover::bench::figure_json(ratio(p50, floor, "p50_ms"))},
+           {"p99_over_floor", cover::bench::figure_json(ratio(p99, floor, "p99_ms"))}});
     }
   }
   for (const char* scenario : {"scenario2", "scenario4"}) {
     std::vector<std::string> flags = {"--dds", "ugv*=cyclone"};
     flags.insert(flags.end(), method_flags.begin(), method_flags.end());
     const nlohmann::json r = cover::bench::run_launch(scenario, flags, domain++, "e2e");
-    out["lockstep"].push_back({{"scenario", scenario},
-                               {"success", r.is_object() && r.value("success", false)},
-                               {"speed_factor", number(r, "speed_factor")}});
+    const double speed = number(r, "speed_factor");
+    if (!(speed > 0.0)) {
+      missing.add(std::string("lockstep ") + scenario + ": the run reported no speed factor (" +
+                  outcome(r) + ")");
+    }
+    out["lockstep"].push_back(
+        {{"scenario", scenario},
+         {"success", r.is_object() && r.value("success", false)},
+         {"speed_factor", cover::bench::figure_json(speed > 0.0 ? speed : NAN)}});
   }
   if (json) {
     std::cout << out.dump(2) << "\n";
@@ -174,25 +210,26 @@ int run(const std::vector<std::string>& args) {
     std::printf(
         "sensor-to-command latency, realtime Scenario 2 (relative state out -> command in)\n");
     for (const auto& l : out["latency"]) {
-      std::printf("  %-8s %-6s p50 %.3f ms  p99 %.3f ms  (%d samples)%s\n",
+      std::printf("  %-8s %-6s p50 %s  p99 %s  (%d samples)%s\n",
                   l["mix"].get<std::string>().c_str(), l["secure"].get<bool>() ? "secure" : "plain",
-                  l["p50_ms"].get<double>(), l["p99_ms"].get<double>(), l["samples"].get<int>(),
-                  l["success"].get<bool>() ? "" : "  MISSION FAILED");
+                  text(l["p50_ms"], "%.3f ms").c_str(), text(l["p99_ms"], "%.3f ms").c_str(),
+                  l["samples"].get<int>(), l["success"].get<bool>() ? "" : "  MISSION FAILED");
       if (l["floor"].is_object()) {
         const auto& f = l["floor"];
-        std::printf("  %-15s floor p50 %.3f ms  p99 %.3f ms  (%d round trips)  -> %.2fx / %.2fx\n",
-                    "", f["p50_ms"].get<double>(), f["p99_ms"].get<double>(),
-                    f["samples"].get<int>(), l["p50_over_floor"].get<double>(),
-                    l["p99_over_floor"].get<double>());
+        std::printf("  %-15s floor p50 %.3f ms  p99 %.3f ms  (%d round trips)  -> %s / %s\n", "",
+                    f["p50_ms"].get<double>(), f["p99_ms"].get<double>(), f["samples"].get<int>(),
+                    text(l["p50_over_floor"], "%.2fx").c_str(),
+                    text(l["p99_over_floor"], "%.2fx").c_str());
       }
     }
     std::printf("lockstep (UGV agents on Cyclone, the rest on Fast DDS)\n");
     for (const auto& l : out["lockstep"]) {
-      std::printf("  %-10s %s, %.1fx real time\n", l["scenario"].get<std::string>().c_str(),
-                  l["success"].get<bool>() ? "success" : "FAILED", l["speed_factor"].get<double>());
+      std::printf("  %-10s %s, %s real time\n", l["scenario"].get<std::string>().c_str(),
+                  l["success"].get<bool>() ? "success" : "FAILED",
+                  text(l["speed_factor"], "%.1fx").c_str());
     }
   }
-  return 0;
+  return missing.exit_code("e2e");
 }
 
 const cover::bench::Registrar registrar{"e2e", "missions as processes: latency and lockstep speed",

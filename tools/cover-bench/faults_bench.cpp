@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -33,6 +34,7 @@
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/world_segment.hpp"
 #include "fault_row.hpp"
+#include "not_measured.hpp"
 #include "vendor_mix.hpp"
 #include "wifi_runs.hpp"
 
@@ -265,8 +267,7 @@ class FaultRun {
           {(kBinDir / "cover-ugv-agent").string(), "--id", std::to_string(k), "--run-id", run_id_},
           v.ugv, "ugv" + std::to_string(k)));
     }
-    world_.emplace(cover::shm::SeqlockReader<SharedWorld>::open(
-        cover::shm::segment_name(domain, run_id_), cover::sim::kWorldSegmentLayoutVersion, 30s));
+    open_world();
     std::vector<std::string> uav{(kBinDir / "cover-uav-agent").string(),
                                  "--id",
                                  "0",
@@ -311,6 +312,30 @@ class FaultRun {
     o.extra_env = {"COVER_DDS=" + vendor, "COVER_DDS_DOMAIN=" + std::to_string(domain_)};
     o.log_file = dir_ + "/" + run_id_ + "_" + name + ".log";
     return std::make_unique<ChildProcess>(argv, o);
+  }
+
+  // The simulator's world, once it shares it (30 s at most). Throws std::runtime_error, naming
+  // the simulator's exit and log, when it exits first or the world does not appear: the run
+  // would measure nothing.
+  void open_world() {
+    const std::string name = cover::shm::segment_name(domain_, run_id_);
+    const auto deadline = Clock::now() + 30s;
+    std::string error;
+    while (Clock::now() < deadline) {
+      try {
+        world_.emplace(cover::shm::SeqlockReader<SharedWorld>::open(
+            name, cover::sim::kWorldSegmentLayoutVersion, 100ms));
+        return;
+      } catch (const std::runtime_error& e) {
+        error = e.what();
+      }
+      if (const auto code = sim_->wait(0ms)) {
+        throw std::runtime_error("cover-sim exited with code " + std::to_string(*code) +
+                                 " before sharing its world; see " + dir_ + "/" + run_id_ +
+                                 "_sim.log");
+      }
+    }
+    throw std::runtime_error("the simulator's world " + name + ": " + error);
   }
 
   // Polls the world (tracking the landing) until `until` holds; false on timeout or when
@@ -486,9 +511,14 @@ void print_table(const std::vector<FaultRow>& rows) {
     auto median_of = [](const std::vector<double>& v) {
       return v.empty() ? NAN : cover::bench::percentile(v, 0.5);
     };
-    std::printf("%-20s %-8s %5zu %7.0fms %7.0fms %7.2fm/s %6d %6d %6d %8.3fm\n",
-                group.front()->fault.c_str(), group.front()->mix.c_str(), group.size(),
-                median_of(ttf), max_of(ttf), max_of(td), done, landed, crashed, max_of(err));
+    // "-": no run of the group had one (no failsafe entered, no touchdown, not on the deck).
+    const auto cell = [](const char* format, double value) {
+      return std::isfinite(value) ? cover::bench::figure_text(format, value) : std::string("-");
+    };
+    std::printf("%-20s %-8s %5zu %9s %9s %9s %6d %6d %6d %10s\n", group.front()->fault.c_str(),
+                group.front()->mix.c_str(), group.size(), cell("%.0fms", median_of(ttf)).c_str(),
+                cell("%.0fms", max_of(ttf)).c_str(), cell("%.2fm/s", max_of(td)).c_str(), done,
+                landed, crashed, cell("%.3fm", max_of(err)).c_str());
   }
   std::printf(
       "ttf: input lost -> failsafe entered (the flight controller's land / offboard loss for the "

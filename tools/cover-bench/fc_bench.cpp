@@ -25,6 +25,7 @@
 #include "cover/mavlink/messages.hpp"
 #include "cover/mavlink/parser.hpp"
 #include "launch_run.hpp"
+#include "not_measured.hpp"
 
 namespace {
 
@@ -178,12 +179,27 @@ nlohmann::json latency_run(const std::string& autopilot, int domain) {
   const nlohmann::json r = cover::bench::run_launch("scenario2_" + autopilot, flags, domain, "fc");
   const nlohmann::json latency =
       r.is_object() && r.contains("latency_ms") ? r["latency_ms"] : nlohmann::json::object();
+  const int samples = latency.is_object() ? latency.value("samples", 0) : 0;
   return {{"autopilot", autopilot},
+          {"domain", domain},
+          {"reported", !r.empty()},
           {"success", r.is_object() && r.value("success", false)},
-          {"landing_error_m", number(r, "landing_error_m")},
-          {"p50_ms", number(latency, "p50")},
-          {"p99_ms", number(latency, "p99")},
-          {"samples", latency.is_object() ? latency.value("samples", 0) : 0}};
+          {"landing_error_m", cover::bench::figure_json(number(r, "landing_error_m"))},
+          {"p50_ms", cover::bench::figure_json(samples > 0 ? number(latency, "p50") : NAN)},
+          {"p99_ms", cover::bench::figure_json(samples > 0 ? number(latency, "p99") : NAN)},
+          {"samples", samples}};
+}
+
+// A latency run that reported no sample measured nothing, whether its mission flew or not.
+void check_latency(const nlohmann::json& l, cover::bench::NotMeasured& missing) {
+  if (l["samples"].get<int>() > 0) return;
+  missing.add("latency through " + l["autopilot"].get<std::string>() + " (domain " +
+              std::to_string(l["domain"].get<int>()) +
+              "): the run reported no relative state -> setpoint sample (" +
+              (!l["reported"].get<bool>() ? "the launch gave no result"
+               : l["success"].get<bool>() ? "the mission succeeded"
+                                          : "the mission failed") +
+              ")");
 }
 
 int run(const std::vector<std::string>& args) {
@@ -257,22 +273,28 @@ int run(const std::vector<std::string>& args) {
           kLatencyP50TargetMs, kLatencyP99TargetMs);
     }
     for (const auto& l : latency) {
-      std::printf("  %-10s p50 %.3f ms  p99 %.3f ms  (%d samples), landing %.3f m%s\n",
-                  l["autopilot"].get<std::string>().c_str(), number(l, "p50_ms"),
-                  number(l, "p99_ms"), l["samples"].get<int>(), number(l, "landing_error_m"),
+      std::printf("  %-10s p50 %s  p99 %s  (%d samples), landing %s%s\n",
+                  l["autopilot"].get<std::string>().c_str(),
+                  cover::bench::figure_text("%.3f ms", number(l, "p50_ms")).c_str(),
+                  cover::bench::figure_text("%.3f ms", number(l, "p99_ms")).c_str(),
+                  l["samples"].get<int>(),
+                  cover::bench::figure_text("%.3f m", number(l, "landing_error_m")).c_str(),
                   l["success"].get<bool>() ? "" : "  MISSION FAILED");
     }
   }
+  cover::bench::NotMeasured missing;
+  for (const auto& l : latency) check_latency(l, missing);
+  int code = 0;
   for (const auto& l : latency) {
-    if (!l["success"].get<bool>()) return 1;
+    if (!l["success"].get<bool>()) code = 1;
   }
   for (const Row& r : rows) {
     if (r.parser_errors != 0 || r.decoded == 0) {
       std::fprintf(stderr, "mavlink bench: %s frames were refused\n", r.message.c_str());
-      return 1;
+      code = 1;
     }
   }
-  return 0;
+  return missing.exit_code("fc", code);
 }
 
 const cover::bench::Registrar registrar{

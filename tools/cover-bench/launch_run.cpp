@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <fstream>
 #include <iostream>
 
 #include "cover/config/yaml_reader.hpp"
@@ -38,6 +39,29 @@ LaunchOutcome run_launcher(const LaunchRequest& request, const std::string& log_
   outcome.exit_code = child.wait(timeout).value_or(-1);
   outcome.result = nlohmann::json::parse(outcome.stdout_text, nullptr, false);
   return outcome;
+}
+
+std::optional<nlohmann::json> wait_for_run_identity(const std::filesystem::path& run_dir,
+                                                    cover::process::ChildProcess& launch,
+                                                    std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  const auto read = [file = run_dir / "run.json"]() -> std::optional<nlohmann::json> {
+    std::ifstream in(file);  // written whole and renamed into place: never half of it
+    if (!in) return std::nullopt;
+    auto identity = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    if (!identity.is_object() || !identity["run_id"].is_string() ||
+        !identity["domain"].is_number_integer()) {
+      return std::nullopt;
+    }
+    return identity;
+  };
+  for (;;) {
+    if (auto identity = read()) return identity;
+    if (std::chrono::steady_clock::now() >= deadline) return std::nullopt;
+    // Polled while the launch lives (it writes the file before its first process starts);
+    // once it has ended, the file is there or never will be.
+    if (launch.wait(std::chrono::milliseconds(5))) return read();
+  }
 }
 
 std::string launch_file_path(const std::string& launch_name) {

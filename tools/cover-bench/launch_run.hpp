@@ -3,8 +3,11 @@
 #include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "cover/process/child_process.hpp"
 
 // Missions run through cover-launch, by the benchmarks and the integration tests alike.
 namespace cover::bench {
@@ -32,6 +35,14 @@ std::vector<std::string> launch_argv(const LaunchRequest& request);
 // it is empty.
 LaunchOutcome run_launcher(const LaunchRequest& request, const std::string& log_file,
                            std::chrono::milliseconds timeout);
+
+// The run's identity that cover-launch writes to <run_dir>/run.json before it starts a
+// process (run_id, domain...: tools/cover-launch run_report.hpp), once it is there; nullopt
+// when `launch` ends, or `timeout` passes, without it. How a tool beside a launch finds the
+// run (the simulator's segment) by what the launch says instead of guessing its id.
+std::optional<nlohmann::json> wait_for_run_identity(const std::filesystem::path& run_dir,
+                                                    cover::process::ChildProcess& launch,
+                                                    std::chrono::milliseconds timeout);
 
 // The launch file config/launch/<launch_name>.yaml.
 std::string launch_file_path(const std::string& launch_name);

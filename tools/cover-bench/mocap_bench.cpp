@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -42,6 +43,8 @@
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/relative_sensor.hpp"
 #include "cover/sim/world_segment.hpp"
+#include "launch_run.hpp"
+#include "not_measured.hpp"
 
 namespace {
 
@@ -69,7 +72,27 @@ struct Row {
   double valid_fraction = NAN;
   std::size_t samples = 0, compared = 0;
   double relay_latency_p50_ms = NAN, relay_latency_p99_ms = NAN;
+  std::size_t world_snapshots = 0;
+  std::string world_error;  // why the simulator's world was not read, if it was not
 };
+
+std::string row_name(const Row& r) {
+  return r.clock + (r.noise ? " noisy" : " clean");
+}
+
+// What a row did not measure, with why.
+void check(const Row& r, cover::bench::NotMeasured& missing) {
+  if (r.compared == 0) {
+    missing.add(
+        row_name(r) + ": no relative state compared with the truth (" + std::to_string(r.samples) +
+        " received from the relay; the world: " +
+        (r.world_error.empty() ? std::to_string(r.world_snapshots) + " snapshots" : r.world_error) +
+        ")");
+  }
+  if (!std::isfinite(r.relay_latency_p99_ms)) {
+    missing.add(row_name(r) + ": relay latency (mocap.log has no statistics line)");
+  }
+}
 
 std::uint16_t free_tcp_port() {
   const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
@@ -86,28 +109,47 @@ std::uint16_t free_tcp_port() {
 // The world at every tick the bench saw, by simulated time (ns).
 class WorldRecorder {
  public:
-  void start(int domain, const std::string& run_id) {
-    thread_ = std::thread([this, domain, run_id] {
-      try {
-        auto reader = cover::shm::SeqlockReader<SharedWorld>::open(
-            cover::shm::segment_name(domain, run_id), cover::sim::kWorldSegmentLayoutVersion, 30s);
-        SharedWorld world;
-        while (!stop_) {
-          std::int64_t stamp_ns = 0;
-          if (reader.read(world, &stamp_ns)) {
-            std::lock_guard<std::mutex> lock(mutex_);
-            snapshots_.emplace(cover::clock::s_to_ns(world.time_s), world);
-          }
-          std::this_thread::sleep_for(50us);  // sampling the world, not a synchronisation
+  // Reads the segment `name` from when it appears until stop().
+  void start(const std::string& name) {
+    thread_ = std::thread([this, name] {
+      std::optional<cover::shm::SeqlockReader<SharedWorld>> reader;
+      while (!reader && !stop_) {
+        try {
+          reader.emplace(cover::shm::SeqlockReader<SharedWorld>::open(
+              name, cover::sim::kWorldSegmentLayoutVersion, 100ms));
+        } catch (const std::exception& e) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          error_ = e.what();  // the latest reason, reported if it never opens
         }
-      } catch (const std::exception& e) {
-        std::cerr << "mocap: the world segment: " << e.what() << "\n";
+      }
+      if (!reader) return;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_.clear();
+      }
+      SharedWorld world;
+      while (!stop_) {
+        std::int64_t stamp_ns = 0;
+        if (reader->read(world, &stamp_ns)) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          snapshots_.emplace(cover::clock::s_to_ns(world.time_s), world);
+        }
+        std::this_thread::sleep_for(50us);  // sampling the world, not a synchronisation
       }
     });
   }
   void stop() {
     stop_ = true;
     if (thread_.joinable()) thread_.join();
+  }
+  // Why the segment was not read ("" once it was).
+  std::string error() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return error_;
+  }
+  std::size_t size() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return snapshots_.size();
   }
   const SharedWorld* at(std::int64_t stamp_ns) const {
     const auto it = snapshots_.find(stamp_ns);
@@ -125,7 +167,8 @@ class WorldRecorder {
  private:
   std::atomic<bool> stop_{false};
   std::thread thread_;
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
+  std::string error_ = "not opened";
   std::map<std::int64_t, SharedWorld> snapshots_;
 };
 
@@ -171,7 +214,7 @@ void compare(const std::vector<cover::msg::RelativeState>& samples, const WorldR
     }
   }
   row.compared = position.size();
-  row.valid_fraction = row.samples ? static_cast<double>(valid) / row.samples : 0.0;
+  row.valid_fraction = row.samples ? static_cast<double>(valid) / row.samples : NAN;
   row.position_p50_m = percentile(position, 0.5);
   row.position_p99_m = percentile(position, 0.99);
   row.velocity_p50_m_s = percentile(velocity, 0.5);
@@ -217,10 +260,18 @@ Row run_row(const std::string& clock, bool noise, const fs::path& dir) {
   cover::process::SpawnOptions spawn;
   spawn.log_file = (dir / (clock + (noise ? "_noise" : "_clean") + "_launch.log")).string();
   cover::process::ChildProcess launch(argv, spawn);
+  // The simulator's segment, by the run id and domain the launch says it gave it.
   WorldRecorder world;
-  world.start(claim.domain(), "scenario2_mocap_" + std::to_string(launch.pid()));
+  if (const auto identity = cover::bench::wait_for_run_identity(run_dir, launch, 30s)) {
+    world.start(cover::shm::segment_name((*identity)["domain"].get<int>(),
+                                         (*identity)["run_id"].get<std::string>()));
+  } else {
+    row.world_error = "the launch wrote no " + (run_dir / "run.json").string();
+  }
   const auto code = launch.wait(std::chrono::minutes(5));
   world.stop();
+  if (row.world_error.empty()) row.world_error = world.error();
+  row.world_snapshots = world.size();
   if (!code) launch.terminate(10s, SIGINT);
   std::ifstream result_file(run_dir / "result.json");
   if (result_file) {
@@ -240,29 +291,36 @@ nlohmann::json to_json(const Row& r) {
   return {{"clock", r.clock},
           {"noise_and_dropouts", r.noise},
           {"success", r.success},
-          {"landing_error_m", r.landing_error_m},
-          {"position_error_p50_m", r.position_p50_m},
-          {"position_error_p99_m", r.position_p99_m},
-          {"velocity_error_p50_m_s", r.velocity_p50_m_s},
-          {"velocity_error_p99_m_s", r.velocity_p99_m_s},
-          {"flight_velocity_error_p99_m_s", r.flight_velocity_p99_m_s},
-          {"valid_fraction", r.valid_fraction},
+          {"landing_error_m", cover::bench::figure_json(r.landing_error_m)},
+          {"position_error_p50_m", cover::bench::figure_json(r.position_p50_m)},
+          {"position_error_p99_m", cover::bench::figure_json(r.position_p99_m)},
+          {"velocity_error_p50_m_s", cover::bench::figure_json(r.velocity_p50_m_s)},
+          {"velocity_error_p99_m_s", cover::bench::figure_json(r.velocity_p99_m_s)},
+          {"flight_velocity_error_p99_m_s", cover::bench::figure_json(r.flight_velocity_p99_m_s)},
+          {"valid_fraction", cover::bench::figure_json(r.valid_fraction)},
           {"samples", r.samples},
           {"compared", r.compared},
-          {"relay_latency_p50_ms", r.relay_latency_p50_ms},
-          {"relay_latency_p99_ms", r.relay_latency_p99_ms}};
+          {"world_snapshots", r.world_snapshots},
+          {"relay_latency_p50_ms", cover::bench::figure_json(r.relay_latency_p50_ms)},
+          {"relay_latency_p99_ms", cover::bench::figure_json(r.relay_latency_p99_ms)}};
 }
 
 void print(const Row& r) {
+  using cover::bench::figure_text;
+  const auto milli = [](const char* format, double value) {
+    return figure_text(format, value * 1e3);
+  };
   std::printf(
-      "%-9s %-5s %-7s landing %5.1f mm | position p50 %6.2f p99 %6.2f mm | velocity p50 %5.1f "
-      "p99 %5.1f (in flight %5.1f) mm/s | valid %5.1f %% of %zu (%zu compared) | relay p50 %.3f "
-      "p99 %.3f ms\n",
+      "%-9s %-5s %-7s landing %s | position p50 %s p99 %s | velocity p50 %s p99 %s (in flight %s) "
+      "| valid %s of %zu (%zu compared) | relay p50 %s p99 %s\n",
       r.clock.c_str(), r.noise ? "noisy" : "clean", r.success ? "success" : "FAILED",
-      r.landing_error_m * 1e3, r.position_p50_m * 1e3, r.position_p99_m * 1e3,
-      r.velocity_p50_m_s * 1e3, r.velocity_p99_m_s * 1e3, r.flight_velocity_p99_m_s * 1e3,
-      r.valid_fraction * 100.0, r.samples, r.compared, r.relay_latency_p50_ms,
-      r.relay_latency_p99_ms);
+      milli("%.1f mm", r.landing_error_m).c_str(), milli("%.2f mm", r.position_p50_m).c_str(),
+      milli("%.2f mm", r.position_p99_m).c_str(), milli("%.1f mm/s", r.velocity_p50_m_s).c_str(),
+      milli("%.1f mm/s", r.velocity_p99_m_s).c_str(),
+      milli("%.1f mm/s", r.flight_velocity_p99_m_s).c_str(),
+      figure_text("%.1f %%", r.valid_fraction * 100.0).c_str(), r.samples, r.compared,
+      figure_text("%.3f ms", r.relay_latency_p50_ms).c_str(),
+      figure_text("%.3f ms", r.relay_latency_p99_ms).c_str());
 }
 
 int run(const std::vector<std::string>& args) {
@@ -273,15 +331,20 @@ int run(const std::vector<std::string>& args) {
   app.add_option("--clock", clocks, "lockstep and/or realtime")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
   if (const int code = cover::bench::parse_args(app, args); code >= 0) return code;
-  char pattern[] = "/tmp/cover_bench_mocap_XXXXXX";
-  const fs::path dir = ::mkdtemp(pattern);
+  // Under $TMPDIR (a test's scratch folder when a test runs it).
+  std::string pattern = (fs::temp_directory_path() / "cover_bench_mocap_XXXXXX").string();
+  const char* made = ::mkdtemp(pattern.data());
+  if (made == nullptr) throw std::runtime_error("cannot create a folder " + pattern);
+  const fs::path dir = made;
   std::vector<Row> rows;
   bool ok = true;
+  cover::bench::NotMeasured missing;
   for (const auto& clock : clocks) {
     for (const bool noise : {false, true}) {
       rows.push_back(run_row(clock, noise, dir));
       if (!json) print(rows.back());
       ok = ok && rows.back().success;
+      check(rows.back(), missing);
     }
   }
   if (json) {
@@ -289,12 +352,13 @@ int run(const std::vector<std::string>& args) {
     for (const auto& r : rows) out.push_back(to_json(r));
     std::cout << nlohmann::json{{"mocap", out}}.dump(2) << "\n";
   }
-  if (ok) {
+  if (ok && missing.empty()) {
     fs::remove_all(dir);
   } else {
-    std::cerr << "mocap: a run failed; its logs are in " << dir << "\n";
+    std::cerr << "mocap: " << (ok ? "a run measured nothing" : "a run failed")
+              << "; its logs are in " << dir << "\n";
   }
-  return ok ? 0 : 1;
+  return missing.exit_code("mocap", ok ? 0 : 1);
 }
 
 const cover::bench::Registrar registrar{

@@ -20,6 +20,7 @@
 #include "cover/model/dynamics.hpp"
 #include "cover/sampc/reference_solver.hpp"
 #include "cover/sampc/sampc.hpp"
+#include "not_measured.hpp"
 
 namespace {
 
@@ -281,11 +282,14 @@ int run(const std::vector<std::string>& args) {
   std::vector<double> abs_gaps, abs_hover_gaps;
   for (double g : gap.relative_gaps) abs_gaps.push_back(std::abs(g));
   for (double g : gap.hover_start_gaps) abs_hover_gaps.push_back(std::abs(g));
-  const double worst_gap =
-      abs_gaps.empty() ? 0.0 : *std::max_element(abs_gaps.begin(), abs_gaps.end());
-  double mean_error = 0.0;
-  for (double e : loop.tracking_error_m) mean_error += e;
-  if (!loop.tracking_error_m.empty()) mean_error /= loop.tracking_error_m.size();
+  // Not measured (NaN: JSON null) when no gap problem was asked for or no tracking stage ran.
+  const double worst_gap = percentile(abs_gaps, 1.0);
+  double mean_error = NAN;
+  if (!loop.tracking_error_m.empty()) {
+    mean_error = 0.0;
+    for (double e : loop.tracking_error_m) mean_error += e;
+    mean_error /= static_cast<double>(loop.tracking_error_m.size());
+  }
 
   nlohmann::json out;
   out["horizon"] = params.horizon_steps;
@@ -304,14 +308,15 @@ int run(const std::vector<std::string>& args) {
   out["qp_not_converged"] = loop.qp_not_converged;
   out["stages_completed"] = loop.stages_completed;
   out["stage_timeouts"] = loop.stage_timeouts;
-  out["tracking_error_mean_m"] = mean_error;
-  out["tracking_error_p99_m"] = percentile(loop.tracking_error_m, 0.99);
-  out["optimality_gap"] = worst_gap;
-  out["optimality_gap_median"] = percentile(abs_gaps, 0.5);
-  out["optimality_gap_hover_start"] = percentile(abs_hover_gaps, 1.0);
-  out["optimality_gap_hover_start_median"] = percentile(abs_hover_gaps, 0.5);
+  out["tracking_error_mean_m"] = cover::bench::figure_json(mean_error);
+  out["tracking_error_p99_m"] = cover::bench::figure_json(percentile(loop.tracking_error_m, 0.99));
+  out["optimality_gap"] = cover::bench::figure_json(worst_gap);
+  out["optimality_gap_median"] = cover::bench::figure_json(percentile(abs_gaps, 0.5));
+  out["optimality_gap_hover_start"] = cover::bench::figure_json(percentile(abs_hover_gaps, 1.0));
+  out["optimality_gap_hover_start_median"] =
+      cover::bench::figure_json(percentile(abs_hover_gaps, 0.5));
   out["gap_other_local_minima"] = gap.other_local_minima;
-  out["gap_kkt_gradient_max"] = percentile(gap.gradient_max, 1.0);
+  out["gap_kkt_gradient_max"] = cover::bench::figure_json(percentile(gap.gradient_max, 1.0));
   out["gap_problems"] = gap_problems;
   out["gap_sqp_not_converged"] = gap.sqp_failures;
   out["gap_reference_failures"] = gap.reference_failures;
@@ -333,14 +338,21 @@ int run(const std::vector<std::string>& args) {
                 percentile(loop.feedback_us, 0.99));
     std::printf("  stages completed %d, timeouts %d, error statuses %d, QP caps %d\n",
                 loop.stages_completed, loop.stage_timeouts, loop.errors, loop.qp_not_converged);
-    std::printf("  tracking error (initial/final stages): mean %.3f m, p99 %.3f m\n", mean_error,
-                percentile(loop.tracking_error_m, 0.99));
     std::printf(
-        "  optimality gap vs NLopt (%d problems): max %.2e, median %.2e; free |grad| max %.1e\n",
-        gap_problems, worst_gap, percentile(abs_gaps, 0.5), percentile(gap.gradient_max, 1.0));
-    std::printf("  NLopt from hover: max %.2e, median %.2e (%d in another local minimum)\n",
-                percentile(abs_hover_gaps, 1.0), percentile(abs_hover_gaps, 0.5),
-                gap.other_local_minima);
+        "  tracking error (initial/final stages): mean %s, p99 %s\n",
+        cover::bench::figure_text("%.3f m", mean_error).c_str(),
+        cover::bench::figure_text("%.3f m", percentile(loop.tracking_error_m, 0.99)).c_str());
+    if (gap_problems == 0) {
+      std::printf("  optimality gap vs NLopt: not asked for (--gap-problems 0)\n");
+    } else {
+      std::printf(
+          "  optimality gap vs NLopt (%d problems): max %.2e, median %.2e; free |grad| max "
+          "%.1e\n",
+          gap_problems, worst_gap, percentile(abs_gaps, 0.5), percentile(gap.gradient_max, 1.0));
+      std::printf("  NLopt from hover: max %.2e, median %.2e (%d in another local minimum)\n",
+                  percentile(abs_hover_gaps, 1.0), percentile(abs_hover_gaps, 0.5),
+                  gap.other_local_minima);
+    }
   }
   return 0;
 }

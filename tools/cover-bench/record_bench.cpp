@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -32,6 +33,7 @@
 #include "cover/foxglove/subscriber_client.hpp"
 #include "cover/mcap/reader.hpp"
 #include "cover/process/child_process.hpp"
+#include "not_measured.hpp"
 
 namespace {
 
@@ -285,8 +287,11 @@ int run(const std::vector<std::string>& args) {
   double duration_s = 10.0;
   std::vector<double> scales{1.0, 10.0};
   bool json = false;
-  app.add_option("--duration", duration_s, "seconds measured per row")->capture_default_str();
+  app.add_option("--duration", duration_s, "seconds measured per row")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--scale", scales, "rate factors of the fleet (1: full rates)")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_flag("--json", json, "one JSON object");
   if (const int code = cover::bench::parse_args(app, args); code >= 0) return code;
@@ -304,45 +309,74 @@ int run(const std::vector<std::string>& args) {
   }
   const Scenario2Shares scenario2 = scenario2_cpu_shares(claim.domain(), dir);
   fs::remove_all(dir);
+  cover::bench::NotMeasured missing;
+  for (const auto& r : rows) {
+    if (r.recorded == 0) {
+      missing.add("record " + r.compression + " at " + std::to_string(r.scale) +
+                  "x: the recorder wrote no sample of the " + std::to_string(r.published) +
+                  " published");
+    }
+  }
+  if (scenario2.recorder < 0.0) {
+    missing.add(
+        "the recorder's share in realtime Scenario 2: the run failed or its recorder "
+        "logged no CPU line");
+  }
+  if (scenario2.live_view < 0.0) {
+    missing.add(
+        "the live view's share in realtime Scenario 2: the run failed or the bridge "
+        "logged no CPU line");
+  }
+  // A share as a fraction of one core, or not measured (negative: the run gave none).
+  const auto share = [](double fraction) { return fraction >= 0.0 ? fraction : NAN; };
 
   nlohmann::json out = nlohmann::json::array();
   for (const auto& r : rows) {
-    out.push_back({{"compression", r.compression},
-                   {"rate_scale", r.scale},
-                   {"duration_s", r.duration_s},
-                   {"published", r.published},
-                   {"recorded", r.recorded},
-                   {"lost", r.published - std::min(r.published, r.recorded)},
-                   {"samples_per_s", r.samples_per_s},
-                   {"bytes_per_flight_minute", r.bytes_per_minute},
-                   {"cpu_share_of_one_core", r.cpu_share}});
+    out.push_back(
+        {{"compression", r.compression},
+         {"rate_scale", r.scale},
+         {"duration_s", r.duration_s},
+         {"published", r.published},
+         {"recorded", r.recorded},
+         {"lost", r.published - std::min(r.published, r.recorded)},
+         {"samples_per_s", cover::bench::figure_json(r.recorded ? r.samples_per_s : NAN)},
+         {"bytes_per_flight_minute",
+          cover::bench::figure_json(r.recorded ? r.bytes_per_minute : NAN)},
+         {"cpu_share_of_one_core", cover::bench::figure_json(r.recorded ? r.cpu_share : NAN)}});
   }
   if (json) {
     std::cout << nlohmann::json{{"record", out},
-                                {"scenario2_realtime_recorder_cpu_share", scenario2.recorder},
-                                {"scenario2_realtime_live_view_cpu_share", scenario2.live_view},
+                                {"scenario2_realtime_recorder_cpu_share",
+                                 cover::bench::figure_json(share(scenario2.recorder))},
+                                {"scenario2_realtime_live_view_cpu_share",
+                                 cover::bench::figure_json(share(scenario2.live_view))},
                                 {"scenario2_live_view_messages", scenario2.live_view_messages},
                                 {"scenario2_live_view_channels", scenario2.live_view_channels}}
                      .dump()
               << std::endl;
-    return 0;
+    return missing.exit_code("record");
   }
   std::printf("%-6s %6s %10s %10s %6s %10s %14s %8s\n", "compr", "scale", "published", "recorded",
               "lost", "samples/s", "MiB/flight-min", "CPU");
   for (const auto& r : rows) {
-    std::printf("%-6s %6.0f %10llu %10llu %6llu %10.0f %14.2f %7.1f%%\n", r.compression.c_str(),
-                r.scale, static_cast<unsigned long long>(r.published),
-                static_cast<unsigned long long>(r.recorded),
-                static_cast<unsigned long long>(r.published - std::min(r.published, r.recorded)),
-                r.samples_per_s, r.bytes_per_minute / (1024.0 * 1024.0), 100.0 * r.cpu_share);
+    // A recorder that wrote nothing measured no rate, size or share.
+    const double measured = r.recorded > 0 ? 1.0 : NAN;
+    std::printf(
+        "%-6s %6.0f %10llu %10llu %6llu %10s %14s %8s\n", r.compression.c_str(), r.scale,
+        static_cast<unsigned long long>(r.published), static_cast<unsigned long long>(r.recorded),
+        static_cast<unsigned long long>(r.published - std::min(r.published, r.recorded)),
+        cover::bench::figure_text("%.0f", measured * r.samples_per_s).c_str(),
+        cover::bench::figure_text("%.2f", measured * r.bytes_per_minute / 1048576.0).c_str(),
+        cover::bench::figure_text("%.1f%%", measured * 100.0 * r.cpu_share).c_str());
   }
   std::printf(
-      "realtime Scenario 2 (cover-launch --record --foxglove): recorder %.1f%%, live view %.1f%% "
+      "realtime Scenario 2 (cover-launch --record --foxglove): recorder %s, live view %s "
       "of one core (its client subscribed to %llu channels, received %llu messages)\n",
-      100.0 * scenario2.recorder, 100.0 * scenario2.live_view,
+      cover::bench::figure_text("%.1f %%", 100.0 * share(scenario2.recorder)).c_str(),
+      cover::bench::figure_text("%.1f %%", 100.0 * share(scenario2.live_view)).c_str(),
       static_cast<unsigned long long>(scenario2.live_view_channels),
       static_cast<unsigned long long>(scenario2.live_view_messages));
-  return 0;
+  return missing.exit_code("record");
 }
 
 const cover::bench::Registrar registrar{

@@ -13,6 +13,7 @@
 #include "cover/model/angles.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
+#include "not_measured.hpp"
 
 namespace {
 
@@ -117,7 +118,11 @@ int run(const std::vector<std::string>& args) {
       options.record_step_trace = !trace_file.empty() && i == 0;
       const cover::sim::ClosedLoop loop(scenario, config, options);
       const cover::sim::ClosedLoopResult result = loop.run();
-      Row row{patterns[i], method, !result.transitions.empty(), {}, result.status};
+      Row row;
+      row.pattern = patterns[i];
+      row.method = method;
+      row.switched = !result.transitions.empty();
+      row.status = result.status;
       if (row.switched) row.transition = result.transitions.front();
       if (options.record_paths) {
         const std::string file = mode == cover::sampc::Mode::Cover
@@ -142,6 +147,12 @@ int run(const std::vector<std::string>& args) {
     }
   }
 
+  cover::bench::NotMeasured missing;
+  for (const Row& r : rows) {
+    if (!r.switched) {
+      missing.add(r.pattern + ", " + r.method + ": the frame never switched (" + r.status + ")");
+    }
+  }
   if (json) {
     nlohmann::json out;
     out["window_s"] = cover::sim::ClosedLoopOptions{}.switch_window_s;
@@ -164,7 +175,7 @@ int run(const std::vector<std::string>& args) {
     print_table(rows);
     if (plot->count() > 0) std::printf("plot: %s (baselines: _<method>)\n", plot_file.c_str());
   }
-  return 0;
+  return missing.exit_code("stability");
 }
 
 const cover::bench::Registrar registrar{

@@ -27,6 +27,7 @@
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
 #include "cover/sim/transition_plot.hpp"
+#include "not_measured.hpp"
 
 namespace {
 
@@ -90,6 +91,9 @@ struct Row {
     return sum([](const auto& t) { return t.path_length_m; });
   }
   double ratio() const { return ratio_of(Lt(), Ls()); }
+  // L_s and L_t, NaN (not measured) when no transition completed.
+  double measured_Ls() const { return completed() > 0 ? Ls() : std::nan(""); }
+  double measured_Lt() const { return completed() > 0 ? Lt() : std::nan(""); }
   // What the eq. 30 law would reach from the same starts with a perfect controller.
   double eq30_law_ratio() const {
     return ratio_of(sum([](const auto& t) { return t.eq30_law.path_length_m; }),
@@ -265,9 +269,13 @@ void print_table(const std::vector<Row>& rows) {
   std::printf("%6s %6s  %-11s %9s %9s %8s %9s %7s %12s %9s\n", "v m/s", "w r/s", "method", "Ls m",
               "Lt m", "Lt/Ls", "eq30 law", "bound", "transitions", "failures");
   for (const Row& r : rows) {
-    std::printf("%6.2f %6.2f  %-11s %9.2f %9.2f %8.3f %9.3f %7.3f %7d / %-4d %9d\n", r.v, r.w,
-                r.method.c_str(), r.Ls(), r.Lt(), r.ratio(), r.eq30_law_ratio(), r.bound_ratio(),
-                r.completed(), r.requested, r.requested - r.completed());
+    using cover::bench::figure_text;
+    std::printf(
+        "%6.2f %6.2f  %-11s %9s %9s %8s %9s %7s %7d / %-4d %9d\n", r.v, r.w, r.method.c_str(),
+        figure_text("%.2f", r.measured_Ls()).c_str(), figure_text("%.2f", r.measured_Lt()).c_str(),
+        figure_text("%.3f", r.ratio()).c_str(), figure_text("%.3f", r.eq30_law_ratio()).c_str(),
+        figure_text("%.3f", r.bound_ratio()).c_str(), r.completed(), r.requested,
+        r.requested - r.completed());
   }
   std::printf(
       "Lt/Ls = 1 is the straight line; the paper reports < 1.1 for COVER and a detour\n"
@@ -316,8 +324,8 @@ nlohmann::json table_json(const Options& options, const std::vector<RunStart>& s
     out["rows"].push_back({{"v", r.v},
                            {"w", r.w},
                            {"method", r.method},
-                           {"Ls", r.Ls()},
-                           {"Lt", r.Lt()},
+                           {"Ls", cover::bench::figure_json(r.measured_Ls())},
+                           {"Lt", cover::bench::figure_json(r.measured_Lt())},
                            {"ratio", cover::sim::number_or_null(r.ratio())},
                            {"eq30_law_ratio", cover::sim::number_or_null(r.eq30_law_ratio())},
                            {"bound_ratio", cover::sim::number_or_null(r.bound_ratio())},
@@ -362,6 +370,15 @@ int run(const std::vector<std::string>& args) {
     return 1;
   }
 
+  cover::bench::NotMeasured missing;
+  for (const Row& r : rows) {
+    if (r.completed() == 0) {
+      char setting[64];
+      std::snprintf(setting, sizeof setting, "v %.2f m/s, w %.2f rad/s, ", r.v, r.w);
+      missing.add(setting + r.method + ": none of " + std::to_string(r.requested) +
+                  " transitions completed, so no L_t/L_s");
+    }
+  }
   if (options.json) {
     std::cout << table_json(options, starts, rows).dump(2) << "\n";
   } else {
@@ -371,7 +388,7 @@ int run(const std::vector<std::string>& args) {
     if (!options.transitions_plot_file.empty())
       std::printf("transitions plot: %s\n", options.transitions_plot_file.c_str());
   }
-  return 0;
+  return missing.exit_code("table1");
 }
 
 const cover::bench::Registrar registrar{"table1", "paper Table 1: transition path ratio Lt/Ls",

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -22,6 +23,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/wire/task.hpp"
 #include "manager_client.hpp"
+#include "not_measured.hpp"
 
 namespace {
 
@@ -78,7 +80,9 @@ int run(const std::vector<std::string>& args) {
   int tasks = 40;
   int domain = 190;
   app.add_flag("--json", json, "print JSON instead of a table");
-  app.add_option("--tasks", tasks, "trivial tasks pushed through the queue")->capture_default_str();
+  app.add_option("--tasks", tasks, "trivial tasks pushed through the queue (>= 1)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--domain", domain, "DDS domain of the system")->capture_default_str();
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
 
@@ -95,6 +99,7 @@ int run(const std::vector<std::string>& args) {
   cover::dds::ParticipantOptions participant_options;
   participant_options.domain_id = domain;
   nlohmann::json out;
+  cover::bench::NotMeasured missing;
   {
     cover::dds::Participant station(participant_options);
     cover::cli::ManagerClient client(station, 10s);
@@ -116,23 +121,33 @@ int run(const std::vector<std::string>& args) {
       const auto t0 = std::chrono::steady_clock::now();
       const msg::ManagerReply reply =
           client.call(submission(hop("hop" + std::to_string(i), 1 - i % 2, i % 2)));
-      accept_ms.push_back(
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-      if (!reply.ok) std::cerr << "hop" << i << ": " << reply.message << "\n";
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      if (reply.ok) {
+        accept_ms.push_back(ms);  // a refusal is no submit-to-accepted latency
+      } else {
+        std::cerr << "hop" << i << ": " << reply.message << "\n";
+      }
     }
     int succeeded = 0;
+    int done = 0;
     const auto deadline = start + 600s;
-    while (finished(client, &succeeded) < tasks + 1 &&
+    while ((done = finished(client, &succeeded)) < tasks + 1 &&
            std::chrono::steady_clock::now() < deadline) {
       std::this_thread::sleep_for(50ms);  // polling pace of a ground station, not a synchronisation
     }
     const double elapsed_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const int hops_done = done - 1;  // the warm-up task is one of them
+    if (accept_ms.empty()) missing.add("accept latency: the manager accepted none of the tasks");
+    if (hops_done <= 0) missing.add("throughput: no task finished within 600 s");
     out = {{"tasks", tasks},
-           {"succeeded", succeeded - 1},
-           {"accept_p50_ms", cover::bench::percentile(accept_ms, 0.5)},
-           {"accept_p99_ms", cover::bench::percentile(accept_ms, 0.99)},
-           {"tasks_per_s", tasks / elapsed_s}};
+           {"finished", std::max(hops_done, 0)},
+           {"succeeded", std::max(succeeded - 1, 0)},
+           {"accepted", accept_ms.size()},
+           {"accept_p50_ms", cover::bench::figure_json(cover::bench::percentile(accept_ms, 0.5))},
+           {"accept_p99_ms", cover::bench::figure_json(cover::bench::percentile(accept_ms, 0.99))},
+           {"tasks_per_s", cover::bench::figure_json(hops_done > 0 ? hops_done / elapsed_s : NAN)}};
   }
   system.terminate(20s, SIGINT);
   std::filesystem::remove_all(dir);
@@ -140,12 +155,17 @@ int run(const std::vector<std::string>& args) {
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("task manager, standing lockstep system (config/launch/system.yaml)\n");
-    std::printf("  submit -> accepted   p50 %.2f ms, p99 %.2f ms (%d submissions)\n",
-                out["accept_p50_ms"].get<double>(), out["accept_p99_ms"].get<double>(), tasks);
-    std::printf("  throughput           %.2f tasks/s (%d of %d succeeded)\n",
-                out["tasks_per_s"].get<double>(), out["succeeded"].get<int>(), tasks);
+    const auto text = [&](const char* key, const char* format) {
+      return cover::bench::figure_text(format, out[key].is_number() ? out[key].get<double>() : NAN);
+    };
+    std::printf("  submit -> accepted   p50 %s, p99 %s (%zu of %d submissions accepted)\n",
+                text("accept_p50_ms", "%.2f ms").c_str(), text("accept_p99_ms", "%.2f ms").c_str(),
+                out["accepted"].get<std::size_t>(), tasks);
+    std::printf("  throughput           %s (%d finished, %d of %d succeeded)\n",
+                text("tasks_per_s", "%.2f tasks/s").c_str(), out["finished"].get<int>(),
+                out["succeeded"].get<int>(), tasks);
   }
-  return 0;
+  return missing.exit_code("tasks");
 }
 
 const cover::bench::Registrar registrar{"tasks",

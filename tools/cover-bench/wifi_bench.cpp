@@ -12,6 +12,7 @@
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
 #include "fault_row.hpp"
+#include "not_measured.hpp"
 #include "wifi_runs.hpp"
 
 namespace {
@@ -22,22 +23,24 @@ using cover::bench::WifiRun;
 nlohmann::json mix_summary(const VendorMix& mix, const std::vector<WifiRun>& runs) {
   int completed = 0;
   int count = 0;
-  double worst_landing_m = 0.0;
-  double worst_p99_ms = 0.0;
+  // Over the runs that measured them; NaN (null) when none did.
+  double worst_landing_m = NAN;
+  double worst_p99_ms = NAN;
+  const auto worst = [](double so_far, double value) {
+    return std::isfinite(value) && !(so_far >= value) ? value : so_far;
+  };
   for (const WifiRun& run : runs) {
     if (run.row.mix != mix.name) continue;
     ++count;
     if (run.row.outcome == "completed") ++completed;
-    if (std::isfinite(run.row.landing_error_m)) {
-      worst_landing_m = std::max(worst_landing_m, run.row.landing_error_m);
-    }
-    worst_p99_ms = std::max(worst_p99_ms, run.latency_p99_ms);
+    worst_landing_m = worst(worst_landing_m, run.row.landing_error_m);
+    worst_p99_ms = worst(worst_p99_ms, run.latency_p99_ms);
   }
   return {{"mix", mix.name},
           {"runs", count},
           {"completed", completed},
-          {"max_landing_error_m", worst_landing_m},
-          {"max_latency_p99_ms", worst_p99_ms}};
+          {"max_landing_error_m", cover::bench::figure_json(worst_landing_m)},
+          {"max_latency_p99_ms", cover::bench::figure_json(worst_p99_ms)}};
 }
 
 int run(const std::vector<std::string>& args) {
@@ -73,7 +76,15 @@ int run(const std::vector<std::string>& args) {
     return 1;
   }
   std::vector<cover::bench::FaultRow> rows;
-  for (const WifiRun& run : result.runs) rows.push_back(run.row);
+  cover::bench::NotMeasured missing;
+  for (const WifiRun& run : result.runs) {
+    rows.push_back(run.row);
+    if (!run.reported) {
+      missing.add(run.row.mix + " seed " + std::to_string(run.row.seed) +
+                  ": the launch gave no result");
+    }
+  }
+  if (result.runs.empty()) missing.add("no run was flown");
   nlohmann::json summary = nlohmann::json::array();
   for (const VendorMix& mix : cover::bench::vendor_mixes()) {
     summary.push_back(mix_summary(mix, result.runs));
@@ -87,7 +98,7 @@ int run(const std::vector<std::string>& args) {
   } else {
     for (const auto& s : summary) std::printf("%s\n", s.dump().c_str());
   }
-  return 0;
+  return missing.exit_code("wifi");
 }
 
 const cover::bench::Registrar registrar{

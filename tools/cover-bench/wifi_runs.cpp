@@ -44,8 +44,9 @@ WifiRun run_of(const VendorMix& mix, int seed, const nlohmann::json& r) {
     row.outcome = "landed_safely";
   }
   row.detail = r.value("status", std::string());
+  run.reported = !r.empty();
   if (r.contains("latency_ms") && r["latency_ms"].is_object()) {
-    run.latency_p99_ms = r["latency_ms"].value("p99", 0.0);
+    run.latency_p99_ms = number_or_nan(r["latency_ms"], "p99");
   }
   return run;
 }

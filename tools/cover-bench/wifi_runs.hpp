@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -22,7 +23,8 @@ struct WifiOptions {
 
 struct WifiRun {
   FaultRow row;
-  double latency_p99_ms = 0.0;  // sensor-to-command, as cover-sim measured it
+  bool reported = false;        // the launch gave a result (false: nothing was measured)
+  double latency_p99_ms = NAN;  // sensor-to-command, as cover-sim measured it; NaN: none
 };
 
 struct WifiResult {

@@ -55,18 +55,15 @@ class TypedSubscription : public FleetTap::Subscription {
 }  // namespace
 
 template <typename T>
-void FleetTap::subscribe(dds::Participant& participant, const dds::Topic<T>& topic,
-                         const FleetTapOptions& options) {
-  if (!topic_selected(topic.name(), options.topic_globs)) return;
+void FleetTap::add_reader(const dds::Topic<T>& topic) {
   static const auto codec = std::make_shared<dds::CdrCodec>(dds::type_support<T>());
   const auto index = static_cast<std::uint32_t>(topics_.size());
-  topics_.push_back(TapTopic{topic.name(), T::kTypeName});
   auto subscription = std::make_unique<TypedSubscription<T>>();
   subscription->codec = codec;
-  const auto deep = topic.with_history_depth(options.history_depth)
+  const auto deep = topic.with_history_depth(options_.history_depth)
                         .without_deadline()
-                        .with_acknowledgement_delay(options.acknowledgement_delay_s);
-  subscription->reader = participant.make_reader(deep, [this, index](const T& sample) {
+                        .with_acknowledgement_delay(options_.acknowledgement_delay_s);
+  subscription->reader = participant_.make_reader(deep, [this, index](const T& sample) {
     if (wanted_ && !wanted_(index)) return;
     TapSample tapped;
     tapped.topic_index = index;
@@ -75,14 +72,35 @@ void FleetTap::subscribe(dds::Participant& participant, const dds::Topic<T>& top
     if (!codec->serialize(sample, tapped.bytes)) tapped.bytes.clear();
     sink_(std::move(tapped));
   });
+  // Listed once its reader exists: a reader that could not be made leaves no topic behind.
+  topics_.push_back(TapTopic{topic.name(), T::kTypeName});
   subscriptions_.push_back(std::move(subscription));
 }
 
 FleetTap::FleetTap(dds::Participant& participant, const FleetTapOptions& options, Sink sink,
                    Wanted wanted)
-    : sink_(std::move(sink)), wanted_(std::move(wanted)) {
-  for_each_fleet_topic(options.fleet,
-                       [&](const auto& topic) { subscribe(participant, topic, options); });
+    : participant_(participant),
+      options_(options),
+      sink_(std::move(sink)),
+      wanted_(std::move(wanted)) {
+  if (!options_.subscribe_all) return;
+  for_each_fleet_topic(options_.fleet, [&](const auto& topic) {
+    if (topic_selected(topic.name(), options_.topic_globs)) add_reader(topic);
+  });
+}
+
+bool FleetTap::subscribe(const std::string& topic_name) {
+  if (!topic_selected(topic_name, options_.topic_globs)) return false;
+  for (const TapTopic& known : topics_) {
+    if (known.name == topic_name) return false;
+  }
+  bool added = false;
+  for_each_fleet_topic(options_.fleet, [&](const auto& topic) {
+    if (added || topic.name() != topic_name) return;
+    add_reader(topic);
+    added = true;
+  });
+  return added;
 }
 
 FleetTap::~FleetTap() {

@@ -37,9 +37,14 @@ struct FleetTapOptions {
   // second thread woke ~540 times a second for them in Scenario 2 (110 ms of CPU per 10 s,
   // 40 ms with 50 ms). Writers keep unacknowledged samples that long, within their history.
   double acknowledgement_delay_s = 0.05;
+  // True: a reader for every selected topic at construction (the live view advertises them
+  // all). False: none; the owner subscribes each topic with subscribe() when its first
+  // writer appears (the recorder, as `ros2 bag record -a`: no reader for a topic nobody
+  // publishes, which Fast DDS would check on every sample it receives).
+  bool subscribe_all = true;
 };
 
-// A type-erased reader of every concrete catalogued topic a set of globs selects (the
+// A type-erased reader of the concrete catalogued topics a set of globs selects (the
 // recorder's and the live bridge's input): each sample is serialized on the vendor's
 // receive thread to the CDR that crossed the wire and handed to `sink`. `wanted(index)`,
 // when given, is asked first: false skips the serialization (nobody listens to it now).
@@ -57,8 +62,14 @@ class FleetTap {
   FleetTap(const FleetTap&) = delete;
   FleetTap& operator=(const FleetTap&) = delete;
 
-  // Fixed after construction, in catalogue order.
+  // The topics subscribed so far, in the order subscribed (with subscribe_all: every
+  // selected one, in catalogue order, fixed after construction). A sample's topic_index
+  // indexes it; indices stay valid as topics are added.
   const std::vector<TapTopic>& topics() const { return topics_; }
+  // Subscribes `topic_name` when it is a concrete catalogued topic of the fleet that the
+  // globs select and is not subscribed yet: true when it was subscribed now. Call from the
+  // thread that reads topics(). Throws dds::DdsError when the reader cannot be made.
+  bool subscribe(const std::string& topic_name);
   // Destroys the readers: no sink call runs past it. Idempotent.
   void stop();
 
@@ -66,9 +77,10 @@ class FleetTap {
 
  private:
   template <typename T>
-  void subscribe(dds::Participant& participant, const dds::Topic<T>& topic,
-                 const FleetTapOptions& options);
+  void add_reader(const dds::Topic<T>& topic);
 
+  dds::Participant& participant_;
+  FleetTapOptions options_;
   Sink sink_;
   Wanted wanted_;
   std::vector<TapTopic> topics_;

@@ -44,7 +44,8 @@ RecordCommands::RecordCommands(CLI::App& app) {
   record_ = app.add_subcommand(
       "record",
       "Record DDS samples into an MCAP file (CDR as on the wire, omgidl schemas): every "
-      "catalogued topic of the fleet by default; SIGINT stops and closes the file");
+      "catalogued topic of the fleet by default, each subscribed when its first writer appears; "
+      "SIGINT stops and closes the file");
   record_->add_option("-o,--output", record_options_.path,
                       "the MCAP file (default: cover_YYYY_MM_DD-HH_MM_SS.mcap here)");
   record_->add_option("--topics", record_options_.topic_globs,
@@ -127,10 +128,15 @@ int RecordCommands::record() {
     std::cerr << "cover record: " << e.what() << "\n";
     return kBagUsage;
   }
-  spdlog::info("recording {} topics into {} ({} chunks of at most {} s){}",
-               recorder->stats().topics_subscribed, record_options_.path,
-               compression_label(record_options_.writer.compression), chunk_duration_s_,
-               duration_s_ > 0 ? fmt::format(" for {:.1f} s", duration_s_) : "");
+  spdlog::info(
+      "recording into {} ({} chunks of at most {} s){}: each catalogued topic of {} UAV(s) and "
+      "{} UGV(s){} as its first writer appears",
+      record_options_.path, compression_label(record_options_.writer.compression),
+      chunk_duration_s_, duration_s_ > 0 ? fmt::format(" for {:.1f} s", duration_s_) : "",
+      record_options_.fleet.uavs, record_options_.fleet.ugvs,
+      record_options_.topic_globs.empty()
+          ? ""
+          : fmt::format(" matching {}", fmt::join(record_options_.topic_globs, " ")));
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed_s = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -149,8 +155,9 @@ int RecordCommands::record() {
     spdlog::error("cannot write {}: {}", record_options_.path, recorder->error());
     return kBagWriteFailed;
   }
-  spdlog::info("recorded {} samples of {} topics into {} ({} bytes), {} dropped", stats.written,
-               stats.topics_heard, record_options_.path, stats.bytes_written, stats.dropped);
+  spdlog::info("recorded {} samples of {} topics ({} subscribed) into {} ({} bytes), {} dropped",
+               stats.written, stats.topics_heard, stats.topics_subscribed, record_options_.path,
+               stats.bytes_written, stats.dropped);
   // What the recorder cost, for cover-bench record's share of a core during a run.
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

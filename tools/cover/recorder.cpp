@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "cover/clock/clock.hpp"
+#include "cover/logging/log.hpp"
 #include "cover/msg/idl_schema.hpp"
 
 namespace cover::cli {
@@ -19,9 +20,11 @@ Recorder::Recorder(dds::Participant& participant, RecorderOptions options)
   tap.topic_globs = options_.topic_globs;
   tap.fleet = options_.fleet;
   tap.history_depth = options_.history_depth;
+  tap.subscribe_all = false;
   tap_ = std::make_unique<FleetTap>(participant, tap,
                                     [this](TapSample&& sample) { enqueue(std::move(sample)); });
-  for (const auto& topic : tap_->topics()) slots_.push_back(TopicSlot{topic.name, topic.type_name});
+  watch_ = participant.watch_publications(
+      [this](const dds::DiscoveredPublication& publication) { on_publication(publication); });
 }
 
 Recorder::~Recorder() {
@@ -50,6 +53,29 @@ void Recorder::enqueue(TapSample&& sample) {
   arrived_.notify_one();
 }
 
+// On discovery's thread: only noted, pump() makes the reader (no reader may be made here).
+void Recorder::on_publication(const dds::DiscoveredPublication& publication) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    appeared_.push_back(publication.topic_name);
+  }
+  arrived_.notify_one();
+}
+
+void Recorder::subscribe_appeared(const std::vector<std::string>& topics) {
+  for (const std::string& topic : topics) {
+    try {
+      if (!tap_->subscribe(topic)) continue;  // subscribed already, or not selected
+    } catch (const std::exception& e) {
+      spdlog::error("not recording {}: {}", topic, e.what());
+      continue;
+    }
+    const TapTopic& added = tap_->topics().back();
+    slots_.push_back(TopicSlot{added.name, added.type_name});
+    spdlog::info("recording {} ({}): its first writer appeared", added.name, added.type_name);
+  }
+}
+
 std::uint16_t Recorder::channel_for(TopicSlot& slot) {
   if (slot.channel_id != 0) return slot.channel_id;
   auto schema = schema_ids_.find(slot.type_name);
@@ -65,13 +91,17 @@ std::uint16_t Recorder::channel_for(TopicSlot& slot) {
 
 bool Recorder::pump(int wait_ms) {
   std::vector<Pending> batch;
+  std::vector<std::string> appeared;
   {
     std::unique_lock<std::mutex> lock(mutex_);
     arrived_.wait_for(lock, std::chrono::milliseconds(wait_ms),
-                      [&] { return pending_bytes_ >= kWakeBytes; });
+                      [&] { return pending_bytes_ >= kWakeBytes || !appeared_.empty(); });
     batch.swap(queue_);
+    appeared.swap(appeared_);
     pending_bytes_ = 0;
   }
+  // After taking the batch: none of its samples is of a topic subscribed now.
+  subscribe_appeared(appeared);
   bool ok = writer_.error().empty();
   for (auto& pending : batch) {
     TopicSlot& slot = slots_[pending.topic_index];
@@ -103,7 +133,8 @@ bool Recorder::close() {
     std::lock_guard<std::mutex> lock(mutex_);
     if (closed_) return writer_.error().empty();
   }
-  tap_->stop();  // no callback runs past this line
+  watch_.stop();  // no topic appears past this line
+  tap_->stop();   // no callback runs past this line
   pump(0);
   {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -38,12 +38,15 @@ struct RecorderStats {
   std::uint64_t topics_subscribed = 0;
 };
 
-// Records DDS samples into an MCAP file: a FleetTap reads every concrete catalogued topic
-// the globs select, each sample serialized to the CDR that crossed the wire (CdrCodec) on
-// the vendor's receive thread and queued; pump() (one thread) writes the queue: a
-// channel (encoding cdr) and its type's schema (omgidl, the type's IDL text) on a topic's
-// first sample, log time = receive time (system clock), publish time = the sample's
-// stamp_ns. Never throws after construction.
+// Records DDS samples into an MCAP file: a FleetTap reads the concrete catalogued topics
+// the globs select, each subscribed when discovery reports its first writer (a
+// dds::PublicationWatch, as `ros2 bag record -a`: no reader for a topic nobody publishes),
+// each sample serialized to the CDR that crossed the wire (CdrCodec) on the vendor's
+// receive thread and queued; pump() (one thread) subscribes the topics whose writers
+// appeared and writes the queue: a channel (encoding cdr) and its type's schema (omgidl,
+// the type's IDL text) on a topic's first sample, log time = receive time (system clock),
+// publish time = the sample's stamp_ns. Never throws after construction; a topic whose
+// reader cannot be made is logged and left out.
 class Recorder {
  public:
   // Throws std::runtime_error when the file cannot be created, dds::DdsError when a
@@ -53,8 +56,8 @@ class Recorder {
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
 
-  // Writes what arrived, waiting up to `wait_ms` for something; false once the file
-  // cannot be written (error() says why).
+  // Subscribes the topics whose first writer appeared and writes what arrived, waiting up
+  // to `wait_ms` for either; false once the file cannot be written (error() says why).
   bool pump(int wait_ms);
   // Keeps writing until no sample arrived for `quiet_ms` (the receive path, behind under
   // load, catches up with what the network buffered) or `max_ms` passed: call at a stop,
@@ -78,17 +81,20 @@ class Recorder {
     std::uint32_t sequence = 0;
   };
   void enqueue(TapSample&& sample);
+  void on_publication(const dds::DiscoveredPublication& publication);
+  void subscribe_appeared(const std::vector<std::string>& topics);
   std::uint16_t channel_for(TopicSlot& slot);
 
   RecorderOptions options_;
   mcap::Writer writer_;
-  std::vector<TopicSlot> slots_;  // fixed after construction
+  std::vector<TopicSlot> slots_;  // one per subscribed topic, by FleetTap topic index
   std::map<std::string, std::uint16_t> schema_ids_;
-  std::unique_ptr<FleetTap> tap_;  // the readers (FleetTap): one per selected topic
+  std::unique_ptr<FleetTap> tap_;  // the readers (FleetTap): one per subscribed topic
 
   mutable std::mutex mutex_;
   std::condition_variable arrived_;
   std::vector<Pending> queue_;
+  std::vector<std::string> appeared_;  // topics whose writer discovery reported, not yet handled
   std::size_t pending_bytes_ = 0;
   std::uint64_t received_ = 0;
   std::uint64_t dropped_ = 0;
@@ -97,6 +103,7 @@ class Recorder {
   std::atomic<std::uint64_t> channels_{0};
   std::atomic<std::uint64_t> file_bytes_{0};
   bool closed_ = false;
+  dds::PublicationWatch watch_;  // last: its handler uses the members above
 };
 
 }  // namespace cover::cli

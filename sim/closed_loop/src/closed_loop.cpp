@@ -64,7 +64,7 @@ ClosedLoopResult ClosedLoop::run() const {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   result.step_median_us = percentile(step_us, 0.5);
   result.step_p99_us = percentile(step_us, 0.99);
-  result.step_max_us = step_us.empty() ? 0.0 : *std::max_element(step_us.begin(), step_us.end());
+  result.step_max_us = percentile(step_us, 1.0);
   result.plan_wait_max_ms = plan_wait_max_ms;
   result.realtime_factor =
       result.wall_time_s > 0.0 ? world.state().time_s / result.wall_time_s : 0.0;

@@ -34,21 +34,33 @@ nlohmann::json summary_json(const ClosedLoopResult& r) {
           {"bound_ratio", number_or_null(r.bound_straight_length_m > 0.0
                                              ? r.bound_path_length_m / r.bound_straight_length_m
                                              : std::nan(""))},
-          {"mpc_median_us", r.mpc_median_us},
-          {"mpc_p99_us", r.mpc_p99_us},
-          {"mpc_cpu_median_us", r.mpc_cpu_median_us},
-          {"mpc_cpu_p99_us", r.mpc_cpu_p99_us},
-          {"plan_median_ms", r.plan_median_ms},
-          {"plan_max_ms", r.plan_max_ms},
-          {"step_median_us", r.step_median_us},
-          {"step_p99_us", r.step_p99_us},
-          {"step_max_us", r.step_max_us},
-          {"plan_wait_max_ms", r.plan_wait_max_ms},
+          {"mpc_median_us", number_or_null(r.mpc_median_us)},
+          {"mpc_p99_us", number_or_null(r.mpc_p99_us)},
+          {"mpc_cpu_median_us", number_or_null(r.mpc_cpu_median_us)},
+          {"mpc_cpu_p99_us", number_or_null(r.mpc_cpu_p99_us)},
+          {"plan_median_ms", number_or_null(r.plan_median_ms)},
+          {"plan_max_ms", number_or_null(r.plan_max_ms)},
+          {"step_median_us", number_or_null(r.step_median_us)},
+          {"step_p99_us", number_or_null(r.step_p99_us)},
+          {"step_max_us", number_or_null(r.step_max_us)},
+          {"plan_wait_max_ms", number_or_null(r.plan_wait_max_ms)},
           {"failsafe_steps", r.failsafe_steps}};
 }
 
+namespace {
+
+// A figure of the summary, printf-formatted, or "not measured".
+std::string figure(const char* format, double value) {
+  if (!std::isfinite(value)) return "not measured";
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+}  // namespace
+
 std::string readable_summary(const ClosedLoopResult& r) {
-  auto cm = [](double m) { return std::isfinite(m) ? m * 100.0 : std::nan(""); };
+  auto cm = [](double m) { return m * 100.0; };
   std::string text;
   char line[512];
   auto add = [&](const char* format, auto... values) {
@@ -57,30 +69,42 @@ std::string readable_summary(const ClosedLoopResult& r) {
   };
   add("  result            %s\n", r.success ? "SUCCESS" : "FAILED");
   add("  status            %s\n", r.status.c_str());
-  // A scenario without a landing or a delivery reports NaN for it: say so in words.
+  // NaN: the task has no landing or delivery, or it did not happen.
   auto error_line = [&](const char* label, double error_m) {
     if (std::isfinite(error_m)) {
       add("  %-17s %.1f cm (horizontal, on the deck)\n", label, cm(error_m));
     } else {
-      add("  %-17s n/a (the task has none)\n", label);
+      add("  %-17s not measured (none in the task, or it did not happen)\n", label);
     }
   };
   error_line("landing error", r.landing_error_m);
   error_line("delivery error", r.delivery_error_m);
-  add("  final tracking    x %.1f  y %.1f  z %.1f cm (mean |error|, %d samples)\n",
-      cm(r.final_tracking_error_m.x()), cm(r.final_tracking_error_m.y()),
-      cm(r.final_tracking_error_m.z()), r.final_tracking_samples);
-  add("  transitions       %zu, Lt/Ls %.3f\n", r.transitions.size(),
-      r.total_straight_length_m > 0 ? r.total_path_length_m / r.total_straight_length_m
-                                    : std::nan(""));
+  if (r.final_tracking_samples > 0) {
+    add("  final tracking    x %.1f  y %.1f  z %.1f cm (mean |error|, %d samples)\n",
+        cm(r.final_tracking_error_m.x()), cm(r.final_tracking_error_m.y()),
+        cm(r.final_tracking_error_m.z()), r.final_tracking_samples);
+  } else {
+    add("  final tracking    not measured (no final stage ran)\n");
+  }
+  add("  transitions       %zu, Lt/Ls %s\n", r.transitions.size(),
+      figure("%.3f", r.total_straight_length_m > 0
+                         ? r.total_path_length_m / r.total_straight_length_m
+                         : std::nan(""))
+          .c_str());
   add("  task duration     %.1f s simulated, %.2f s wall, %.0fx real time\n", r.duration_s,
       r.wall_time_s, r.realtime_factor);
-  add("  MPC step          median %.0f us, p99 %.0f us (thread CPU %.0f / %.0f us); stage plan "
-      "median %.1f ms\n",
-      r.mpc_median_us, r.mpc_p99_us, r.mpc_cpu_median_us, r.mpc_cpu_p99_us, r.plan_median_ms);
-  add("  control step      median %.0f us, p99 %.0f us, max %.0f us (wall, whole step); "
-      "longest wait for a plan %.2f ms\n",
-      r.step_median_us, r.step_p99_us, r.step_max_us, r.plan_wait_max_ms);
+  add("  MPC step          median %s, p99 %s (thread CPU %s / %s); stage plan median %s\n",
+      figure("%.0f us", r.mpc_median_us).c_str(), figure("%.0f us", r.mpc_p99_us).c_str(),
+      figure("%.0f us", r.mpc_cpu_median_us).c_str(), figure("%.0f us", r.mpc_cpu_p99_us).c_str(),
+      figure("%.1f ms", r.plan_median_ms).c_str());
+  if (std::isfinite(r.step_median_us)) {
+    add("  control step      median %.0f us, p99 %.0f us, max %.0f us (wall, whole step); "
+        "longest wait for a plan %s\n",
+        r.step_median_us, r.step_p99_us, r.step_max_us,
+        figure("%.2f ms", r.plan_wait_max_ms).c_str());
+  } else {
+    add("  control step      not measured here (the UAV agent runs it)\n");
+  }
   return text;
 }
 

@@ -30,10 +30,9 @@ void RunRecorder::record(const mission::ControllerStatus& status,
   const WorldState& ws = world.state();
   track_transitions(status, command, ws);
   record_tracking(status, world);
-  if (status.solve_us > 0.0) {
-    mpc_us_.push_back(status.solve_us);
-    mpc_cpu_us_.push_back(status.solve_cpu_us);
-  }
+  if (status.solve_us > 0.0) mpc_us_.push_back(status.solve_us);
+  // 0 when the step's CPU time was not measured (a UAV agent's trace does not carry it).
+  if (status.solve_cpu_us > 0.0) mpc_cpu_us_.push_back(status.solve_cpu_us);
   if (status.planned) plan_ms_.push_back(status.plan_ms);
   if (status.failsafe == mission::Failsafe::EmergencyHover ||
       status.failsafe == mission::Failsafe::EmergencyLanding ||
@@ -255,8 +254,7 @@ ClosedLoopResult RunRecorder::finish(const World& world,
   result_.mpc_cpu_median_us = percentile(mpc_cpu_us_, 0.5);
   result_.mpc_cpu_p99_us = percentile(mpc_cpu_us_, 0.99);
   result_.plan_median_ms = percentile(plan_ms_, 0.5);
-  result_.plan_max_ms =
-      plan_ms_.empty() ? 0.0 : *std::max_element(plan_ms_.begin(), plan_ms_.end());
+  result_.plan_max_ms = percentile(plan_ms_, 1.0);
   return result_;
 }
 

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "cover/config/config_error.hpp"
@@ -166,15 +167,22 @@ void check_security(const LaunchPlan& plan) {
   }
 }
 
-// Creates the run folder with launch.log, and removes a result.json of an earlier run
-// there, which would otherwise be reported as this run's. Creates the state directory
-// when the launch uses it: a process must not fail on a folder missing on a fresh account.
+// Creates the run folder with launch.log, removes a result.json of an earlier run there,
+// which would otherwise be reported as this run's, and writes run.json (the run's identity,
+// run_report.hpp) before any process starts. Creates the state directory when the launch
+// uses it: a process must not fail on a folder missing on a fresh account.
 void prepare_run_dir(const LaunchPlan& plan) {
-  std::filesystem::create_directories(plan.run_dir);
-  cover::logging::add_file((std::filesystem::path(plan.run_dir) / "launch.log").string());
-  const auto stale = std::filesystem::path(plan.run_dir) / "result.json";
+  const std::filesystem::path dir = plan.run_dir;
+  std::filesystem::create_directories(dir);
+  cover::logging::add_file((dir / "launch.log").string());
+  const auto stale = dir / "result.json";
   if (std::filesystem::remove(stale)) spdlog::warn("removed {} of an earlier run", stale.string());
   if (!plan.state_dir.empty()) cover::config::create_state_dir(plan.state_dir);
+  // Written whole under another name, then renamed: a reader never sees half of it.
+  const auto identity = dir / "run.json";
+  const auto partial = dir / "run.json.partial";
+  std::ofstream(partial) << make_identity(plan, getpid()).dump() << "\n";
+  std::filesystem::rename(partial, identity);
 }
 
 // "clock=realtime db=/home/u/.local/state/cover/tasks.db": what the processes were given.

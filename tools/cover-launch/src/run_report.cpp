@@ -47,6 +47,12 @@ nlohmann::json make_report(const LaunchPlan& plan, const RunOutcome& outcome) {
   return report;
 }
 
+nlohmann::json make_identity(const LaunchPlan& plan, int launcher_pid) {
+  return {{"name", plan.name},        {"kind", to_string(plan.kind)},
+          {"run_id", plan.run_id},    {"run_dir", plan.run_dir},
+          {"domain", plan.domain_id}, {"launcher_pid", launcher_pid}};
+}
+
 std::string make_summary(const LaunchPlan& plan, const RunOutcome& outcome) {
   std::ostringstream text;
   text << "run " << plan.run_id << " in " << plan.run_dir << "\n";

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -250,6 +251,59 @@ class CycloneReader final : public ReaderBackend {
   dds_entity_t reader_ = 0;
 };
 
+// The writers of other participants, from the DCPSPublication built-in topic: its reader
+// gets every writer known when it is made (the topic's instances), then each new one.
+class CyclonePublicationWatch final : public PublicationWatchBackend {
+ public:
+  CyclonePublicationWatch(std::shared_ptr<CycloneCore> core, PublicationHandler handler)
+      : core_(std::move(core)), handler_(std::move(handler)) {
+    if (const dds_return_t rc = dds_get_guid(core_->participant(), &own_); rc != DDS_RETCODE_OK) {
+      throw DdsError("Cyclone DDS: cannot read the participant's GUID: " + describe(rc));
+    }
+    dds_listener_t* listener = dds_create_listener(this);
+    dds_lset_data_available(listener, &CyclonePublicationWatch::on_data_available);
+    reader_ = dds_create_reader(core_->participant(), DDS_BUILTIN_TOPIC_DCPSPUBLICATION, nullptr,
+                                listener);
+    dds_delete_listener(listener);
+    if (reader_ < 0) {
+      throw DdsError("Cyclone DDS: cannot read the DCPSPublication topic: " + describe(reader_));
+    }
+    take_all(reader_);  // the writers known before the listener could fire
+  }
+  ~CyclonePublicationWatch() override {
+    dds_delete(reader_);  // waits for a listener call in progress
+  }
+
+ private:
+  static void on_data_available(dds_entity_t reader, void* self) {
+    static_cast<CyclonePublicationWatch*>(self)->take_all(reader);
+  }
+  void take_all(dds_entity_t reader) {
+    std::lock_guard<std::mutex> lock(mutex_);  // the constructor's take and the listener's
+    constexpr int kBatch = 16;
+    void* samples[kBatch] = {};
+    dds_sample_info_t infos[kBatch];
+    int taken = 0;
+    while ((taken = dds_take(reader, samples, infos, kBatch, kBatch)) > 0) {
+      for (int i = 0; i < taken; ++i) {
+        const auto* writer = static_cast<const dds_builtintopic_endpoint_t*>(samples[i]);
+        if (infos[i].valid_data && infos[i].instance_state == DDS_IST_ALIVE &&
+            std::memcmp(&writer->participant_key, &own_, sizeof own_) != 0) {
+          handler_(DiscoveredPublication{writer->topic_name, writer->type_name});
+        }
+      }
+      dds_return_loan(reader, samples, taken);
+      std::fill(std::begin(samples), std::end(samples), nullptr);
+    }
+  }
+
+  std::shared_ptr<CycloneCore> core_;
+  PublicationHandler handler_;
+  std::mutex mutex_;
+  dds_guid_t own_{};
+  dds_entity_t reader_ = 0;
+};
+
 class CycloneParticipant final : public ParticipantBackend {
  public:
   explicit CycloneParticipant(const ParticipantOptions& options)
@@ -262,6 +316,9 @@ class CycloneParticipant final : public ParticipantBackend {
                                                const QosProfile& qos,
                                                SampleHandler handler) override {
     return std::make_unique<CycloneReader>(core_, type, topic, qos, std::move(handler));
+  }
+  std::unique_ptr<PublicationWatchBackend> watch_publications(PublicationHandler handler) override {
+    return std::make_unique<CyclonePublicationWatch>(core_, std::move(handler));
   }
 
  private:

@@ -11,8 +11,10 @@
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <cstdint>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -151,13 +153,67 @@ void apply_common(const QosProfile& profile, Qos& qos) {
   // deadline, therefore does not match a Fast DDS writer of this one.
 }
 
+// The writers of other participants that discovery reported, and who wants to hear of
+// them. Installed with the participant, so that no writer discovered before a watch starts
+// is missed: a new watch first hears every writer known. Handlers run under the mutex, so
+// none runs once remove() returned.
+class PublicationDirectory final : public fdds::DomainParticipantListener {
+ public:
+  std::uint64_t add(PublicationHandler handler) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [guid, publication] : known_) handler(publication);
+    handlers_.emplace(next_id_, std::move(handler));
+    return next_id_++;
+  }
+  void remove(std::uint64_t id) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    handlers_.erase(id);
+  }
+
+  void on_publisher_discovery(fdds::DomainParticipant* participant,
+                              eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override {
+    using Info = eprosima::fastrtps::rtps::WriterDiscoveryInfo;
+    const auto& writer = info.info;
+    if (writer.guid().guidPrefix == participant->guid().guidPrefix) return;  // our own
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (info.status == Info::REMOVED_WRITER) {
+      known_.erase(writer.guid());
+      return;
+    }
+    if (info.status != Info::DISCOVERED_WRITER) return;
+    const DiscoveredPublication publication{writer.topicName().to_string(),
+                                            writer.typeName().to_string()};
+    known_[writer.guid()] = publication;
+    for (const auto& [id, handler] : handlers_) handler(publication);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<eprosima::fastrtps::rtps::GUID_t, DiscoveredPublication> known_;
+  std::map<std::uint64_t, PublicationHandler> handlers_;
+  std::uint64_t next_id_ = 0;
+};
+
+class FastPublicationWatch final : public PublicationWatchBackend {
+ public:
+  FastPublicationWatch(std::shared_ptr<PublicationDirectory> directory, PublicationHandler handler)
+      : directory_(std::move(directory)), id_(directory_->add(std::move(handler))) {}
+  ~FastPublicationWatch() override { directory_->remove(id_); }
+
+ private:
+  std::shared_ptr<PublicationDirectory> directory_;
+  std::uint64_t id_;
+};
+
 // The participant and its publisher/subscriber; shared by every writer and reader so
 // that it outlives them whatever order the user destroys things in.
 class FastCore {
  public:
   explicit FastCore(const ParticipantOptions& options) {
     auto* factory = fdds::DomainParticipantFactory::get_instance();
-    participant_ = factory->create_participant(options.domain_id, participant_qos(options));
+    // Discovery callbacks only (StatusMask::none): the readers keep their own listeners.
+    participant_ = factory->create_participant(options.domain_id, participant_qos(options),
+                                               publications_.get(), fdds::StatusMask::none());
     if (!participant_) {
       throw DdsError("Fast DDS: cannot create a participant on domain " +
                      std::to_string(options.domain_id) +
@@ -198,9 +254,12 @@ class FastCore {
 
   fdds::Publisher* publisher() { return publisher_; }
   fdds::Subscriber* subscriber() { return subscriber_; }
+  const std::shared_ptr<PublicationDirectory>& publications() const { return publications_; }
 
  private:
   std::mutex mutex_;
+  // Before the participant: it outlives the participant that calls it.
+  std::shared_ptr<PublicationDirectory> publications_ = std::make_shared<PublicationDirectory>();
   fdds::DomainParticipant* participant_ = nullptr;
   fdds::Publisher* publisher_ = nullptr;
   fdds::Subscriber* subscriber_ = nullptr;
@@ -328,6 +387,9 @@ class FastParticipant final : public ParticipantBackend {
                                                const QosProfile& qos,
                                                SampleHandler handler) override {
     return std::make_unique<FastReader>(core_, type, topic, qos, std::move(handler));
+  }
+  std::unique_ptr<PublicationWatchBackend> watch_publications(PublicationHandler handler) override {
+    return std::make_unique<FastPublicationWatch>(core_->publications(), std::move(handler));
   }
 
  private:

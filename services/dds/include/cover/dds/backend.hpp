@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "cover/dds/publication_watch.hpp"
 #include "cover/dds/qos.hpp"
 #include "cover/dds/type_support.hpp"
 
@@ -44,6 +45,9 @@ class ParticipantBackend {
                                                        const std::string& topic,
                                                        const QosProfile& qos,
                                                        SampleHandler handler) = 0;
+  // Starts reporting the writers of other participants (publication_watch.hpp).
+  virtual std::unique_ptr<PublicationWatchBackend> watch_publications(
+      PublicationHandler handler) = 0;
 };
 
 }  // namespace cover::dds

@@ -5,6 +5,7 @@
 
 #include "cover/dds/backend.hpp"
 #include "cover/dds/participant_options.hpp"
+#include "cover/dds/publication_watch.hpp"
 #include "cover/dds/reader.hpp"
 #include "cover/dds/topic.hpp"
 #include "cover/dds/writer.hpp"
@@ -54,6 +55,13 @@ class Participant {
     auto handler = [state](const void* sample) { state->deliver(*static_cast<const T*>(sample)); };
     return Reader<T>(backend_->create_reader(type_support<T>(), topic.name(), topic.qos(), handler),
                      state);
+  }
+
+  // Reports every writer of the other participants of the domain, those known now and each
+  // one discovered later, to `on_publication` (publication_watch.hpp: a vendor thread, keep
+  // it short, make no reader or writer in it) until the watch is destroyed.
+  PublicationWatch watch_publications(PublicationHandler on_publication) {
+    return PublicationWatch(backend_->watch_publications(std::move(on_publication)));
   }
 
  private:

@@ -85,21 +85,25 @@ struct ClosedLoopResult {
   bool landed_on_target_deck = false;
   double delivery_error_m = std::nan("");
 
-  // Controller timing (medians / p99 over the run).
-  double mpc_median_us = 0.0;
-  double mpc_p99_us = 0.0;
+  // Controller timing (medians / p99 over the run). NaN: not measured (JSON null, "not
+  // measured" in the summary, never 0). As processes, the UAV agent's trace carries each
+  // SAMPC step's wall time and each plan's time, but not SAMPC's thread CPU time, and
+  // cover-sim does not run the control step: those stay NaN.
+  double mpc_median_us = std::nan("");
+  double mpc_p99_us = std::nan("");
   // The same in the control thread's CPU time: what SAMPC costs without preemption by
   // other processes (which dominates the wall-clock p99 on a loaded machine).
-  double mpc_cpu_median_us = 0.0;
-  double mpc_cpu_p99_us = 0.0;
-  double plan_median_ms = 0.0;
-  double plan_max_ms = 0.0;
+  double mpc_cpu_median_us = std::nan("");
+  double mpc_cpu_p99_us = std::nan("");
+  double plan_median_ms = std::nan("");
+  double plan_max_ms = std::nan("");
   // Wall time of each whole control step (UavLoop::step: inputs, stage machine, SAMPC,
-  // and the wait for a plan due at that step; nothing excluded), and the longest such wait.
-  double step_median_us = 0.0;
-  double step_p99_us = 0.0;
-  double step_max_us = 0.0;
-  double plan_wait_max_ms = 0.0;
+  // and the wait for a plan due at that step; nothing excluded), and the longest such wait
+  // (in process only: ClosedLoop).
+  double step_median_us = std::nan("");
+  double step_p99_us = std::nan("");
+  double step_max_us = std::nan("");
+  double plan_wait_max_ms = std::nan("");
   int failsafe_steps = 0;  // control steps whose command was a failsafe (stale/solver)
 
   // Every control step of the run, when ClosedLoopOptions::record_step_trace.
