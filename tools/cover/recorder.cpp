@@ -135,6 +135,10 @@ bool Recorder::close() {
   }
   watch_.stop();  // no topic appears past this line
   tap_->stop();   // no callback runs past this line
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    appeared_.clear();  // a writer that appeared just now gets no reader at the close
+  }
   pump(0);
   {
     std::lock_guard<std::mutex> lock(mutex_);
