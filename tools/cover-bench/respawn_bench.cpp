@@ -36,6 +36,7 @@
 #include "cover/wire/enums.hpp"
 #include "cover/wire/task.hpp"
 #include "manager_client.hpp"
+#include "not_measured.hpp"
 
 namespace {
 
@@ -476,8 +477,9 @@ int run(const std::vector<std::string>& args) {
   system.launcher->terminate(20s, SIGINT);
   summarise(out);
   if (out["measured"] == 0) {
-    std::cerr << "cover-bench respawn: no try measured anything; see " << system.dir << "\n";
-    return 1;
+    cover::bench::NotMeasured missing;
+    missing.add("any restart: no try measured anything (see " + system.dir.string() + ")");
+    return missing.exit_code("respawn");
   }
   std::filesystem::remove_all(system.dir);
   if (json) {
