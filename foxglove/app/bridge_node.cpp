@@ -39,9 +39,9 @@ BridgeNode::BridgeNode(dds::Participant& participant, const BridgeOptions& optio
         dds::topics::uav_reference(u),
         [this](const msg::ReferenceTrajectory& r) { scene_.on_reference(r); }));
   }
-  tap_ = std::make_unique<cli::FleetTap>(
+  tap_ = std::make_unique<recording::FleetTap>(
       participant, options.tap,
-      [this](cli::TapSample&& sample) {
+      [this](recording::TapSample&& sample) {
         if (sample.bytes.empty()) {
           ++unserializable_;
           return;

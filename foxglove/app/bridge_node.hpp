@@ -9,13 +9,13 @@
 #include "cover/dds/participant.hpp"
 #include "cover/foxglove/scene.hpp"
 #include "cover/foxglove/server.hpp"
-#include "fleet_tap.hpp"
+#include "cover/recording/fleet_tap.hpp"
 
 namespace cover::foxglove_bridge {
 
 struct BridgeOptions {
   foxglove::ServerOptions server;
-  cli::FleetTapOptions tap;
+  recording::FleetTapOptions tap;
   foxglove::SceneOptions scene;
   double scene_rate_hz = 20.0;  // FrameTransforms and SceneUpdate, while subscribed
 };
@@ -50,7 +50,7 @@ class BridgeNode {
   std::atomic<std::uint64_t> unserializable_{0};
   std::vector<dds::Reader<msg::RelativeState>> relative_readers_;
   std::vector<dds::Reader<msg::ReferenceTrajectory>> reference_readers_;
-  std::unique_ptr<cli::FleetTap> tap_;  // last: its callbacks use the members above
+  std::unique_ptr<recording::FleetTap> tap_;  // last: its callbacks use the members above
 };
 
 }  // namespace cover::foxglove_bridge

@@ -19,7 +19,7 @@
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
-#include "fleet_topics.hpp"
+#include "cover/recording/fleet_topics.hpp"
 #include "foxglove_test_support.hpp"
 #include "published_samples.hpp"
 
@@ -74,7 +74,7 @@ class FoxgloveBridge : public ::testing::Test {
 
 std::size_t fleet_topic_count(std::uint32_t uavs, std::uint32_t ugvs) {
   std::size_t n = 0;
-  cli::for_each_fleet_topic(cli::FleetSize{uavs, ugvs}, [&](const auto&) { ++n; });
+  recording::for_each_fleet_topic(recording::FleetSize{uavs, ugvs}, [&](const auto&) { ++n; });
   return n;
 }
 

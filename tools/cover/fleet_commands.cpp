@@ -60,11 +60,11 @@ FleetKind kind_of(const msg::SimClock&) {
 // members: their callbacks use the view.
 class FleetListener {
  public:
-  FleetListener(dds::Participant& participant, const FleetSize& size, double listen_s)
+  FleetListener(dds::Participant& participant, const recording::FleetSize& size, double listen_s)
       : participant_(participant), view_(listen_s), naming_grace_ns_(clock::s_to_ns(listen_s)) {
-    for_each_fleet_topic_of<msg::UavStatus>(size, [&](const auto& t) { listen(t); });
-    for_each_fleet_topic_of<msg::FcState>(size, [&](const auto& t) { listen(t); });
-    for_each_fleet_topic_of<msg::UgvStatus>(size, [&](const auto& t) { listen(t); });
+    recording::for_each_fleet_topic_of<msg::UavStatus>(size, [&](const auto& t) { listen(t); });
+    recording::for_each_fleet_topic_of<msg::FcState>(size, [&](const auto& t) { listen(t); });
+    recording::for_each_fleet_topic_of<msg::UgvStatus>(size, [&](const auto& t) { listen(t); });
     listen(dds::topics::sim_clock());
     // The clock exchange names its askers and answerers ("host/process").
     peers_requests_ = participant.make_reader(

@@ -4,7 +4,7 @@
 
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/participant_options.hpp"
-#include "fleet_topics.hpp"
+#include "cover/recording/fleet_topics.hpp"
 
 namespace CLI {
 class App;
@@ -47,7 +47,7 @@ class FleetCommand {
   double listen_s_ = 1.5;
   bool watch_ = false;
   bool json_ = false;
-  FleetSize size_;
+  recording::FleetSize size_;
   dds::DdsCliOptions dds_;
 };
 

@@ -8,9 +8,9 @@
 #include <ctime>
 #include <iostream>
 
-#include "bag_info.hpp"
 #include "cover/logging/log.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "cover/recording/bag_info.hpp"
 
 namespace cover::cli {
 namespace {
@@ -121,9 +121,9 @@ int RecordCommands::record() {
   dds::ParticipantOptions participant_options = record_dds_.resolve("cover-recorder");
   participant_options.receive_buffer_bytes = kRecorderReceiveBufferBytes;
   dds::Participant participant(participant_options);
-  std::unique_ptr<Recorder> recorder;
+  std::unique_ptr<recording::Recorder> recorder;
   try {
-    recorder = std::make_unique<Recorder>(participant, record_options_);
+    recorder = std::make_unique<recording::Recorder>(participant, record_options_);
   } catch (const std::runtime_error& e) {
     std::cerr << "cover record: " << e.what() << "\n";
     return kBagUsage;
@@ -150,7 +150,7 @@ int RecordCommands::record() {
   // the network buffered is written before the file is closed.
   ok = ok && recorder->drain(kStopQuietMs, kStopDrainMaxMs);
   ok = recorder->close() && ok;
-  const RecorderStats stats = recorder->stats();
+  const recording::RecorderStats stats = recorder->stats();
   if (!ok) {
     spdlog::error("cannot write {}: {}", record_options_.path, recorder->error());
     return kBagWriteFailed;
@@ -169,11 +169,11 @@ int RecordCommands::record() {
 }
 
 int RecordCommands::info() const {
-  const BagSummary summary = summarize_bag(bag_path_);
+  const recording::BagSummary summary = recording::summarize_bag(bag_path_);
   if (json_) {
-    std::cout << bag_summary_json(summary).dump() << std::endl;
+    std::cout << recording::bag_summary_json(summary).dump() << std::endl;
   } else {
-    std::cout << format_bag_summary(summary);
+    std::cout << recording::format_bag_summary(summary);
   }
   if (!summary.is_mcap) return kBagUsage;
   return summary.issues.empty() ? kBagOk : kBagDamaged;
@@ -181,11 +181,12 @@ int RecordCommands::info() const {
 
 int RecordCommands::play() {
   dds::Participant participant(play_dds_.resolve("cover-player"));
-  Player player(participant, play_options_);
+  recording::Player player(participant, play_options_);
   spdlog::info(
       "playing {} at {}x{}", play_options_.path, play_options_.rate,
       play_options_.start_s > 0 ? fmt::format(" from {:.1f} s", play_options_.start_s) : "");
-  const PlayStats stats = player.run([] { return process::ShutdownSignal::requested(); });
+  const recording::PlayStats stats =
+      player.run([] { return process::ShutdownSignal::requested(); });
   for (const auto& topic : stats.skipped_topics) {
     spdlog::warn("not played: {} (not a catalogued topic of its recorded type)", topic);
   }

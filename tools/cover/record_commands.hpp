@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "cover/dds/cli_options.hpp"
-#include "player.hpp"
-#include "recorder.hpp"
+#include "cover/recording/player.hpp"
+#include "cover/recording/recorder.hpp"
 
 namespace CLI {
 class App;
@@ -37,13 +37,13 @@ class RecordCommands {
   CLI::App* record_ = nullptr;
   CLI::App* info_ = nullptr;
   CLI::App* play_ = nullptr;
-  RecorderOptions record_options_;
+  recording::RecorderOptions record_options_;
   std::string compression_ = "zstd";
   double duration_s_ = 0.0;
   double chunk_duration_s_ = 1.0;
   std::string bag_path_;
   bool json_ = false;
-  PlayOptions play_options_;
+  recording::PlayOptions play_options_;
   dds::DdsCliOptions record_dds_;
   dds::DdsCliOptions play_dds_;
 };

@@ -9,7 +9,7 @@
 #include "cover/dds/topics.hpp"
 #include "cover/fleet/fleet_size.hpp"
 
-namespace cover::cli {
+namespace cover::recording {
 
 // The vehicles whose topics a recorder, player or `cover fleet` binds: UAV ids 0..uavs-1,
 // UGV ids 0..ugvs-1.
@@ -68,4 +68,4 @@ void for_each_fleet_topic_of(const FleetSize& fleet, F&& f) {
   std::apply([&](const auto&... rows) { (visit(rows), ...); }, dds::topics::kCatalog);
 }
 
-}  // namespace cover::cli
+}  // namespace cover::recording

@@ -1,4 +1,4 @@
-#include "player.hpp"
+#include "cover/recording/player.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,9 +7,9 @@
 #include "cover/dds/cdr_codec.hpp"
 #include "cover/dds/dds_error.hpp"
 #include "cover/dds/topics.hpp"
-#include "fleet_topics.hpp"
+#include "cover/recording/fleet_topics.hpp"
 
-namespace cover::cli {
+namespace cover::recording {
 
 namespace {
 
@@ -145,4 +145,4 @@ PlayStats Player::run(const std::function<bool()>& stop_requested) {
   return stats;
 }
 
-}  // namespace cover::cli
+}  // namespace cover::recording

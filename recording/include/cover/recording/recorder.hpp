@@ -11,9 +11,9 @@
 
 #include "cover/dds/participant.hpp"
 #include "cover/mcap/writer.hpp"
-#include "fleet_tap.hpp"
+#include "cover/recording/fleet_tap.hpp"
 
-namespace cover::cli {
+namespace cover::recording {
 
 struct RecorderOptions {
   std::string path;                      // the MCAP file (created or truncated)
@@ -106,4 +106,4 @@ class Recorder {
   dds::PublicationWatch watch_;  // last: its handler uses the members above
 };
 
-}  // namespace cover::cli
+}  // namespace cover::recording

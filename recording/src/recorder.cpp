@@ -1,4 +1,4 @@
-#include "recorder.hpp"
+#include "cover/recording/recorder.hpp"
 
 #include <chrono>
 #include <utility>
@@ -7,7 +7,7 @@
 #include "cover/logging/log.hpp"
 #include "cover/msg/idl_schema.hpp"
 
-namespace cover::cli {
+namespace cover::recording {
 namespace {
 
 constexpr std::size_t kWakeBytes = 1024 * 1024;
@@ -163,4 +163,4 @@ RecorderStats Recorder::stats() const {
   return stats;
 }
 
-}  // namespace cover::cli
+}  // namespace cover::recording

@@ -1,4 +1,4 @@
-#include "fleet_tap.hpp"
+#include "cover/recording/fleet_tap.hpp"
 
 #include <fnmatch.h>
 
@@ -8,7 +8,7 @@
 #include "cover/clock/clock.hpp"
 #include "cover/dds/cdr_codec.hpp"
 
-namespace cover::cli {
+namespace cover::recording {
 namespace {
 
 template <typename T, typename = void>
@@ -111,4 +111,4 @@ void FleetTap::stop() {
   subscriptions_.clear();
 }
 
-}  // namespace cover::cli
+}  // namespace cover::recording

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "cover/dds/participant.hpp"
-#include "fleet_topics.hpp"
+#include "cover/recording/fleet_topics.hpp"
 
-namespace cover::cli {
+namespace cover::recording {
 
 // One sample as it crossed the wire: the CDR bytes (with the 4-byte encapsulation header)
 // that dds::CdrCodec makes from the received sample, and its times.
@@ -87,4 +87,4 @@ class FleetTap {
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
 };
 
-}  // namespace cover::cli
+}  // namespace cover::recording

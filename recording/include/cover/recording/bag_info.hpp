@@ -8,7 +8,7 @@
 
 #include "cover/mcap/reader.hpp"
 
-namespace cover::cli {
+namespace cover::recording {
 
 struct BagTopic {
   std::string topic;
@@ -44,4 +44,4 @@ BagSummary summarize_bag(const std::string& path);
 std::string format_bag_summary(const BagSummary& summary);
 nlohmann::json bag_summary_json(const BagSummary& summary);
 
-}  // namespace cover::cli
+}  // namespace cover::recording

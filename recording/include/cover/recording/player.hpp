@@ -12,7 +12,7 @@
 #include "cover/dds/participant.hpp"
 #include "cover/mcap/reader.hpp"
 
-namespace cover::cli {
+namespace cover::recording {
 
 struct PlayOptions {
   std::string path;
@@ -79,4 +79,4 @@ class Player {
   std::uint64_t first_log_ns_ = 0;
 };
 
-}  // namespace cover::cli
+}  // namespace cover::recording

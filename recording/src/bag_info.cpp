@@ -1,11 +1,11 @@
-#include "bag_info.hpp"
+#include "cover/recording/bag_info.hpp"
 
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <ctime>
 
-namespace cover::cli {
+namespace cover::recording {
 namespace {
 
 std::string human_bytes(std::uint64_t bytes) {
@@ -162,4 +162,4 @@ nlohmann::json bag_summary_json(const BagSummary& s) {
           {"issues", issues}};
 }
 
-}  // namespace cover::cli
+}  // namespace cover::recording

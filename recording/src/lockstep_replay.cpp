@@ -7,9 +7,9 @@
 #include <map>
 
 #include "cover/dds/cdr_codec.hpp"
-#include "player.hpp"
+#include "cover/recording/player.hpp"
 
-namespace cover::cli {
+namespace cover::recording {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -128,4 +128,4 @@ PlayStats Player::run_lockstep(PlayStats stats, const std::function<bool()>& sto
   return stats;
 }
 
-}  // namespace cover::cli
+}  // namespace cover::recording
