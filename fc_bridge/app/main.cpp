@@ -15,7 +15,7 @@
 #include "cover/fc_bridge/fc_bridge_params.hpp"
 #include "cover/logging/log.hpp"
 #include "cover/mavlink/connection_url.hpp"
-#include "cover/process/shutdown_signal.hpp"
+#include "cover/startup/startup.hpp"
 #include "cover/time_sync/clock_responder.hpp"
 #include "fc_bridge_node.hpp"
 #include "signing_key_file.hpp"
@@ -23,9 +23,10 @@
 namespace {
 
 constexpr const char* kExitCodes =
-    "Exit codes: 0 stopped by SIGINT/SIGTERM (its normal end); 2 usage or configuration\n"
-    "error (a bad URL, parameter or key file); 3 DDS or the link could not start (a UDP port\n"
-    "taken, a host not found). A serial device missing at start-up is waited for (it may\n"
+    "Exit codes: 0 stopped by SIGINT/SIGTERM (its normal end); 1 an unexpected error (its\n"
+    "message on stderr); 2 usage or configuration error (a bad URL, parameter or key file);\n"
+    "3 DDS or the link could not start (a UDP port taken, a host not found). A serial device "
+    "missing at start-up is waited for (it may\n"
     "appear late at boot); a link lost later is opened again until it is back.";
 
 struct CommandLine {
@@ -69,7 +70,7 @@ void add_options(CLI::App& app, CommandLine& cli) {
   cli.dds.add_to(app);
 }
 
-cover::fc_bridge::NodeOptions node_options(const CommandLine& cli, CLI::App& app) {
+cover::fc_bridge::NodeOptions node_options(const CommandLine& cli, const CLI::App& app) {
   cover::fc_bridge::NodeOptions options;
   options.uav_id = static_cast<std::uint32_t>(cli.uav_id);
   options.clock = *cover::sim_clock::parse_clock_mode(cli.clock);
@@ -108,27 +109,26 @@ void log_start(const CommandLine& cli, const cover::fc_bridge::NodeOptions& o,
 }  // namespace
 
 int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();
-  CLI::App app{"cover-fc-bridge: one UAV's link to its PX4 / ArduPilot flight controller"};
-  app.footer(kExitCodes);
   CommandLine cli;
-  add_options(app, cli);
-  CLI11_PARSE(app, argc, argv);
-  cover::logging::init("fc_bridge" + std::to_string(cli.uav_id));
-  cover::mavlink::ConnectionUrl url;
-  try {
-    url = cover::mavlink::ConnectionUrl::parse(cli.url);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "cover-fc-bridge: --url: " << e.what() << "\n";
-    return 2;
-  }
-  try {
+  cover::startup::Program program;
+  program.name = "cover-fc-bridge";
+  program.description = "cover-fc-bridge: one UAV's link to its PX4 / ArduPilot flight controller";
+  program.exit_codes = kExitCodes;
+  program.logger_name = [&] { return "fc_bridge" + std::to_string(cli.uav_id); };
+  program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
+  program.exits = {cover::startup::exit_on<cover::dds::DdsError>(3)};
+  return cover::startup::run_main(argc, argv, program, [&](const CLI::App& app) {
+    cover::mavlink::ConnectionUrl url;
+    try {
+      url = cover::mavlink::ConnectionUrl::parse(cli.url);
+    } catch (const std::invalid_argument& e) {
+      throw cover::config::ConfigError(std::string("--url: ") + e.what());
+    }
     const cover::fc_bridge::NodeOptions options = node_options(cli, app);
     const cover::dds::ParticipantOptions dds =
         cli.dds.resolve("cover-fc-bridge-" + std::to_string(cli.uav_id));
     log_start(cli, options, dds);
     cover::dds::Participant participant(dds);
-    // Its UAV agent takes the autopilot's state: it measures this host's clock.
     cover::time_sync::ClockResponder clock_responder(
         participant, "cover-fc-bridge-" + std::to_string(cli.uav_id));
     cover::fc_bridge::FcBridgeNode node(participant, options, cover::mavlink::make_link(url));
@@ -138,11 +138,5 @@ int main(int argc, char** argv) {
     }
     node.run();
     return 0;
-  } catch (const cover::config::ConfigError& e) {
-    std::cerr << "cover-fc-bridge: " << e.what() << "\n";
-    return 2;
-  } catch (const cover::dds::DdsError& e) {
-    std::cerr << "cover-fc-bridge: " << e.what() << "\n";
-    return 3;
-  }
+  });
 }

@@ -21,13 +21,14 @@
 #include "cover/dds/dds_error.hpp"
 #include "cover/foxglove/live_view_params.hpp"
 #include "cover/logging/log.hpp"
-#include "cover/process/shutdown_signal.hpp"
+#include "cover/startup/startup.hpp"
 
 namespace {
 
 constexpr const char* kExitCodes =
-    "Exit codes: 0 stopped by SIGINT/SIGTERM (its normal end); 2 usage or configuration\n"
-    "error; 3 DDS could not start; 4 the port cannot be listened on (in use?).\n"
+    "Exit codes: 0 stopped by SIGINT/SIGTERM (its normal end); 1 an unexpected error (its\n"
+    "message on stderr); 2 usage or configuration error; 3 DDS could not start; 4 the port\n"
+    "cannot be listened on (in use?).\n"
     "Open it in Foxglove: Open connection -> Foxglove WebSocket -> ws://HOST:PORT.";
 
 // As the recorder's: bursts of many topics at once are not lost in the socket.
@@ -110,49 +111,47 @@ cover::foxglove_bridge::BridgeOptions bridge_options(const cover::foxglove::Live
   return o;
 }
 
+// Serves until SIGINT/SIGTERM; the exit code.
+int serve(const CLI::App& app, const CommandLine& cli) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto options = bridge_options(load(app, cli), cli.topic_globs);
+  cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-foxglove-bridge");
+  dds.receive_buffer_bytes = kReceiveBufferBytes;
+  spdlog::info("{} domain {}, fleet of {} UAVs and {} UGVs, settings {}",
+               cover::dds::vendor_name(dds.vendor), dds.domain_id, options.tap.fleet.uavs,
+               options.tap.fleet.ugvs, cli.config_file);
+  cover::dds::Participant participant(dds);
+  std::unique_ptr<cover::foxglove_bridge::BridgeNode> node;
+  try {
+    node = std::make_unique<cover::foxglove_bridge::BridgeNode>(participant, options);
+  } catch (const std::runtime_error& e) {
+    if (dynamic_cast<const cover::dds::DdsError*>(&e) != nullptr) throw;
+    std::cerr << "cover-foxglove-bridge: " << e.what() << "\n";
+    return 4;
+  }
+  node->run();
+  node.reset();
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  spdlog::info("bridge CPU {:.3f} s over {:.3f} s: {:.1f} % of one core", cpu_seconds(), elapsed_s,
+               100.0 * cpu_seconds() / std::max(elapsed_s, 1e-9));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();
-  CLI::App app{
+  CommandLine cli;
+  cover::startup::Program program;
+  program.name = "cover-foxglove-bridge";
+  program.description =
       "cover-foxglove-bridge: the live view. Every catalogued topic of the fleet and "
       "Foxglove's 3D types (UGV frames, UAVs, decks, reference paths) over the Foxglove "
-      "WebSocket protocol"};
-  app.footer(kExitCodes);
-  CommandLine cli;
-  add_options(app, cli);
-  CLI11_PARSE(app, argc, argv);
-  cover::logging::init("foxglove_bridge");
-  const auto start = std::chrono::steady_clock::now();
-  try {
-    const auto options = bridge_options(load(app, cli), cli.topic_globs);
-    cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-foxglove-bridge");
-    dds.receive_buffer_bytes = kReceiveBufferBytes;
-    spdlog::info("{} domain {}, fleet of {} UAVs and {} UGVs, settings {}",
-                 cover::dds::vendor_name(dds.vendor), dds.domain_id, options.tap.fleet.uavs,
-                 options.tap.fleet.ugvs, cli.config_file);
-    cover::dds::Participant participant(dds);
-    std::unique_ptr<cover::foxglove_bridge::BridgeNode> node;
-    try {
-      node = std::make_unique<cover::foxglove_bridge::BridgeNode>(participant, options);
-    } catch (const std::runtime_error& e) {
-      if (dynamic_cast<const cover::dds::DdsError*>(&e) != nullptr) throw;
-      std::cerr << "cover-foxglove-bridge: " << e.what() << "\n";
-      return 4;
-    }
-    node->run();
-    node.reset();
-    // What the bridge cost, for cover-bench record's share of a core during a run.
-    const double elapsed_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    spdlog::info("bridge CPU {:.3f} s over {:.3f} s: {:.1f} % of one core", cpu_seconds(),
-                 elapsed_s, 100.0 * cpu_seconds() / std::max(elapsed_s, 1e-9));
-    return 0;
-  } catch (const cover::config::ConfigError& e) {
-    std::cerr << "cover-foxglove-bridge: " << e.what() << "\n";
-    return 2;
-  } catch (const cover::dds::DdsError& e) {
-    std::cerr << "cover-foxglove-bridge: " << e.what() << "\n";
-    return 3;
-  }
+      "WebSocket protocol";
+  program.exit_codes = kExitCodes;
+  program.logger_name = [] { return std::string("foxglove_bridge"); };
+  program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
+  program.exits = {cover::startup::exit_on<cover::dds::DdsError>(3)};
+  return cover::startup::run_main(argc, argv, program,
+                                  [&](const CLI::App& app) { return serve(app, cli); });
 }

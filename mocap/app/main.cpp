@@ -5,7 +5,6 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
-#include <iostream>
 #include <stdexcept>
 
 #include "cover/config/config_error.hpp"
@@ -14,16 +13,17 @@
 #include "cover/dds/dds_error.hpp"
 #include "cover/logging/log.hpp"
 #include "cover/mocap/relay_params.hpp"
-#include "cover/process/shutdown_signal.hpp"
+#include "cover/startup/startup.hpp"
 #include "cover/time_sync/clock_responder.hpp"
 #include "relay_node.hpp"
 
 namespace {
 
 constexpr const char* kExitCodes =
-    "Exit codes: 0 stopped by SIGINT/SIGTERM (its normal end); 2 usage or configuration\n"
-    "error (a bad server address, body table or parameter); 3 DDS could not start. A mocap\n"
-    "server that is away (at start or later) is waited for, with back-off: never an exit.";
+    "Exit codes: 0 stopped by SIGINT/SIGTERM (its normal end); 1 an unexpected error (its\n"
+    "message on stderr); 2 usage or configuration error (a bad server address, body table or\n"
+    "parameter); 3 DDS could not start. A mocap server that is away (at start or later) is\n"
+    "waited for, with back-off: never an exit.";
 
 struct CommandLine {
   std::string config_file = cover::config::default_config_dir() + "/mocap.yaml";
@@ -31,6 +31,18 @@ struct CommandLine {
   std::string time_source;
   cover::dds::DdsCliOptions dds;
 };
+
+void add_options(CLI::App& app, CommandLine& cli) {
+  app.add_option("--config", cli.config_file,
+                 "settings (mocap: section: server, up_axis, units, bodies, filter)")
+      ->capture_default_str();
+  app.add_option("--server", cli.server, "HOST:PORT of the VRPN server (overrides mocap.server)");
+  app.add_option("--time-source", cli.time_source,
+                 "server: the server's clock is ours (simulator, chrony); offset: estimated "
+                 "from arrival times (overrides mocap.time_source)")
+      ->check(CLI::IsMember({"server", "offset"}));
+  cli.dds.add_to(app);
+}
 
 cover::mocap::RelayParams load(const CommandLine& cli) {
   auto params = cover::mocap::RelayParams::load_file(cli.config_file);
@@ -65,24 +77,18 @@ void log_start(const cover::mocap::RelayParams& p, const cover::dds::Participant
 }  // namespace
 
 int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();
-  CLI::App app{
-      "cover-mocap-relay: relative states cover/uav/<u>/rel/<k> from a motion-capture system "
-      "(VRPN: NOKOV, Vicon, OptiTrack, Qualisys), for the whole fleet"};
-  app.footer(kExitCodes);
   CommandLine cli;
-  app.add_option("--config", cli.config_file,
-                 "settings (mocap: section: server, up_axis, units, bodies, filter)")
-      ->capture_default_str();
-  app.add_option("--server", cli.server, "HOST:PORT of the VRPN server (overrides mocap.server)");
-  app.add_option("--time-source", cli.time_source,
-                 "server: the server's clock is ours (simulator, chrony); offset: estimated "
-                 "from arrival times (overrides mocap.time_source)")
-      ->check(CLI::IsMember({"server", "offset"}));
-  cli.dds.add_to(app);
-  CLI11_PARSE(app, argc, argv);
-  cover::logging::init("mocap_relay");
-  try {
+  cover::startup::Program program;
+  program.name = "cover-mocap-relay";
+  program.description =
+      "cover-mocap-relay: relative states cover/uav/<u>/rel/<k> from a motion-capture system "
+      "(VRPN: NOKOV, Vicon, OptiTrack, Qualisys), for the whole fleet";
+  program.exit_codes = kExitCodes;
+  program.logger_name = [] { return std::string("mocap_relay"); };
+  program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
+  program.exits = {cover::startup::exit_on<std::invalid_argument>(2),
+                   cover::startup::exit_on<cover::dds::DdsError>(3)};
+  return cover::startup::run_main(argc, argv, program, [&](const CLI::App&) {
     const cover::mocap::RelayParams params = load(cli);
     const cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-mocap-relay");
     log_start(params, dds);
@@ -92,14 +98,5 @@ int main(int argc, char** argv) {
     cover::mocap::RelayNode node(participant, params, client_options(params));
     node.run();
     return 0;
-  } catch (const cover::config::ConfigError& e) {
-    std::cerr << "cover-mocap-relay: " << e.what() << "\n";
-    return 2;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "cover-mocap-relay: " << e.what() << "\n";
-    return 2;
-  } catch (const cover::dds::DdsError& e) {
-    std::cerr << "cover-mocap-relay: " << e.what() << "\n";
-    return 3;
-  }
+  });
 }

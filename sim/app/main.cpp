@@ -15,14 +15,13 @@
 #include "cover/config/config_error.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
-#include "cover/dds/dds_error.hpp"
 #include "cover/logging/log.hpp"
 #include "cover/mission/mission_params.hpp"
-#include "cover/process/shutdown_signal.hpp"
 #include "cover/shm/segment_name.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
 #include "cover/sim/percentile.hpp"
+#include "cover/startup/startup.hpp"
 #include "cover/time_sync/clock_responder.hpp"
 #include "fleet.hpp"
 #include "sim_node.hpp"
@@ -301,67 +300,63 @@ cover::sim::SimRunOptions run_options(const CommandLine& cli, const cover::sim::
   return options;
 }
 
+// Runs the world to its end (or until stopped); the exit code.
+int run(const CLI::App& app, const CommandLine& cli) {
+  cover::sim::Scenario scenario = cover::sim::Scenario::load_file(scenario_file(cli.scenario));
+  if (app.count("--seed") > 0) scenario.world.seed = cli.seed;
+  const auto params = cover::sim::SimProcessParams::load_file(cli.params_file);
+  const auto mission = cover::mission::MissionParams::load_file(
+      cover::config::default_config_dir() + "/mission.yaml");
+  cover::sim::FleetAutopilots autopilots;
+  autopilots.profile = cover::sim::fc::parse_profile(cli.fc);  // nullopt: direct
+  const bool mavlink = autopilots.profile || cli.ugv_imu == "mavlink";
+  if (mavlink) autopilots.params = cover::sim::fc::SimFcParams::load_file(cli.fc_params_file);
+  // In lockstep every step's frames end with a HIGHRES_IMU, which a bridge waits for
+  // (docs/flight-controller.md, "Lockstep"): the simulator's contract, not the firmware's.
+  if (cli.clock == "lockstep") autopilots.closing = cover::sim::fc::StepClosing::HighresImu;
+  cover::sim::Fleet fleet(scenario, params, mission, autopilots);
+  const cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-sim");
+  const cover::sim::SimRunOptions options = run_options(cli, fleet, autopilots);
+  const std::string segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
+  // Declared first, removed last: see SimNode.
+  cover::shm::SeqlockWriter<cover::sim::SharedWorld> segment(
+      segment_name, cover::sim::kWorldSegmentLayoutVersion);
+  cover::dds::Participant participant(dds);
+  // The UAV agents take its relative states: they measure its clock (docs/time.md).
+  cover::time_sync::ClockResponder clock_responder(participant, "cover-sim");
+  cover::sim::SimNode node(participant, segment, fleet, options, params);
+  spdlog::info(
+      "{}: {} UAV(s), {} UGV(s), seed {}, clock {}, flight controller {}, UGV IMU {}, {} on "
+      "domain {}, segment {}",
+      scenario.name, fleet.uav_count(), scenario.world.ugvs.size(), scenario.world.seed, cli.clock,
+      cli.fc, cli.ugv_imu, cover::dds::vendor_name(dds.vendor), dds.domain_id, segment_name);
+  switch (node.run()) {
+    case cover::sim::SimExit::Finished:
+      return finish(fleet, node, cli);
+    case cover::sim::SimExit::Interrupted:
+      spdlog::info("interrupted at t = {:.2f} s", fleet.time_s());
+      return cli.standing ? 0 : 130;  // a standing world ends by being stopped
+    case cover::sim::SimExit::Stalled:
+    case cover::sim::SimExit::StartupTimeout:
+      return 4;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();
-  CLI::App app{
-      "cover-sim: the simulated world of a scenario, shared over DDS and shared memory; with "
-      "--fc px4|ardupilot each UAV has a simulated autopilot speaking MAVLink over UDP"};
-  app.footer(kExitCodes);
   CommandLine cli;
-  add_options(app, cli);
-  CLI11_PARSE(app, argc, argv);
-  cover::logging::init("sim");
-  try {
-    cover::sim::Scenario scenario = cover::sim::Scenario::load_file(scenario_file(cli.scenario));
-    if (app.count("--seed") > 0) scenario.world.seed = cli.seed;
-    const auto params = cover::sim::SimProcessParams::load_file(cli.params_file);
-    const auto mission = cover::mission::MissionParams::load_file(
-        cover::config::default_config_dir() + "/mission.yaml");
-    cover::sim::FleetAutopilots autopilots;
-    autopilots.profile = cover::sim::fc::parse_profile(cli.fc);  // nullopt: direct
-    const bool mavlink = autopilots.profile || cli.ugv_imu == "mavlink";
-    if (mavlink) autopilots.params = cover::sim::fc::SimFcParams::load_file(cli.fc_params_file);
-    // In lockstep every step's frames end with a HIGHRES_IMU, which a bridge waits for
-    // (docs/flight-controller.md, "Lockstep"): the simulator's contract, not the firmware's.
-    if (cli.clock == "lockstep") autopilots.closing = cover::sim::fc::StepClosing::HighresImu;
-    cover::sim::Fleet fleet(scenario, params, mission, autopilots);
-    const cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-sim");
-    const cover::sim::SimRunOptions options = run_options(cli, fleet, autopilots);
-    const std::string segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
-    // Declared first, removed last: see SimNode.
-    cover::shm::SeqlockWriter<cover::sim::SharedWorld> segment(
-        segment_name, cover::sim::kWorldSegmentLayoutVersion);
-    cover::dds::Participant participant(dds);
-    // The UAV agents take its relative states: they measure its clock (docs/time.md).
-    cover::time_sync::ClockResponder clock_responder(participant, "cover-sim");
-    cover::sim::SimNode node(participant, segment, fleet, options, params);
-    spdlog::info(
-        "{}: {} UAV(s), {} UGV(s), seed {}, clock {}, flight controller {}, UGV IMU {}, {} on "
-        "domain {}, segment {}",
-        scenario.name, fleet.uav_count(), scenario.world.ugvs.size(), scenario.world.seed,
-        cli.clock, cli.fc, cli.ugv_imu, cover::dds::vendor_name(dds.vendor), dds.domain_id,
-        segment_name);
-    switch (node.run()) {
-      case cover::sim::SimExit::Finished:
-        return finish(fleet, node, cli);
-      case cover::sim::SimExit::Interrupted:
-        spdlog::info("interrupted at t = {:.2f} s", fleet.time_s());
-        return cli.standing ? 0 : 130;  // a standing world ends by being stopped
-      case cover::sim::SimExit::Stalled:
-      case cover::sim::SimExit::StartupTimeout:
-        return 4;
-    }
-  } catch (const cover::config::ConfigError& e) {
-    std::cerr << "cover-sim: " << e.what() << "\n";
-    return 2;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "cover-sim: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "cover-sim: " << e.what() << "\n";
-    return 3;
-  }
-  return 0;
+  cover::startup::Program program;
+  program.name = "cover-sim";
+  program.description =
+      "cover-sim: the simulated world of a scenario, shared over DDS and shared memory; with "
+      "--fc px4|ardupilot each UAV has a simulated autopilot speaking MAVLink over UDP";
+  program.exit_codes = kExitCodes;
+  program.logger_name = [] { return std::string("sim"); };
+  program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
+  program.exits = {cover::startup::exit_on<std::invalid_argument>(2)};
+  program.other_exit = 3;  // DDS, shared memory, a MAVLink port
+  return cover::startup::run_main(argc, argv, program,
+                                  [&](const CLI::App& app) { return run(app, cli); });
 }

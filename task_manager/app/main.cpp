@@ -3,8 +3,6 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
-#include <iostream>
-
 #include "cover/config/config_error.hpp"
 #include "cover/config/state_dir.hpp"
 #include "cover/config/yaml_reader.hpp"
@@ -12,7 +10,7 @@
 #include "cover/dds/dds_error.hpp"
 #include "cover/fleet/fleet_size.hpp"
 #include "cover/logging/log.hpp"
-#include "cover/process/shutdown_signal.hpp"
+#include "cover/startup/startup.hpp"
 #include "cover/task_manager/store_error.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
 #include "manager_node.hpp"
@@ -20,7 +18,8 @@
 namespace {
 
 constexpr const char* kExitCodes =
-    "Exit codes: 0 stopped by SIGINT/SIGTERM; 2 usage or configuration error;\n"
+    "Exit codes: 0 stopped by SIGINT/SIGTERM; 1 an unexpected error (its message on stderr);\n"
+    "2 usage or configuration error;\n"
     "3 the database cannot be opened (path, permissions, a newer schema, no state directory for\n"
     "the default one) or DDS cannot start.";
 
@@ -40,24 +39,29 @@ std::string default_database() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();
-  CLI::App app{"cover-task-manager: task queues per UAV, persisted, dispatched and followed"};
-  app.footer(kExitCodes);
   std::string db_path;  // empty: tasks.db in the user's state directory
   std::string config_path = cover::config::default_config_dir() + "/task_manager.yaml";
   cover::task_manager::ManagerOptions options;
   cover::dds::DdsCliOptions dds;
-  app.add_option("--db", db_path,
-                 "SQLite database (created if missing; WAL, synchronous FULL); default "
-                 "$XDG_STATE_HOME/cover/tasks.db, else ~/.local/state/cover/tasks.db");
-  app.add_option("--config", config_path, "limits and timeouts")->capture_default_str();
-  app.add_option("--max-uavs", options.max_uavs, "UAV ids 0..N-1 are served")
-      ->check(CLI::Range(1, cover::fleet::kMaxUavs))
-      ->capture_default_str();
-  dds.add_to(app);
-  CLI11_PARSE(app, argc, argv);
-  cover::logging::init("task_manager");
-  try {
+  cover::startup::Program program;
+  program.name = "cover-task-manager";
+  program.description =
+      "cover-task-manager: task queues per UAV, persisted, dispatched and followed";
+  program.exit_codes = kExitCodes;
+  program.logger_name = [] { return std::string("task_manager"); };
+  program.add_flags = [&](CLI::App& app) {
+    app.add_option("--db", db_path,
+                   "SQLite database (created if missing; WAL, synchronous FULL); default "
+                   "$XDG_STATE_HOME/cover/tasks.db, else ~/.local/state/cover/tasks.db");
+    app.add_option("--config", config_path, "limits and timeouts")->capture_default_str();
+    app.add_option("--max-uavs", options.max_uavs, "UAV ids 0..N-1 are served")
+        ->check(CLI::Range(1, cover::fleet::kMaxUavs))
+        ->capture_default_str();
+    dds.add_to(app);
+  };
+  program.exits = {cover::startup::exit_on<cover::task_manager::StoreError>(3),
+                   cover::startup::exit_on<cover::dds::DdsError>(3)};
+  return cover::startup::run_main(argc, argv, program, [&](const CLI::App&) {
     const auto limits = cover::task_manager::TaskLimits::load_file(config_path);
     if (db_path.empty()) db_path = default_database();
     cover::task_manager::TaskStore store(db_path);
@@ -77,14 +81,5 @@ int main(int argc, char** argv) {
                  participant_options.domain_id);
     cover::task_manager::ManagerNode node(participant, store, limits, options);
     return node.run();
-  } catch (const cover::config::ConfigError& e) {
-    std::cerr << "cover-task-manager: " << e.what() << "\n";
-    return 2;
-  } catch (const cover::task_manager::StoreError& e) {
-    std::cerr << "cover-task-manager: " << e.what() << "\n";
-    return 3;
-  } catch (const cover::dds::DdsError& e) {
-    std::cerr << "cover-task-manager: " << e.what() << "\n";
-    return 3;
-  }
+  });
 }

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "bench_registry.hpp"
+#include "cover/startup/startup.hpp"
 
 namespace {
 void print_usage() {
@@ -10,7 +11,9 @@ void print_usage() {
     std::cerr << "  " << name << std::string(name.size() < 12 ? 12 - name.size() : 1, ' ')
               << entry.summary << "\n";
   }
-  std::cerr << "\n'cover-bench <subcommand> --help' for its options.\n";
+  std::cerr << "\n'cover-bench <subcommand> --help' for its options.\n"
+            << "Exit codes: 0 measured; 1 a run failed (the reason on stderr); 2 usage or "
+               "configuration error;\n4 measured nothing it was asked for (what, on stderr).\n";
 }
 }  // namespace
 
@@ -27,10 +30,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::vector<std::string> args(argv + 2, argv + argc);
-  try {
-    return found->second.run(args);
-  } catch (const std::exception& e) {
-    std::cerr << "cover-bench " << argv[1] << ": " << e.what() << "\n";
-    return 1;
-  }
+  // A benchmark that throws did not run (1); its own flags parse inside it (2 when bad).
+  return cover::startup::run_guarded("cover-bench " + found->first, {},
+                                     cover::startup::kExitFailure,
+                                     [&] { return found->second.run(args); });
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "cover/startup/startup.hpp"
 #include "params_reference.hpp"
 
 namespace {
@@ -37,30 +38,29 @@ int check(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{
-      "cover-params: the Markdown reference of every parameter file (docs/parameters.md): per "
-      "YAML file or section, each key's unit, default, valid values and meaning, printed "
-      "from the same declarations that load and validate them"};
-  app.footer(kExitCodes);
   bool markdown = false;
   std::string check_path;
-  auto* print = app.add_flag("--markdown", markdown, "print the reference to stdout");
-  app.add_option("--check", check_path,
-                 "compare FILE with the reference; exit 1 with the difference when they differ")
-      ->type_name("FILE")
-      ->excludes(print);
-  try {
-    app.parse(argc, argv);
-    if (!markdown && check_path.empty()) {
-      throw CLI::RequiredError("--markdown or --check FILE");
-    }
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
-  }
-  if (!check_path.empty()) return check(check_path);
-  std::cout << cover::params_reference::markdown();
-  return std::cout.good() ? 0 : 1;
+  cover::startup::Program program;
+  program.name = "cover-params";
+  program.description =
+      "cover-params: the Markdown reference of every parameter file (docs/parameters.md): per "
+      "YAML file or section, each key's unit, default, valid values and meaning, printed "
+      "from the same declarations that load and validate them";
+  program.exit_codes = kExitCodes;
+  program.shutdown_signals = false;  // prints and ends
+  program.add_flags = [&](CLI::App& app) {
+    auto* print = app.add_flag("--markdown", markdown, "print the reference to stdout");
+    app.add_option("--check", check_path,
+                   "compare FILE with the reference; exit 1 with the difference when they differ")
+        ->type_name("FILE")
+        ->excludes(print);
+  };
+  program.check_flags = [&](const CLI::App&) {
+    if (!markdown && check_path.empty()) throw CLI::RequiredError("--markdown or --check FILE");
+  };
+  return cover::startup::run_main(argc, argv, program, [&](const CLI::App&) {
+    if (!check_path.empty()) return check(check_path);
+    std::cout << cover::params_reference::markdown();
+    return std::cout.good() ? 0 : 1;
+  });
 }

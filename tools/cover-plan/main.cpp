@@ -12,6 +12,7 @@
 #include "cover/config/yaml_reader.hpp"
 #include "cover/planner/stage_planner.hpp"
 #include "cover/planner/trajectory_metrics.hpp"
+#include "cover/startup/startup.hpp"
 
 namespace {
 
@@ -140,20 +141,16 @@ int plan_or_throw(const CLI::App& app, const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Plan one COVER stage (MINCO minimum jerk, L-BFGS) and report it"};
   Options options;
-  add_options(app, options);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  try {
-    return plan_or_throw(app, options);
-  } catch (const CLI::ValidationError& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::cerr << "cover-plan: " << e.what() << "\n";
-    return 1;
-  }
+  cover::startup::Program program;
+  program.name = "cover-plan";
+  program.description = "Plan one COVER stage (MINCO minimum jerk, L-BFGS) and report it";
+  program.exit_codes =
+      "Exit codes: 0 a usable plan; 1 an unexpected error (a CSV that cannot be written); 2 "
+      "usage or configuration error (a malformed vector, a bad planner file); 3 no usable "
+      "plan (the report says why).";
+  program.shutdown_signals = false;  // one plan, in well under a second: Ctrl-C just ends it
+  program.add_flags = [&](CLI::App& app) { add_options(app, options); };
+  return cover::startup::run_main(argc, argv, program,
+                                  [&](const CLI::App& app) { return plan_or_throw(app, options); });
 }

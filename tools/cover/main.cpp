@@ -2,10 +2,9 @@
 // flags and runs itself; main only picks the one the command line chose.
 #include <CLI/CLI.hpp>
 
-#include <iostream>
+#include <memory>
 
-#include "cover/logging/log.hpp"
-#include "cover/process/shutdown_signal.hpp"
+#include "cover/startup/startup.hpp"
 #include "fc_commands.hpp"
 #include "fleet_commands.hpp"
 #include "record_commands.hpp"
@@ -13,33 +12,50 @@
 #include "task_cli.hpp"
 #include "topic_cli.hpp"
 
-int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();
-  // Logs (e.g. a certificate about to expire) go to stderr: stdout carries samples and JSON.
-  cover::logging::init("cover");
-  CLI::App app{"cover: ground station for COVER cross-vehicle missions"};
-  app.require_subcommand(1);
-  cover::cli::TopicCli topic_cli(app);
-  cover::cli::TaskCli task_cli(app);
-  cover::cli::FcCommands fc_commands(app);
-  cover::cli::FleetCommand fleet_command(app);
-  cover::cli::RecordCommands record_commands(app);
-  cover::cli::SecurityCli security_cli(app);
-  app.footer(
-      "Task commands exit 0 when accepted / found / succeeded, 1 when rejected, unknown or not\n"
-      "succeeded, 2 on a bad file or usage, 3 when no task manager answers within --timeout.");
+namespace {
 
-  CLI11_PARSE(app, argc, argv);
-  try {
-    if (topic_cli.chosen()) return topic_cli.run();
-    if (task_cli.chosen()) return task_cli.run();
-    if (fc_commands.chosen()) return fc_commands.run();
-    if (fleet_command.chosen()) return fleet_command.run();
-    if (record_commands.chosen()) return record_commands.run();
-    if (security_cli.chosen()) return security_cli.run();
-  } catch (const std::exception& e) {
-    std::cerr << "cover: " << e.what() << "\n";
-    return 2;
+constexpr const char* kExitCodes =
+    "Task commands exit 0 when accepted / found / succeeded, 1 when rejected, unknown or not\n"
+    "succeeded, 2 on a bad file or usage, 3 when no task manager answers within --timeout.";
+
+// The command families; each declares its own flags and runs itself when chosen.
+struct Commands {
+  explicit Commands(CLI::App& app)
+      : topic(app), task(app), fc(app), fleet(app), record(app), security(app) {}
+
+  int run() {
+    if (topic.chosen()) return topic.run();
+    if (task.chosen()) return task.run();
+    if (fc.chosen()) return fc.run();
+    if (fleet.chosen()) return fleet.run();
+    if (record.chosen()) return record.run();
+    if (security.chosen()) return security.run();
+    return 0;
   }
-  return 0;
+
+  cover::cli::TopicCli topic;
+  cover::cli::TaskCli task;
+  cover::cli::FcCommands fc;
+  cover::cli::FleetCommand fleet;
+  cover::cli::RecordCommands record;
+  cover::cli::SecurityCli security;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::unique_ptr<Commands> commands;
+  cover::startup::Program program;
+  program.name = "cover";
+  program.description = "cover: ground station for COVER cross-vehicle missions";
+  program.exit_codes = kExitCodes;
+  // Logs (e.g. a certificate about to expire) go to stderr: stdout carries samples and JSON.
+  program.logger_name = [] { return std::string("cover"); };
+  program.add_flags = [&](CLI::App& app) {
+    app.require_subcommand(1);
+    commands = std::make_unique<Commands>(app);
+  };
+  program.other_exit = 2;  // a bad file, a bad value
+  return cover::startup::run_main(argc, argv, program,
+                                  [&](const CLI::App&) { return commands->run(); });
 }

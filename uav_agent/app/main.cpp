@@ -11,15 +11,15 @@
 #include "cover/dds/dds_error.hpp"
 #include "cover/fleet/fleet_size.hpp"
 #include "cover/logging/log.hpp"
-#include "cover/process/shutdown_signal.hpp"
 #include "cover/sampc/sampc_params.hpp"
+#include "cover/startup/startup.hpp"
 #include "uav_agent_node.hpp"
 
 namespace {
 
 constexpr const char* kExitCodes =
-    "Exit codes: 0 stopped by SIGINT/SIGTERM; 2 usage, configuration or task-file error;\n"
-    "3 DDS could not start.";
+    "Exit codes: 0 stopped by SIGINT/SIGTERM; 1 an unexpected error (its message on stderr);\n"
+    "2 usage, configuration or task-file error; 3 DDS could not start.";
 
 struct CommandLine {
   int uav_id = 0;
@@ -87,14 +87,15 @@ cover::uav::ControllerConfig controller_config(const CommandLine& cli) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();
-  CLI::App app{"cover-uav-agent: one UAV's planner and SAMPC controller over DDS"};
-  app.footer(kExitCodes);
   CommandLine cli;
-  add_options(app, cli);
-  CLI11_PARSE(app, argc, argv);
-  cover::logging::init("uav_agent" + std::to_string(cli.uav_id));
-  try {
+  cover::startup::Program program;
+  program.name = "cover-uav-agent";
+  program.description = "cover-uav-agent: one UAV's planner and SAMPC controller over DDS";
+  program.exit_codes = kExitCodes;
+  program.logger_name = [&] { return "uav_agent" + std::to_string(cli.uav_id); };
+  program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
+  program.exits = {cover::startup::exit_on<cover::dds::DdsError>(3)};
+  return cover::startup::run_main(argc, argv, program, [&](const CLI::App&) {
     const cover::uav_agent::AgentOptions options = agent_options(cli);
     cover::uav::ControllerConfig config = controller_config(cli);
     const cover::dds::ParticipantOptions dds =
@@ -105,11 +106,5 @@ int main(int argc, char** argv) {
                  cover::sampc::to_string(config.sampc.mode));
     cover::uav_agent::UavAgentNode node(participant, options, std::move(config));
     return node.run();
-  } catch (const cover::config::ConfigError& e) {
-    std::cerr << "cover-uav-agent: " << e.what() << "\n";
-    return 2;
-  } catch (const cover::dds::DdsError& e) {
-    std::cerr << "cover-uav-agent: " << e.what() << "\n";
-    return 3;
-  }
+  });
 }

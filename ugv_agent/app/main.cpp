@@ -5,7 +5,6 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
-#include <iostream>
 #include <memory>
 #include <optional>
 
@@ -18,6 +17,7 @@
 #include "cover/mavlink/connection_url.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/shm/segment_name.hpp"
+#include "cover/startup/startup.hpp"
 #include "cover/time_sync/clock_responder.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
 #include "imu_publisher.hpp"
@@ -149,30 +149,19 @@ int run(const CommandLine& cli) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  cover::process::ShutdownSignal::install();
-  CLI::App app{
+  CommandLine cli;
+  cover::startup::Program program;
+  program.name = "cover-ugv-agent";
+  program.description =
       "cover-ugv-agent: UGV k's IMU publisher. Reads the raw IMU, runs the IMU filter "
       "(config section ugv_agent.imu_filter) and publishes every accepted sample on "
       "cover/ugv/<k>/imu, plus a heartbeat on cover/ugv/<k>/status.\n"
-      "Exit codes: 0 stopped (SIGINT/SIGTERM) or replay finished, 2 usage or configuration "
-      "error (a malformed --url too), 3 the IMU source failed (no segment within "
-      "segment_wait_s, malformed CSV, simulator gone, MAVLink port taken)."};
-  CommandLine cli;
-  add_options(app, cli);
-  try {
-    app.parse(argc, argv);
-    check_combination(cli);
-  } catch (const CLI::Success& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "cover-ugv-agent: " << e.what() << "\n(see --help)\n";
-    return kExitUsage;
-  }
-  cover::logging::init("ugv_agent" + std::to_string(cli.source.ugv_id));
-  try {
-    return run(cli);
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
+      "Exit codes: 0 stopped (SIGINT/SIGTERM) or replay finished, 1 an unexpected error (its "
+      "message on stderr), 2 usage or configuration error (a malformed --url too), 3 the IMU "
+      "source failed (no segment within segment_wait_s, malformed CSV, simulator gone, MAVLink "
+      "port taken).";
+  program.logger_name = [&] { return "ugv_agent" + std::to_string(cli.source.ugv_id); };
+  program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
+  program.check_flags = [&](const CLI::App&) { check_combination(cli); };
+  return cover::startup::run_main(argc, argv, program, [&](const CLI::App&) { return run(cli); });
 }

@@ -17,7 +17,7 @@
 #include "cover/launch/run_report.hpp"
 #include "cover/launch/supervisor.hpp"
 #include "cover/logging/log.hpp"
-#include "cover/process/shutdown_signal.hpp"
+#include "cover/startup/startup.hpp"
 
 namespace {
 
@@ -63,6 +63,7 @@ SIGHUP (the terminal closed, an SSH session dropped) stops nothing: it is logged
 
 Exit codes:
   0    run completed (the ends_run process exited with 0)
+  1    an unexpected error in the launcher (its message on stderr)
   2    usage or launch-file error
   3    the ends_run process failed (non-zero exit)
   4    a process died unexpectedly or could not be started (standing/field: every
@@ -209,22 +210,8 @@ int run(const LaunchPlan& plan, bool json) {
   return outcome.exit_code;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  HangupGuard::install();                     // before any thread exists
-  cover::process::ShutdownSignal::install();  // (it starts one)
-  CLI::App app{"cover-launch: start a local COVER system from a launch file"};
-  app.footer(kFooter);
-  Flags flags;
-  add_flags(app, flags);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitUsage;
-  }
-  cover::logging::init("cover-launch");
+// Loads the launch file and runs it; the exit code.
+int load_and_run(const Flags& flags) {
   LaunchPlan plan;
   try {
     const LaunchFile file = LaunchFile::load_file(flags.file);
@@ -236,4 +223,19 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
   return run(plan, flags.json);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  HangupGuard::install();  // before any thread exists, before run_main's signal watcher
+  Flags flags;
+  cover::startup::Program program;
+  program.name = "cover-launch";
+  program.description = "cover-launch: start a local COVER system from a launch file";
+  program.exit_codes = kFooter;
+  program.logger_name = [] { return std::string("cover-launch"); };
+  program.add_flags = [&](CLI::App& app) { add_flags(app, flags); };
+  return cover::startup::run_main(argc, argv, program,
+                                  [&](const CLI::App&) { return load_and_run(flags); });
 }
