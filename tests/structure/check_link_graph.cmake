@@ -16,8 +16,9 @@ set(forbid_cover_task_dispatch ${flight} ${simulator})
 set(forbid_cover-task-manager ${flight} ${simulator})
 set(forbid_cover_wire ${flight} ${simulator} cover_model cover_imu_filter cover_speed_estimator
                       cover_task_file)
-set(forbid_cover_ugv_imu_source ${flight} ${simulator})
-set(forbid_cover-ugv-agent ${flight} ${simulator})
+# A UGV's software needs nothing of the UAV's (its model's dynamics included).
+set(forbid_cover_ugv_imu_source ${flight} ${simulator} cover_model)
+set(forbid_cover-ugv-agent ${flight} ${simulator} cover_model)
 # The parameter structs' libraries, without DDS: cover-params reads every one of them.
 set(dds cover_dds cover_time_sync_dds fastrtps ddsc)
 set(forbid_cover_sim_process_params ${dds})
