@@ -15,7 +15,7 @@ set(forbid_cover_task_store ${flight} ${simulator})
 set(forbid_cover_task_dispatch ${flight} ${simulator})
 set(forbid_cover-task-manager ${flight} ${simulator})
 set(forbid_cover_wire ${flight} ${simulator} cover_model cover_imu_filter cover_speed_estimator
-                      cover_task_file)
+                      cover_task_file cover_config cover_clock)
 # A UGV's software needs nothing of the UAV's (its model's dynamics included).
 set(forbid_cover_ugv_imu_source ${flight} ${simulator} cover_model)
 set(forbid_cover-ugv-agent ${flight} ${simulator} cover_model)
