@@ -9,6 +9,7 @@ include of a higher level fails the check, naming file, line and header.
 
   check_include_order.py SOURCE_DIR          check; exit 1 naming each violation
   check_include_order.py SOURCE_DIR --edges  print the module graph as the tree has it
+  check_include_order.py --self-test          the check fails on a tree built to break it
 
 A folder named in ORDER that does not exist (yet) is skipped; a folder with an include/
 that ORDER does not name fails the check, so that a new module gets a place.
@@ -55,7 +56,7 @@ ORDER = [
     # catalogue, below the tools and the live view.
     ["recording"],
     # The simulator, and what runs the loop inside it.
-    ["sim/world_layout", "sim/fc", "sim/firmware", "sim/mocap", "sim"],
+    ["sim/fc", "sim/firmware", "sim/mocap", "sim"],
     ["sim/closed_loop"],
     # Processes and tools.
     ["foxglove/params", "foxglove/core"],
@@ -129,7 +130,48 @@ def owner_of(header, owners):
     return owners.get(header, set())
 
 
+def self_test():
+    """A throw-away tree with one include upwards, one foreign header in the vocabulary and
+    one unplaced module: each must be reported, and the fixed tree must pass."""
+    import subprocess
+    import tempfile
+
+    files = {
+        "vocabulary/include/cover/vocabulary/a.hpp": '#include <yaml-cpp/yaml.h>\n#include <vector>\n',
+        "uav_agent/mission/include/cover/mission/m.hpp": '#include "cover/vocabulary/a.hpp"\n',
+        "idl/wire/src/w.cpp": '#include "cover/vocabulary/a.hpp"\n#include "cover/mission/m.hpp"\n',
+        "nowhere/include/cover/nowhere/n.hpp": "\n",
+    }
+    expected = [
+        "idl/wire/src/w.cpp:2: includes cover/mission/m.hpp of uav_agent/mission",
+        "vocabulary/include/cover/vocabulary/a.hpp:1: includes <yaml-cpp/yaml.h>",
+        "nowhere/include: a module ORDER does not place",
+    ]
+    with tempfile.TemporaryDirectory() as root:
+        for path, text in files.items():
+            os.makedirs(os.path.dirname(os.path.join(root, path)), exist_ok=True)
+            with open(os.path.join(root, path), "w", encoding="utf-8") as out:
+                out.write(text)
+        run = subprocess.run([sys.executable, __file__, root], capture_output=True, text=True)
+        missing = [line for line in expected if line not in run.stdout]
+        if run.returncode != 1 or missing or "violation(s)" not in run.stdout:
+            print(f"self-test: exit {run.returncode}, not reported: {missing}\n{run.stdout}")
+            return 1
+        os.remove(os.path.join(root, "nowhere/include/cover/nowhere/n.hpp"))
+        for path in ("idl/wire/src/w.cpp", "vocabulary/include/cover/vocabulary/a.hpp"):
+            with open(os.path.join(root, path), "w", encoding="utf-8") as out:
+                out.write("#include <vector>\n")
+        fixed = subprocess.run([sys.executable, __file__, root], capture_output=True, text=True)
+        if fixed.returncode != 0:
+            print(f"self-test: the fixed tree fails:\n{fixed.stdout}")
+            return 1
+    print(f"self-test: {len(expected)} planted violations reported, the fixed tree passes")
+    return 0
+
+
 def main(argv):
+    if argv[1:] == ["--self-test"]:
+        return self_test()
     if len(argv) < 2:
         print(__doc__)
         return 2
