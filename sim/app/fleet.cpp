@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cover/config/format_number.hpp"
+#include "cover/sim/raw_imu.hpp"
 #include "cover/sim/world_uav_io.hpp"
 
 namespace cover::sim {

@@ -9,7 +9,7 @@
 #include "cover/sim/run_recorder.hpp"
 #include "cover/sim/scenario.hpp"
 #include "cover/sim/world.hpp"
-#include "cover/sim/world_segment.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 #include "offboard_failsafe.hpp"
 #include "sim_process_params.hpp"
 

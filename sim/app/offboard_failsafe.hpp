@@ -1,7 +1,7 @@
 #pragma once
 
 #include "cover/sim/world.hpp"
-#include "cover/sim/world_segment.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 
 namespace cover::sim {
 

@@ -6,8 +6,8 @@
 #include <thread>
 
 #include "cover/clock/clock.hpp"
-#include "cover/mission/mission_state.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "cover/vocabulary/mission_state.hpp"
 #include "cover/wire/control.hpp"
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/enums.hpp"

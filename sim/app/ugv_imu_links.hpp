@@ -8,7 +8,7 @@
 #include "autopilot_links.hpp"
 #include "cover/sim/fc/sim_fc_params.hpp"
 #include "cover/sim/fc/simulated_rover_imu.hpp"
-#include "cover/sim/world_segment.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 
 namespace cover::sim {
 

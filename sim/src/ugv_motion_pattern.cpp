@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cover/model/angles.hpp"
+#include "cover/vocabulary/angles.hpp"
 
 namespace cover::sim {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "cover/sim/world_state.hpp"
+#include "cover/vocabulary/world_state.hpp"
 
 namespace cover::sim {
 

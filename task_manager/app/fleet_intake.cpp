@@ -1,6 +1,6 @@
 #include "fleet_intake.hpp"
 
-#include "cover/mission/task.hpp"
+#include "cover/vocabulary/task.hpp"
 #include "cover/wire/enums.hpp"
 #include "cover/wire/fc_state.hpp"
 

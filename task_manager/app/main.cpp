@@ -8,11 +8,11 @@
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/dds_error.hpp"
-#include "cover/fleet/fleet_size.hpp"
 #include "cover/logging/log.hpp"
 #include "cover/startup/startup.hpp"
 #include "cover/task_manager/store_error.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 #include "manager_node.hpp"
 
 namespace {

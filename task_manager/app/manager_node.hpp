@@ -9,10 +9,10 @@
 
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
-#include "cover/fleet/fleet_size.hpp"
 #include "cover/task_manager/dispatcher.hpp"
 #include "cover/task_manager/submission_answer.hpp"
 #include "cover/task_manager/task_store.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 #include "fleet_watch.hpp"
 
 namespace cover::task_manager {

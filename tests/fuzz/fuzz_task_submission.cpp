@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cover/mission/task_file.hpp"
 #include "cover/task_manager/dispatcher.hpp"
 #include "cover/task_manager/flyability.hpp"
 #include "cover/task_manager/task_store.hpp"
@@ -43,7 +44,8 @@ bool readable(const std::string& text) {
 }
 
 void check_flyable(const cover::mission::Task& task, const tmg::TaskLimits& limits) {
-  task.validate(3);  // throws (a violation) if the manager queued a task that cannot fly
+  cover::mission::validate_task(
+      task, 3);  // throws (a violation) if the manager queued a task that cannot fly
   for (const auto& p : task.processes) {
     for (const auto* point : {&p.initial_point_m, &p.transition_point_m, &p.final_point_m}) {
       require(point->allFinite() && std::abs(point->x()) <= limits.max_horizontal_m &&

@@ -22,10 +22,10 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
-#include "cover/sim/world_segment.hpp"
 #include "cover/task_manager/task_store.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/wait_until.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
 

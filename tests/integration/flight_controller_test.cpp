@@ -18,11 +18,11 @@
 
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
-#include "cover/sim/world_segment.hpp"
 #include "cover/test/cpu_hog.hpp"
 #include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 #include "launch_run.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"

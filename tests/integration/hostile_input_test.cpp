@@ -23,11 +23,11 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
-#include "cover/sim/world_segment.hpp"
 #include "cover/test/file_contents.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 #include "process_support.hpp"
 #include "sim_system.hpp"
 

@@ -15,9 +15,9 @@
 #include "cover/process/child_process.hpp"
 #include "cover/shm/segment_name.hpp"
 #include "cover/shm/seqlock_reader.hpp"
-#include "cover/sim/world_segment.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/wait_until.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 #include "process_support.hpp"
 
 namespace cover::test {

@@ -8,12 +8,13 @@
 
 #include "cover/config/config_error.hpp"
 #include "cover/config/yaml_reader.hpp"
-#include "cover/fleet/fleet_size.hpp"
-#include "cover/mission/motion_limits.hpp"
-#include "cover/mission/task.hpp"
+#include "cover/mission/task_file.hpp"
 #include "cover/sim/closed_loop.hpp"
-#include "cover/sim/world_segment.hpp"
 #include "cover/uav/controller_config.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
+#include "cover/vocabulary/motion_limits.hpp"
+#include "cover/vocabulary/task.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 
 namespace cover {
 namespace {
@@ -87,9 +88,9 @@ TEST(ConfigAgreement, TaskLimitsAreOneDefinition) {
   mission::Task task;
   task.processes.push_back(process);
   task.processes[0].vmax_m_s = mission::kPlausibleVmax_m_s;
-  EXPECT_NO_THROW(task.validate(2));
+  EXPECT_NO_THROW(cover::mission::validate_task(task, 2));
   task.processes[0].vmax_m_s = mission::kPlausibleVmax_m_s * 1.01;
-  const std::string error = error_of([&] { task.validate(2); });
+  const std::string error = error_of([&] { cover::mission::validate_task(task, 2); });
   EXPECT_TRUE(names(error, "vmax_m_s")) << error;
   EXPECT_TRUE(names(error, "(0, 20]")) << error;
 }

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "cover/mission/mission_controller.hpp"
+#include "cover/mission/task_file.hpp"
 #include "cover/uav/controller_config.hpp"
 #include "cover/uav/uav_loop.hpp"
 

@@ -15,6 +15,7 @@
 
 #include "cover/mission/mission_controller.hpp"
 #include "cover/mission/plan_worker.hpp"
+#include "cover/mission/task_file.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/test/cpu_hog.hpp"
 #include "cover/test/time_scale.hpp"

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "cover/mission/stage_machine.hpp"
+#include "cover/mission/task_file.hpp"
 
 using cover::mission::FailureReason;
 using cover::mission::FinalAction;
@@ -32,7 +33,7 @@ Task deliver_then_land() {
   task.task_id = "deliver-land";
   task.processes = {process(0, 1, FinalAction::Deliver, 0.25),
                     process(1, 0, FinalAction::Land, 0.05)};
-  task.validate(2);
+  cover::mission::validate_task(task, 2);
   return task;
 }
 

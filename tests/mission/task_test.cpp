@@ -3,12 +3,14 @@
 #include <string>
 
 #include "cover/config/yaml_reader.hpp"
-#include "cover/mission/task.hpp"
+#include "cover/mission/task_file.hpp"
+#include "cover/vocabulary/task.hpp"
 
 using cover::config::ConfigError;
 using cover::mission::FinalAction;
 using cover::mission::load_task;
 using cover::mission::Task;
+using cover::mission::validate_task;
 
 namespace {
 
@@ -118,7 +120,7 @@ TEST(Task, RepeatsProcessesCyclically) {
   ASSERT_EQ(five.processes.size(), 5u);
   EXPECT_EQ(five.processes[4].from_ugv, 0);
   EXPECT_EQ(five.processes[3].from_ugv, 1);
-  EXPECT_NO_THROW(five.validate(2));
+  EXPECT_NO_THROW(validate_task(five, 2));
 }
 
 TEST(Task, MethodPerTaskAndPerProcess) {
@@ -153,7 +155,7 @@ processes:
   // From the wire (no YAML): validation names the process.
   Task task = load_task(YAML::Load(kLanding), "task.yaml", 2);
   task.processes[0].method = "fast";
-  EXPECT_THROW(task.validate(2), ConfigError);
+  EXPECT_THROW(validate_task(task, 2), ConfigError);
 }
 
 TEST(Task, NamesEachUgvOnceInTheOrderTheProcessesFlyThem) {

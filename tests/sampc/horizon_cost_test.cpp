@@ -3,11 +3,11 @@
 #include <cmath>
 
 #include "cover/config/yaml_reader.hpp"
-#include "cover/model/angles.hpp"
 #include "cover/model/dynamics.hpp"
 #include "cover/model/quaternion.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 #include "cover/test/shipped_params.hpp"
+#include "cover/vocabulary/angles.hpp"
 
 namespace cover::sampc {
 namespace {

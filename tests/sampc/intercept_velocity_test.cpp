@@ -7,10 +7,10 @@
 #include <tuple>
 
 #include "cover/config/yaml_reader.hpp"
-#include "cover/model/angles.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 #include "cover/sampc/intercept_velocity.hpp"
 #include "cover/sampc/sampc.hpp"
+#include "cover/vocabulary/angles.hpp"
 
 namespace cover::sampc {
 namespace {

@@ -5,11 +5,11 @@
 #include <limits>
 #include <random>
 
-#include "cover/model/angles.hpp"
 #include "cover/model/dynamics.hpp"
 #include "cover/model/quaternion.hpp"
 #include "cover/sampc/reference_solver.hpp"
 #include "cover/sampc/sampc.hpp"
+#include "cover/vocabulary/angles.hpp"
 
 namespace cover::sampc {
 namespace {

@@ -5,9 +5,9 @@
 #include <limits>
 #include <random>
 
-#include "cover/model/angles.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/ugv/imu_filter.hpp"
+#include "cover/vocabulary/angles.hpp"
 
 namespace cover::ugv {
 namespace {

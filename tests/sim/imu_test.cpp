@@ -3,8 +3,8 @@
 #include <cmath>
 #include <deque>
 
-#include "cover/model/angles.hpp"
 #include "cover/sim/world.hpp"
+#include "cover/vocabulary/angles.hpp"
 #include "test_worlds.hpp"
 
 namespace cover::sim {

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "cover/model/angles.hpp"
 #include "cover/sim/ugv_motion_pattern.hpp"
+#include "cover/vocabulary/angles.hpp"
 #include "test_worlds.hpp"
 
 namespace cover::sim {

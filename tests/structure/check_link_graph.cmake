@@ -7,30 +7,36 @@ set(flight cover_mission cover_planner cover_sampc cover_uav_loop cover_wire_mis
 # The simulator and what is built on it.
 set(simulator cover_sim cover_closed_loop cover_sim_fc cover_sim_mocap)
 
+cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in script mode
+
 # target -> what it must not link
-set(forbid_cover_task_types ${flight} ${simulator})
+set(forbid_cover_task_file ${flight} ${simulator})
 set(forbid_cover_task_store ${flight} ${simulator})
 set(forbid_cover_task_dispatch ${flight} ${simulator})
 set(forbid_cover-task-manager ${flight} ${simulator})
-set(forbid_cover_wire ${flight} ${simulator})
-set(forbid_cover_sim_world_layout ${flight} ${simulator})
-set(forbid_cover_ugv_imu_source ${flight} ${simulator})
-set(forbid_cover-ugv-agent ${flight} ${simulator})
+set(forbid_cover_wire ${flight} ${simulator} cover_model cover_imu_filter cover_speed_estimator
+                      cover_task_file cover_config cover_clock)
+# A UGV's software needs nothing of the UAV's (its model's dynamics included).
+set(forbid_cover_ugv_imu_source ${flight} ${simulator} cover_model)
+set(forbid_cover-ugv-agent ${flight} ${simulator} cover_model)
 # The parameter structs' libraries, without DDS: cover-params reads every one of them.
 set(dds cover_dds cover_time_sync_dds fastrtps ddsc)
 set(forbid_cover_sim_process_params ${dds})
 set(forbid_cover_ugv_agent_params ${dds})
 set(forbid_cover-params ${dds})
+# target -> the only libraries it may link: the fleet's vocabulary sits under every module.
+set(only_cover_vocabulary Eigen3::Eigen)
 # target -> what it must link: the walk sees transitive and private (LINK_ONLY) libraries,
 # so an empty closure cannot pass the rules above.
+set(require_cover_vocabulary Eigen3::Eigen)
 set(require_cover-uav-agent cover_mission cover_sampc nlopt)
-set(require_cover-sim cover_sim cover_sim_world_layout)
-set(require_cover-ugv-agent cover_ugv_imu_source cover_sim_world_layout)
-set(require_cover-task-manager cover_task_store cover_task_types)
+set(require_cover-sim cover_sim cover_vocabulary)
+set(require_cover-ugv-agent cover_ugv_imu_source cover_vocabulary)
+set(require_cover-task-manager cover_task_store cover_task_file)
 set(require_cover-params cover_sampc cover_sim_process_params cover_ugv_agent_params)
 
-set(targets cover_task_types cover_task_store cover_task_dispatch cover-task-manager cover_wire
-            cover_sim_world_layout cover_ugv_imu_source cover-ugv-agent cover-uav-agent cover-sim
+set(targets cover_vocabulary cover_task_file cover_task_store cover_task_dispatch cover-task-manager cover_wire
+            cover_ugv_imu_source cover-ugv-agent cover-uav-agent cover-sim
             cover_sim_process_params cover_ugv_agent_params cover-params)
 
 # Whether `library` (a target name, or nlopt in any spelling: NLopt::nlopt, libnlopt.so)
@@ -74,6 +80,13 @@ foreach(target IN LISTS targets)
       string(APPEND errors "  ${target} links ${library}\n")
     endif()
   endforeach()
+  if(DEFINED only_${target})
+    foreach(item IN LISTS closure)
+      if(NOT item IN_LIST only_${target})
+        string(APPEND errors "  ${target} links ${item}; it may link only ${only_${target}}\n")
+      endif()
+    endforeach()
+  endif()
   foreach(library IN LISTS require_${target})
     has_library("${closure}" ${library} in_closure)
     if(NOT in_closure)

@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "cover/mission/task.hpp"
 #include "cover/task_manager/live_view.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::task_manager::testing {
 

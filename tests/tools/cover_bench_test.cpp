@@ -16,10 +16,10 @@
 #include <utility>
 #include <vector>
 
-#include "cover/model/angles.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/sampc/sampc_params.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/vocabulary/angles.hpp"
 
 namespace {
 

@@ -8,10 +8,11 @@
 #include <string>
 
 #include "cover/shm/seqlock_writer.hpp"
-#include "cover/sim/world_segment.hpp"
+#include "cover/sim/raw_imu.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/wait_until.hpp"
 #include "cover/ugv/imu_filter.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 
 namespace cover::test {
 

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "cover/config/config_error.hpp"
+#include "cover/mission/task_file.hpp"
 #include "cover/wire/control.hpp"
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/enums.hpp"
@@ -241,13 +243,13 @@ TEST(Wire, TaskFieldByField) {
   const mission::Task parsed = wire::from_msg(hostile);
   EXPECT_EQ(parsed.processes[0].to_ugv, -1);
   EXPECT_FALSE(parsed.processes[1].final_point_m.allFinite());
-  EXPECT_THROW(parsed.validate(8), cover::config::ConfigError);
+  EXPECT_THROW(mission::validate_task(parsed, 8), cover::config::ConfigError);
   // An unknown method is passed on as it is, and validation names it.
   msg::TransitionTask unknown_method = m;
   unknown_method.processes[1].final_action = msg::FinalAction::FINAL_ACTION_NONE;
   unknown_method.processes[0].method = "warp";
   try {
-    wire::from_msg(unknown_method).validate(8);
+    mission::validate_task(wire::from_msg(unknown_method), 8);
     ADD_FAILURE() << "an unknown method was accepted";
   } catch (const cover::config::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("processes[0].method: 'warp'"), std::string::npos)

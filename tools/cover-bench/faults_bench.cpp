@@ -32,7 +32,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/shm/segment_name.hpp"
 #include "cover/shm/seqlock_reader.hpp"
-#include "cover/sim/world_segment.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 #include "fault_row.hpp"
 #include "not_measured.hpp"
 #include "vendor_mix.hpp"

@@ -42,7 +42,7 @@
 #include "cover/shm/segment_name.hpp"
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/relative_sensor.hpp"
-#include "cover/sim/world_segment.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 #include "launch_run.hpp"
 #include "not_measured.hpp"
 

@@ -10,9 +10,9 @@
 
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
-#include "cover/model/angles.hpp"
 #include "cover/sim/closed_loop.hpp"
 #include "cover/sim/closed_loop_report.hpp"
+#include "cover/vocabulary/angles.hpp"
 #include "not_measured.hpp"
 
 namespace {

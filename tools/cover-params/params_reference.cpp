@@ -7,7 +7,6 @@
 
 #include "cover/config/param_fields.hpp"
 #include "cover/fc_bridge/fc_bridge_params.hpp"
-#include "cover/fleet/fleet_size.hpp"
 #include "cover/foxglove/live_view_params.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/mocap/relay_params.hpp"
@@ -19,6 +18,7 @@
 #include "cover/sim/world_params.hpp"
 #include "cover/task_manager/task_limits.hpp"
 #include "cover/time_sync/time_sync_params.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 #include "sim_process_params.hpp"
 #include "ugv_agent_params.hpp"
 

@@ -10,9 +10,10 @@
 #include "cover/clock/clock.hpp"
 #include "cover/config/config_error.hpp"
 #include "cover/dds/json_codec.hpp"
-#include "cover/fleet/fleet_size.hpp"
-#include "cover/mission/task.hpp"
+#include "cover/mission/task_file.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
+#include "cover/vocabulary/task.hpp"
 #include "cover/wire/task.hpp"
 #include "manager_client.hpp"
 

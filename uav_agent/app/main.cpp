@@ -9,10 +9,11 @@
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/dds_error.hpp"
-#include "cover/fleet/fleet_size.hpp"
 #include "cover/logging/log.hpp"
+#include "cover/mission/task_file.hpp"
 #include "cover/sampc/sampc_params.hpp"
 #include "cover/startup/startup.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 #include "uav_agent_node.hpp"
 
 namespace {

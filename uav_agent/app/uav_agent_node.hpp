@@ -5,12 +5,12 @@
 #include <string>
 
 #include "cover/dds/participant.hpp"
-#include "cover/fleet/fleet_size.hpp"
 #include "cover/sim_clock/agent_clock.hpp"
 #include "cover/time_sync/clock_responder.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
 #include "cover/time_sync/time_sync_params.hpp"
 #include "cover/uav/uav_loop.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 #include "cover/wire/intake.hpp"
 #include "dds_uav_io.hpp"
 #include "fc_gate.hpp"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "cover/clock/clock.hpp"
+#include "cover/vocabulary/stamp.hpp"
 
 namespace cover::wire {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "cover/fleet/fleet_size.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 
 namespace cover::sim {
 

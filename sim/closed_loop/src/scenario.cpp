@@ -1,9 +1,10 @@
 #include "cover/sim/scenario.hpp"
+#include "cover/mission/task_file.hpp"
 
 #include <filesystem>
 
-#include "cover/fleet/fleet_size.hpp"
 #include "cover/sim/seeding.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 
 namespace cover::sim {
 
@@ -24,7 +25,7 @@ Scenario Scenario::from_yaml(const YAML::Node& document, const std::string& path
         mission::load_task_file(resolved.string(), static_cast<int>(scenario.world.ugvs.size()));
   } else {
     config::YamlReader task = root.child("task");
-    scenario.task = mission::Task::load(task);
+    scenario.task = mission::read_task(task);
   }
   YAML::Node list;
   root.optional("extra_uavs", list);
@@ -65,14 +66,14 @@ WorldParams Scenario::world_of(int uav) const {
 void Scenario::validate() const {
   config::check_fields(*this, "scenario '" + name + "'");
   world.validate("scenario '" + name + "'.sim");
-  task.validate(static_cast<int>(world.ugvs.size()));
+  mission::validate_task(task, static_cast<int>(world.ugvs.size()));
   config::check(uav_count() <= fleet::kMaxUavs, "scenario '" + name + "'.extra_uavs",
                 "at most " + std::to_string(fleet::kMaxUavs - 1) + " (" +
                     std::to_string(fleet::kMaxUavs) + " UAVs)");
   for (int u = 1; u < uav_count(); ++u) {
     config::check_fields(extra_uavs[static_cast<std::size_t>(u - 1)],
                          "scenario '" + name + "'.extra_uavs[" + std::to_string(u - 1) + "]");
-    task_of(u).validate(static_cast<int>(world.ugvs.size()));
+    mission::validate_task(task_of(u), static_cast<int>(world.ugvs.size()));
     config::check(
         task_of(u).uav_id == u, "scenario '" + name + "'.extra_uavs",
         "entry " + std::to_string(u - 1) + " must fly a task with uav_id " + std::to_string(u));

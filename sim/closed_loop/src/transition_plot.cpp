@@ -2,8 +2,8 @@
 
 #include <array>
 
-#include "cover/model/stage.hpp"
 #include "cover/sim/svg_plot.hpp"
+#include "cover/vocabulary/stage.hpp"
 
 namespace cover::sim {
 

@@ -1,4 +1,5 @@
 #include "cover/task_manager/flyability.hpp"
+#include "cover/mission/task_file.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -72,7 +73,7 @@ std::optional<std::string> check_structure(const mission::Task& task) {
   const std::vector<int> ugvs = task.ugvs();
   const int ugv_count = ugvs.empty() ? 1 : *std::max_element(ugvs.begin(), ugvs.end()) + 1;
   try {
-    task.validate(std::max(ugv_count, 1));
+    mission::validate_task(task, std::max(ugv_count, 1));
   } catch (const config::ConfigError& e) {
     return std::string(e.what());
   }

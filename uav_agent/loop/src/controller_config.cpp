@@ -2,7 +2,7 @@
 
 #include "cover/config/format_number.hpp"
 #include "cover/config/yaml_reader.hpp"
-#include "cover/mission/motion_limits.hpp"
+#include "cover/vocabulary/motion_limits.hpp"
 
 namespace cover::uav {
 

@@ -5,28 +5,6 @@
 
 namespace cover::mission {
 
-const char* to_string(FailsafeCause cause) {
-  switch (cause) {
-    case FailsafeCause::None:
-      return "none";
-    case FailsafeCause::ClockInvalid:
-      return "clock-invalid";
-    case FailsafeCause::StateMissing:
-      return "relative-state-missing";
-    case FailsafeCause::StateInvalid:
-      return "relative-state-invalid";
-    case FailsafeCause::StateStale:
-      return "relative-state-stale";
-    case FailsafeCause::ImuMissing:
-      return "ugv-imu-missing";
-    case FailsafeCause::ImuInvalid:
-      return "ugv-imu-invalid";
-    case FailsafeCause::ImuStale:
-      return "ugv-imu-stale";
-  }
-  return "unknown";
-}
-
 namespace {
 
 bool state_finite(const model::RelativeState& m) {

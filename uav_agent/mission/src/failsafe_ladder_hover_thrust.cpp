@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cover/model/state.hpp"
+#include "cover/vocabulary/state.hpp"
 
 namespace cover::mission {
 

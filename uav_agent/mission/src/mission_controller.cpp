@@ -1,4 +1,5 @@
 #include "cover/mission/mission_controller.hpp"
+#include "cover/mission/task_file.hpp"
 
 #include <time.h>
 
@@ -17,7 +18,7 @@ using model::Stage;
 namespace {
 
 Task validated(Task task, int ugv_count) {
-  task.validate(ugv_count);
+  validate_task(task, ugv_count);
   return task;
 }
 

@@ -8,24 +8,6 @@ namespace cover::mission {
 
 using model::Stage;
 
-const char* to_string(FailureReason reason) {
-  switch (reason) {
-    case FailureReason::None:
-      return "none";
-    case FailureReason::StageTimeout:
-      return "stage-timeout";
-    case FailureReason::InvalidState:
-      return "invalid-state";
-    case FailureReason::StaleInput:
-      return "stale-input";
-    case FailureReason::PlanningFailed:
-      return "planning-failed";
-    case FailureReason::AutopilotControl:
-      return "autopilot-control";
-  }
-  return "unknown";
-}
-
 StageMachine::StageMachine(Task task, MissionParams params)
     : task_(std::move(task)), params_(params) {
   params_.validate();

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cover/model/angles.hpp"
 #include "cover/model/quaternion.hpp"
+#include "cover/vocabulary/angles.hpp"
 
 namespace cover::sampc {
 

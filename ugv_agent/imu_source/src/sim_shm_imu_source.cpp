@@ -16,6 +16,16 @@ using cover::sim::kImuRingCapacity;
 using cover::sim::kMaxUgvs;
 using cover::sim::SharedWorld;
 
+// The ring's sample as the filter takes it (the segment stores plain arrays and a flag).
+ImuSample from_raw(const cover::sim::RawImuSample& sample) {
+  ImuSample s;
+  s.stamp_s = sample.stamp_s;
+  s.specific_force_m_s2 = sample.specific_force_m_s2.eigen();
+  s.angular_velocity_rad_s = sample.angular_velocity_rad_s.eigen();
+  if (sample.has_wheel_speed != 0) s.wheel_speed_m_s = sample.wheel_speed_m_s;
+  return s;
+}
+
 int checked_index(int ugv_index) {
   if (ugv_index < 0 || ugv_index >= kMaxUgvs) {
     throw std::invalid_argument("UGV index " + std::to_string(ugv_index) + " is not in 0.." +
@@ -94,7 +104,7 @@ bool SimShmImuSource::take_new_samples(std::vector<ImuSample>& out) {
     consumed_ = oldest;
   }
   for (; consumed_ < ring.written; ++consumed_) {
-    out.push_back(cover::sim::from_raw(ring.slots[consumed_ % capacity]));
+    out.push_back(from_raw(ring.slots[consumed_ % capacity]));
   }
   return !out.empty();
 }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cover/dds/topics.hpp"
-#include "cover/fleet/fleet_size.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 
 namespace cover::recording {
 

@@ -9,10 +9,10 @@
 #include "cover/config/yaml_reader.hpp"
 #include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/sensor_rate_field.hpp"
-#include "cover/sim/world_state.hpp"
 #include "cover/ugv/imu_filter.hpp"
 #include "cover/ugv/speed_estimator.hpp"
 #include "cover/ugv/ugv_sensor_pipeline.hpp"
+#include "cover/vocabulary/world_state.hpp"
 
 namespace cover::sim {
 

@@ -4,7 +4,7 @@
 
 #include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
-#include "cover/sim/quadrotor_state.hpp"
+#include "cover/vocabulary/quadrotor_state.hpp"
 
 namespace cover::sim {
 

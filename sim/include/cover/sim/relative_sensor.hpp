@@ -9,9 +9,9 @@
 
 #include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
-#include "cover/model/relative_state.hpp"
 #include "cover/sim/sensor_rate_field.hpp"
-#include "cover/sim/world_state.hpp"
+#include "cover/vocabulary/relative_state.hpp"
+#include "cover/vocabulary/world_state.hpp"
 
 namespace cover::sim {
 

@@ -8,7 +8,7 @@
 #include "cover/sim/relative_sensor.hpp"
 #include "cover/sim/ugv_motion_pattern.hpp"
 #include "cover/sim/world_params.hpp"
-#include "cover/sim/world_state.hpp"
+#include "cover/vocabulary/world_state.hpp"
 
 namespace cover::sim {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "cover/fleet/fleet_size.hpp"
 #include "cover/msg/types.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 
 namespace cover::foxglove {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "cover/config/param_fields.hpp"
-#include "cover/fleet/fleet_size.hpp"
+#include "cover/vocabulary/fleet_size.hpp"
 
 namespace cover::foxglove {
 

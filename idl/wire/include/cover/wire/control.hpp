@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <string>
 
-#include "cover/mission/mission_controller.hpp"
 #include "cover/msg/types.hpp"
+#include "cover/vocabulary/controller_output.hpp"
 
 namespace cover::wire {
 

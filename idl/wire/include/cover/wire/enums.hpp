@@ -2,12 +2,12 @@
 
 #include <optional>
 
-#include "cover/mission/failsafe.hpp"
-#include "cover/mission/final_action.hpp"
-#include "cover/mission/mission_state.hpp"
-#include "cover/model/stage.hpp"
-#include "cover/model/ugv_motion.hpp"
 #include "cover/msg/types.hpp"
+#include "cover/vocabulary/failsafe.hpp"
+#include "cover/vocabulary/final_action.hpp"
+#include "cover/vocabulary/mission_state.hpp"
+#include "cover/vocabulary/stage.hpp"
+#include "cover/vocabulary/ugv_motion.hpp"
 
 namespace cover::wire {
 

@@ -3,10 +3,10 @@
 #include <cstdint>
 #include <optional>
 
-#include "cover/model/relative_state.hpp"
 #include "cover/msg/types.hpp"
-#include "cover/ugv/imu_filter.hpp"
-#include "cover/ugv/speed_estimator.hpp"
+#include "cover/vocabulary/relative_state.hpp"
+#include "cover/vocabulary/speed_estimate.hpp"
+#include "cover/vocabulary/ugv_imu.hpp"
 
 namespace cover::wire {
 

@@ -3,7 +3,7 @@
 #include <optional>
 
 #include "cover/msg/types.hpp"
-#include "cover/sampc/solve_status.hpp"
+#include "cover/vocabulary/solve_status.hpp"
 
 namespace cover::wire {
 

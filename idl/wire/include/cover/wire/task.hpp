@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <string>
 
-#include "cover/mission/task.hpp"
 #include "cover/msg/types.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::wire {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "cover/mission/stage_machine.hpp"
 #include "cover/msg/types.hpp"
+#include "cover/vocabulary/stage_decision.hpp"
 
 namespace cover::wire {
 

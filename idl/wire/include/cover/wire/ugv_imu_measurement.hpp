@@ -1,7 +1,7 @@
 #pragma once
 
-#include "cover/mission/mission_controller.hpp"
 #include "cover/msg/types.hpp"
+#include "cover/vocabulary/controller_input.hpp"
 
 namespace cover::wire {
 

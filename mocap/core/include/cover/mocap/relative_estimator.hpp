@@ -7,7 +7,7 @@
 #include "cover/mocap/body_filter.hpp"
 #include "cover/mocap/frame_assembler.hpp"
 #include "cover/mocap/relay_params.hpp"
-#include "cover/model/relative_state.hpp"
+#include "cover/vocabulary/relative_state.hpp"
 
 namespace cover::mocap {
 

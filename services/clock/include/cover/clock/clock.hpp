@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "cover/vocabulary/stamp.hpp"
+
 namespace cover::clock {
 
 // Nanoseconds of the host's monotonic clock. Stamps on the wire use the system clock
@@ -22,16 +24,7 @@ inline constexpr const char* kTestClockOffsetEnv = "COVER_TEST_CLOCK_OFFSET_MS";
 // The offset system_ns() adds, ns (0 unless the test setting is given).
 std::int64_t test_clock_offset_ns();
 
-// Every conversion between the two goes through these, so that a time made from whole
-// nanoseconds (the simulator's) survives s -> ns -> s bit for bit: a lockstep run across
-// processes then computes exactly what the in-process one does.
-inline double ns_to_s(std::int64_t ns) {
-  return static_cast<double>(ns) * 1e-9;
-}
-// Rounded to the nearest nanosecond (truncating would read 0.01 s as 9999999 ns).
-inline std::int64_t s_to_ns(double s) {
-  return std::llround(s * 1e9);
-}
+// Seconds <-> nanoseconds: ns_to_s, s_to_ns (cover/vocabulary/stamp.hpp).
 
 // The system clock in seconds since the Unix epoch (records, heartbeats of the ground side).
 inline double system_s() {

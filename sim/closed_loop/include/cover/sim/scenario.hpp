@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "cover/config/param_fields.hpp"
-#include "cover/mission/task.hpp"
 #include "cover/sim/world_params.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::sim {
 

@@ -3,8 +3,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "cover/mission/motion_limits.hpp"
 #include "cover/sim/ugv_motion_pattern.hpp"
+#include "cover/vocabulary/motion_limits.hpp"
 
 namespace cover::sim {
 

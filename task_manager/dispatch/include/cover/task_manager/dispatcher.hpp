@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "cover/mission/task.hpp"
 #include "cover/task_manager/live_view.hpp"
 #include "cover/task_manager/task_limits.hpp"
 #include "cover/task_manager/task_store.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::task_manager {
 

@@ -4,9 +4,9 @@
 #include <optional>
 #include <string>
 
-#include "cover/mission/task.hpp"
 #include "cover/task_manager/live_view.hpp"
 #include "cover/task_manager/task_limits.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::task_manager {
 

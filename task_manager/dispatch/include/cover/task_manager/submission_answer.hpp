@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "cover/mission/task.hpp"
 #include "cover/task_manager/task_store.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::task_manager {
 

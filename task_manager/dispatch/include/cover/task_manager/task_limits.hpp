@@ -4,7 +4,7 @@
 
 #include "cover/config/param_fields.hpp"
 #include "cover/config/yaml_reader.hpp"
-#include "cover/mission/motion_limits.hpp"
+#include "cover/vocabulary/motion_limits.hpp"
 
 namespace cover::task_manager {
 

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "cover/mission/task.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::task_manager {
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "cover/mission/task.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::task_manager {
 

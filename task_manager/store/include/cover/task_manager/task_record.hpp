@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <string>
 
-#include "cover/mission/task.hpp"
 #include "cover/task_manager/task_state.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::task_manager {
 

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "cover/mission/task.hpp"
 #include "cover/task_manager/store_error.hpp"
 #include "cover/task_manager/task_record.hpp"
 #include "cover/task_manager/task_state.hpp"
+#include "cover/vocabulary/task.hpp"
 
 struct sqlite3;
 

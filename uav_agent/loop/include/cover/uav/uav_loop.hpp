@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "cover/mission/mission_controller.hpp"
-#include "cover/mission/task.hpp"
 #include "cover/uav/controller_config.hpp"
 #include "cover/uav/uav_io.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::uav {
 

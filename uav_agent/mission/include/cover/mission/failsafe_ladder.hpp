@@ -4,28 +4,16 @@
 #include <cstdint>
 #include <string>
 
-#include "cover/mission/control_command.hpp"
 #include "cover/mission/failsafe_ladder_hover_thrust.hpp"
 #include "cover/mission/ladder_level.hpp"
 #include "cover/mission/mission_params.hpp"
-#include "cover/model/relative_state.hpp"
-#include "cover/model/state.hpp"
-#include "cover/model/ugv_motion.hpp"
+#include "cover/vocabulary/control_command.hpp"
+#include "cover/vocabulary/failsafe_cause.hpp"
+#include "cover/vocabulary/relative_state.hpp"
+#include "cover/vocabulary/state.hpp"
+#include "cover/vocabulary/ugv_motion.hpp"
 
 namespace cover::mission {
-
-// What is wrong with the reference frame's inputs on one step (the first problem found).
-enum class FailsafeCause : std::uint8_t {
-  None = 0,
-  ClockInvalid = 1,  // the step's time is not finite
-  StateMissing = 2,  // no relative state of the reference UGV yet
-  StateInvalid = 3,  // non-finite relative state
-  StateStale = 4,    // relative state older than state_timeout_s
-  ImuMissing = 5,
-  ImuInvalid = 6,
-  ImuStale = 7,  // UGV IMU older than imu_timeout_s (held up to imu_hold_s more)
-};
-const char* to_string(FailsafeCause cause);
 
 // The reference frame's inputs on one step, judged against the timeouts.
 struct InputHealth {

@@ -5,59 +5,23 @@
 #include <cstdint>
 #include <vector>
 
-#include "cover/mission/control_command.hpp"
 #include "cover/mission/disturbance_observer.hpp"
-#include "cover/mission/failsafe.hpp"
 #include "cover/mission/failsafe_ladder.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/mission/plan_worker.hpp"
 #include "cover/mission/stage_machine.hpp"
-#include "cover/mission/task.hpp"
-#include "cover/model/relative_state.hpp"
-#include "cover/model/ugv_motion.hpp"
 #include "cover/planner/planner_params.hpp"
 #include "cover/planner/trajectory.hpp"
 #include "cover/sampc/sampc.hpp"
+#include "cover/vocabulary/control_command.hpp"
+#include "cover/vocabulary/controller_input.hpp"
+#include "cover/vocabulary/controller_output.hpp"
+#include "cover/vocabulary/failsafe.hpp"
+#include "cover/vocabulary/relative_state.hpp"
+#include "cover/vocabulary/task.hpp"
+#include "cover/vocabulary/ugv_motion.hpp"
 
 namespace cover::mission {
-
-// The UAV's state relative to one UGV, in that UGV's frame G_k (from the relative
-// estimator; the DDS adapter or the simulator fills it).
-using RelativeMeasurement = model::RelativeState;
-
-// The filtered IMU of one UGV (a, Omega, beta in G_k), as its agent publishes it.
-struct UgvImuMeasurement {
-  double stamp_s = 0.0;
-  model::UgvMotion motion;
-};
-
-struct ControllerStatus {
-  StageDecision stage;  // stage, process, reference UGV, mission state, failure reason
-  Failsafe failsafe = Failsafe::WaitingForInputs;
-  // Why the failsafe ladder was last climbed, and how old that input was then (s).
-  FailsafeCause failsafe_cause = FailsafeCause::None;
-  double failsafe_input_age_s = 0.0;
-  sampc::SolveStatus solve_status = sampc::SolveStatus::Ok;
-  double solve_us = 0.0;      // SAMPC time of this step (wall clock)
-  double solve_cpu_us = 0.0;  // the same in this thread's CPU time (preemption excluded)
-  bool planned = false;       // a stage reference was adopted this step (planned off-thread)
-  planner::PlanStatus plan_status = planner::PlanStatus::Ok;  // of the last plan
-  double plan_ms = 0.0;                                       // of the last plan (worker)
-  // Of the last plan: how long this thread waited for it at its adoption step (lockstep; 0
-  // when it was ready), and how many steps after that step it was adopted (realtime).
-  double plan_wait_ms = 0.0;
-  int plan_late_steps = 0;
-  // Reference trajectory z(s, t) now, in the reference frame (for tracking metrics).
-  Eigen::Vector3d reference_position_m = Eigen::Vector3d::Zero();
-  // Estimate of the unmodelled acceleration (mass, drag) fed to SAMPC, m/s^2: the
-  // observer's part plus the tracking-error integral's.
-  Eigen::Vector3d disturbance_m_s2 = Eigen::Vector3d::Zero();
-};
-
-struct ControllerOutput {
-  ControlCommand command;
-  ControllerStatus status;
-};
 
 // What the UAV agent (later a DDS adapter) and the benchmarks call at 100 Hz. Holds the
 // latest relative state and UGV IMU per UGV, runs the stage machine, plans each stage's

@@ -2,8 +2,8 @@
 
 #include <Eigen/Core>
 
-#include "cover/mission/motion_limits.hpp"
 #include "cover/sampc/horizon_reference.hpp"
+#include "cover/vocabulary/motion_limits.hpp"
 
 namespace cover::mission {
 

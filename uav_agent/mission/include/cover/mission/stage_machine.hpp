@@ -6,39 +6,12 @@
 #include <string>
 
 #include "cover/mission/mission_params.hpp"
-#include "cover/mission/mission_state.hpp"
-#include "cover/mission/task.hpp"
-#include "cover/model/stage.hpp"
+#include "cover/vocabulary/mission_state.hpp"
+#include "cover/vocabulary/stage.hpp"
+#include "cover/vocabulary/stage_decision.hpp"
+#include "cover/vocabulary/task.hpp"
 
 namespace cover::mission {
-
-enum class FailureReason : std::uint8_t {
-  None = 0,
-  StageTimeout = 1,      // a stage did not end within its timeout
-  InvalidState = 2,      // NaN / infinite relative state
-  StaleInput = 3,        // relative state or UGV IMU too old for too long
-  PlanningFailed = 4,    // the reference trajectory could not be generated
-  AutopilotControl = 5,  // the flight controller left COVER's mode (a pilot took over, its
-                         // own failsafe) or its link was lost
-};
-
-const char* to_string(FailureReason reason);
-
-// What the stage machine decided at one control step. Everything the controller needs to
-// act: which frame to fly in, where to go, whether to plan now, and the final actions.
-struct StageDecision {
-  MissionState state = MissionState::NotStarted;
-  FailureReason failure = FailureReason::None;
-  std::size_t process_index = 0;
-  model::Stage stage = model::Stage::Initial;
-  int reference_ugv = 0;                                     // frame of the stage (Gi or Gj)
-  Eigen::Vector3d target_point_m = Eigen::Vector3d::Zero();  // p_t(s), in that frame
-  double stage_time_s = 0.0;      // t of the paper: reset to 0 at each stage start
-  bool stage_started = false;     // a stage began this step: (re)plan its reference now
-  bool armed = true;              // false once the landing point is reached (latched)
-  bool release_payload = false;   // true on the one step the delivery point is reached
-  bool payload_released = false;  // latched once any delivery happened
-};
 
 // The stage machine of paper sec. 3.2: pure logic, no planner or MPC inside. Given the
 // UAV's relative state in the current reference frame and the time, it decides stage,

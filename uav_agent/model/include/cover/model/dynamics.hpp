@@ -3,8 +3,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "cover/model/state.hpp"
-#include "cover/model/ugv_motion.hpp"
+#include "cover/vocabulary/state.hpp"
+#include "cover/vocabulary/ugv_motion.hpp"
 
 namespace cover::model {
 

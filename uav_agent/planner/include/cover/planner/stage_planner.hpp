@@ -4,10 +4,10 @@
 #include <memory>
 #include <string>
 
-#include "cover/planner/plan_status.hpp"
 #include "cover/planner/planner_params.hpp"
 #include "cover/planner/stage_problem.hpp"
 #include "cover/planner/trajectory.hpp"
+#include "cover/vocabulary/plan_status.hpp"
 
 namespace cover::planner {
 

@@ -3,10 +3,10 @@
 #include <Eigen/Core>
 #include <array>
 
-#include "cover/model/state.hpp"
 #include "cover/sampc/horizon_reference.hpp"
 #include "cover/sampc/intercept_velocity.hpp"
 #include "cover/sampc/sampc_params.hpp"
+#include "cover/vocabulary/state.hpp"
 
 namespace cover::sampc {
 

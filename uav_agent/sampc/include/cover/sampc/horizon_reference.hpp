@@ -3,10 +3,10 @@
 #include <Eigen/Core>
 #include <array>
 
-#include "cover/model/stage.hpp"
-#include "cover/model/state.hpp"
-#include "cover/model/ugv_motion.hpp"
 #include "cover/sampc/sampc_params.hpp"
+#include "cover/vocabulary/stage.hpp"
+#include "cover/vocabulary/state.hpp"
+#include "cover/vocabulary/ugv_motion.hpp"
 
 namespace cover::sampc {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "cover/config/param_fields.hpp"
-#include "cover/model/ugv_motion.hpp"
+#include "cover/vocabulary/ugv_motion.hpp"
 
 namespace cover::sampc {
 

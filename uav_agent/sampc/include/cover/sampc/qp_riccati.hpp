@@ -5,8 +5,8 @@
 #include <array>
 #include <cstdint>
 
-#include "cover/model/state.hpp"
 #include "cover/sampc/sampc_params.hpp"
+#include "cover/vocabulary/state.hpp"
 
 namespace cover::sampc {
 

@@ -2,10 +2,10 @@
 
 #include <vector>
 
-#include "cover/model/state.hpp"
-#include "cover/model/ugv_motion.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 #include "cover/sampc/sampc_params.hpp"
+#include "cover/vocabulary/state.hpp"
+#include "cover/vocabulary/ugv_motion.hpp"
 
 namespace cover::sampc {
 

@@ -3,11 +3,11 @@
 #include <Eigen/Core>
 #include <memory>
 
-#include "cover/model/state.hpp"
 #include "cover/sampc/horizon_cost.hpp"
 #include "cover/sampc/horizon_reference.hpp"
 #include "cover/sampc/sampc_params.hpp"
-#include "cover/sampc/solve_status.hpp"
+#include "cover/vocabulary/solve_status.hpp"
+#include "cover/vocabulary/state.hpp"
 
 namespace cover::sampc {
 

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "cover/config/param_fields.hpp"
-#include "cover/model/state.hpp"
 #include "cover/sampc/intercept_velocity.hpp"
-#include "cover/sampc/mode.hpp"
+#include "cover/vocabulary/method.hpp"
+#include "cover/vocabulary/state.hpp"
 
 namespace cover::sampc {
 

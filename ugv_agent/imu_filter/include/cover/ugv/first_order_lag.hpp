@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "cover/model/angles.hpp"
+#include "cover/vocabulary/angles.hpp"
 
 namespace cover::ugv {
 

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "cover/shm/seqlock_reader.hpp"
-#include "cover/sim/world_segment.hpp"
 #include "cover/ugv/imu_source.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 
 namespace cover::ugv {
 

@@ -4,8 +4,9 @@
 #include <string>
 
 #include "cover/config/param_fields.hpp"
-#include "cover/model/ugv_motion.hpp"
 #include "cover/ugv/imu_filter.hpp"
+#include "cover/vocabulary/speed_estimate.hpp"
+#include "cover/vocabulary/ugv_motion.hpp"
 
 namespace cover::ugv {
 
@@ -71,14 +72,6 @@ struct SpeedEstimatorParams {
 struct WheelOdometrySample {
   double stamp_s = 0.0;
   double speed_m_s = 0.0;
-};
-
-struct SpeedEstimate {
-  double stamp_s = 0.0;  // the latest sample stamp taken into account
-  double speed_m_s = 0.0;
-  model::SpeedSource source = model::SpeedSource::None;
-
-  bool valid() const { return source != model::SpeedSource::None; }
 };
 
 enum class SpeedSampleStatus : std::uint8_t {

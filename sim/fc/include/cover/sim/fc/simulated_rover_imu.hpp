@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "cover/mavlink/encoder.hpp"
-#include "cover/sim/world_segment.hpp"
+#include "cover/vocabulary/world_segment.hpp"
 
 namespace cover::sim::fc {
 
