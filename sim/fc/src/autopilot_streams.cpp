@@ -34,8 +34,8 @@ constexpr std::uint32_t kPropulsion = 0x40000000;
 constexpr std::uint32_t kImuBaroMag =
     sensor::kGyro3d | sensor::kAccel3d | sensor::kMag3d | sensor::kAbsolutePressure;
 
-// SYS_STATUS sensor bits as PX4 SITL and ArduCopter SITL sent them (real SITL, docs/autopilots.md), without
-// GPS and RC receiver (the simulated vehicle has neither). PX4 reports the AHRS healthy
+// SYS_STATUS sensor bits as PX4 SITL and ArduCopter SITL sent them (real SITL, docs/autopilots.md),
+// without GPS and RC receiver (the simulated vehicle has neither). PX4 reports the AHRS healthy
 // without declaring it present; ArduPilot enables and passes it (and its pre-arm check)
 // once EKF3 has aligned.
 struct SensorBits {
@@ -140,6 +140,21 @@ Eigen::Vector3d euler(const Eigen::Quaterniond& q) {
   return {roll, pitch, yaw};
 }
 
+// LOCAL_POSITION_NED: the world's ENU position and velocity in NED, as an autopilot's
+// estimator would give them (exact: the simulated autopilot's estimate is the truth).
+mavlink::LocalPositionNed local_position(double now_s, const World& world) {
+  const auto& uav = world.state().uav;
+  mavlink::LocalPositionNed p;
+  p.time_boot_ms = boot_ms(now_s);
+  p.x = static_cast<float>(uav.position_m.y);
+  p.y = static_cast<float>(uav.position_m.x);
+  p.z = static_cast<float>(-uav.position_m.z);
+  p.vx = static_cast<float>(uav.velocity_m_s.y);
+  p.vy = static_cast<float>(uav.velocity_m_s.x);
+  p.vz = static_cast<float>(-uav.velocity_m_s.z);
+  return p;
+}
+
 }  // namespace
 
 void SimulatedAutopilot::queue_streams(double now_s, const World& world,
@@ -157,6 +172,7 @@ void SimulatedAutopilot::queue_streams(double now_s, const World& world,
     queue(state);
   }
   if (streams_.due(mav::SysStatus::kId, now_s)) queue(sys_status(now_s));
+  if (streams_.due(mav::LocalPositionNed::kId, now_s)) queue(local_position(now_s, world));
   if (streams_.due(mav::BatteryStatus::kId, now_s)) queue(battery_status());
   const std::uint32_t estimator =
       profile_ == AutopilotProfile::Px4 ? mav::EstimatorStatus::kId : mav::EkfStatusReport::kId;
