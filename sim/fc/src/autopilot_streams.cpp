@@ -172,12 +172,16 @@ void SimulatedAutopilot::queue_streams(double now_s, const World& world,
     queue(state);
   }
   if (streams_.due(mav::SysStatus::kId, now_s)) queue(sys_status(now_s));
-  if (streams_.due(mav::LocalPositionNed::kId, now_s)) queue(local_position(now_s, world));
   if (streams_.due(mav::BatteryStatus::kId, now_s)) queue(battery_status());
   const std::uint32_t estimator =
       profile_ == AutopilotProfile::Px4 ? mav::EstimatorStatus::kId : mav::EkfStatusReport::kId;
   if (streams_.due(estimator, now_s)) outbox_.push_back(estimator_report(now_s));
   queue_unknown_types(now_s, world);
+  // In lockstep every step carries the position too, asked or not: a vertical velocity that
+  // began when a request happened to arrive would feed the bridge's hover estimate from a
+  // step that depends on the machine's load, and the run would not repeat bit for bit.
+  const bool position_due = streams_.due(mav::LocalPositionNed::kId, now_s);
+  if (position_due || closing_ == StepClosing::HighresImu) queue(local_position(now_s, world));
   // Last: the simulator's lockstep contract (StepClosing) closes every step's frames with
   // the IMU sample of the step, whatever its stream's rate; otherwise at that rate.
   const bool imu_due = streams_.due(mav::HighresImu::kId, now_s);
