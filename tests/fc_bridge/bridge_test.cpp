@@ -7,6 +7,7 @@
 #include <string>
 
 #include "bridge_rig.hpp"
+#include "cover/mavlink/state_messages.hpp"
 #include "fake_autopilot.hpp"
 
 namespace cover::fc_bridge {
@@ -331,7 +332,8 @@ TEST(Bridge, PayloadReleaseOnTheRisingEdgeOnly) {
 
 // The closed loop of a hover: the autopilot's IMU measures g u / u_true for the thrust u
 // the bridge sends, the agent's command makes up for the error as a height loop would.
-double hover_estimate_after(double hover_setting, double seconds) {
+// With `velocity`, the autopilot's LOCAL_POSITION_NED gives the climb at 25 Hz too.
+double hover_estimate_after(double hover_setting, double seconds, bool velocity = false) {
   const double truth = 9.81 / 20.0;
   BridgeConfig config = Rig::config(AutopilotKind::Px4, false);
   config.params.hover_thrust = hover_setting;
@@ -354,11 +356,17 @@ double hover_estimate_after(double hover_setting, double seconds) {
       tuned.bridge.on_frame(tuned.autopilot.imu(static_cast<float>(-force)), tuned.t);
       tuned.bridge.tick(tuned.t);
     }
+    if (velocity && tuned.steps % 4 == 0) {
+      mav::LocalPositionNed position;
+      position.vz = static_cast<float>(-climb);  // NED
+      tuned.bridge.on_frame(tuned.autopilot.send(position), tuned.t);
+    }
     if (tuned.steps % 100 == 0) tuned.heartbeat();
     if (tuned.steps % 20 == 0) tuned.bridge.on_frame(tuned.autopilot.landed(tuned.landed), tuned.t);
   }
   tuned.collect_notices();
   EXPECT_TRUE(tuned.noticed("hover thrust estimate"));
+  EXPECT_EQ(tuned.noticed("vertical velocity (LOCAL_POSITION_NED) aids"), velocity);
   return tuned.bridge.state(tuned.t).hover_thrust;
 }
 
@@ -366,6 +374,12 @@ TEST(Bridge, HoverThrustMisSetByTwentyPercentConvergesInFlight) {
   const double truth = 9.81 / 20.0;
   EXPECT_NEAR(hover_estimate_after(1.2 * truth, 3.0), truth, 0.03 * truth);
   EXPECT_NEAR(hover_estimate_after(0.8 * truth, 3.0), truth, 0.03 * truth);
+}
+
+TEST(Bridge, HoverThrustAidedByTheAutopilotsVerticalVelocity) {
+  const double truth = 9.81 / 20.0;
+  EXPECT_NEAR(hover_estimate_after(1.2 * truth, 3.0, true), truth, 0.01 * truth);
+  EXPECT_NEAR(hover_estimate_after(0.8 * truth, 3.0, true), truth, 0.01 * truth);
 }
 
 TEST(Bridge, HoverThrustRestsOnTheGround) {

@@ -98,6 +98,32 @@ TEST(Streams, AOneHertzStreamMeasuresOneHertz) {
             std::string::npos);
 }
 
+// LOCAL_POSITION_NED is optional (a vehicle without a position estimate has none): asked,
+// asked again while it does not come, but never named missing; a required one is.
+TEST(Streams, AnOptionalStreamIsAskedButNeverNamedMissing) {
+  StreamMonitor monitor({{mav::LocalPositionNed::kId, "LOCAL_POSITION_NED", 50.0, true},
+                         {mav::BatteryStatus::kId, "BATTERY_STATUS", 1.0}},
+                        5.0);
+  monitor.restart(0.0);
+  for (int i = 0; i < 2; ++i) {
+    ASSERT_TRUE(monitor.next_request(0.0).has_value());
+    monitor.on_result(CommandOutcome::Accepted, "accepted", 0.01);
+  }
+  EXPECT_EQ(monitor.missing_summary(10.0), "BATTERY_STATUS (asked 1 Hz, none for 10.0 s)");
+  const auto again = monitor.next_request(10.0);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(again->param[0], static_cast<float>(mav::LocalPositionNed::kId));
+  const auto plan = stream_plan(AutopilotKind::ArduPilot, [] {
+    StreamRates rates;
+    rates.local_position_ned_hz = 50.0;
+    return rates;
+  }());
+  ASSERT_FALSE(plan.empty());
+  EXPECT_EQ(plan.back().message_id, mav::LocalPositionNed::kId);
+  EXPECT_TRUE(plan.back().optional);
+  EXPECT_FALSE(plan.front().optional);
+}
+
 TEST(Streams, AskedAgainAfterTheAutopilotComesBack) {
   BridgeRig rig(AutopilotKind::Px4);
   rig.run(2.0);

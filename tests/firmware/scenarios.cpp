@@ -3,8 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -13,6 +18,7 @@
 #include "agent_flight.hpp"
 #include "cover/clock/clock.hpp"
 #include "cover/mavlink/state_messages.hpp"
+#include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
 #include "firmware_rig.hpp"
@@ -25,16 +31,18 @@ using cover::test::wait_until;
 
 constexpr auto kBoot = 120s;             // start to "would arm": boot, estimator, GPS fix
 constexpr double kFlightHeight_m = 3.0;  // above where it took off
-// The issue's target for the firmware's vertical speed in a 10 s hover on the estimate alone.
+// The issue's target for the firmware's vertical speed in a 10 s hover on the estimate.
 constexpr double kHoverVzLimit_m_s = 0.2;
-// NOT MET on PX4 SIH (issue 30 stays open on it): SIH's body-z accelerometer noise is ~1.4
-// m/s^2 (ArduCopter SITL's 0.003) and the estimate, fed that accelerometer alone, wanders
-// +-1-2 %; with nothing holding the vertical speed the vehicle drifts: |vz| max 0.16-0.45
-// m/s over 7 runs (2026-12-04). What would meet it: a hover estimate aided by the
-// firmware's own vertical velocity (LOCAL_POSITION_NED). This bound is the measured worst
-// case with a margin, so that a regression beyond today's still fails.
-constexpr double kPx4SihHoverVzBound_m_s = 0.6;
+// NOT MET on PX4 SIH in every run (issue 30 stays open on it): with the estimate aided by
+// the firmware's vertical velocity (LOCAL_POSITION_NED) and the hover started at |vz| <
+// 0.05, |vz| max was 0.122-0.170 m/s in 8 of 9 runs and 0.286 in one (2026-12-04; the
+// accelerometer alone: 0.140-0.255). PX4's own vertical-velocity estimate swings +-0.1 m/s
+// in the hover and the aided estimate follows it by +-1 %. This bound is the measured worst
+// with a margin, so that a regression beyond today's still fails.
+constexpr double kPx4SihHoverVzBound_m_s = 0.4;
 constexpr double kHoverEstimateTolerance = 0.05;
+// The hover starts with the height hold's vertical speed below this.
+constexpr double kHoverStartVz_m_s = 0.05;
 constexpr double kLandLatencyLimit_ms = 150.0;
 constexpr double kStepRate_rad_s = 0.5;
 constexpr auto kStepDuration = 300ms;
@@ -243,6 +251,9 @@ void check_streams(FirmwareRig& rig) {
   ASSERT_TRUE(s.has_value());
   EXPECT_EQ(s->streams_missing, "") << context(rig);
   for (const msg::FcStream& stream : s->streams) {
+    // Optional: it comes once the firmware has a position estimate (ArduCopter's EKF3 takes
+    // SITL's GPS 41 s after boot); the hover-thrust estimate uses it when it does.
+    if (stream.name == "LOCAL_POSITION_NED") continue;
     EXPECT_TRUE(stream.arriving) << stream.name << " (" << stream.refusal << ")";
   }
 }
@@ -310,7 +321,8 @@ void operator_commands_on_the_ground(FirmwareRig& rig) {
 // --- the hover ---------------------------------------------------------------------------
 
 // The bridge's estimate moved less than 0.02 over the last 3 s, at least 8 s after the
-// take-off, with the vertical speed small (the agent's height hold has caught it).
+// take-off, with the vertical speed within kHoverStartVz_m_s (the agent's height hold has
+// caught it: the hover on thrust g has nothing that brings a speed it starts with back).
 bool estimate_settled(FirmwareRig& rig, std::int64_t airborne_ns) {
   const std::int64_t now = now_ns();
   if (now - airborne_ns < 8'000'000'000) return false;
@@ -322,7 +334,7 @@ bool estimate_settled(FirmwareRig& rig, std::int64_t airborne_ns) {
     hi = std::max(hi, s.value.hover_thrust);
   }
   const auto p = rig.monitor().position();
-  return hi - lo < 0.02 && p && std::abs(p->value.vz) < 0.1;
+  return hi - lo < 0.02 && p && std::abs(p->value.vz) < kHoverStartVz_m_s;
 }
 
 double max_abs_vz(const std::vector<Timed<mav::LocalPositionNed>>& positions, std::int64_t to_ns) {
@@ -459,8 +471,8 @@ void expect_agent_silent_land(FirmwareRig& rig) {
 // --- the flight's phases -----------------------------------------------------------------
 
 // The hover: once the bridge's estimate has settled under the agent's height hold, thrust g
-// and zero rates for 10 s, flown on the estimate alone. `before`: the firmware's hover
-// thrust as its parameters said at take-off.
+// and zero rates for 10 s, flown on the estimate (nothing holds the vertical speed). `before`: the
+// firmware's hover thrust as its parameters said at take-off.
 void hover_on_the_estimate(FirmwareRig& rig, double before, std::int64_t airborne_ns) {
   const FirmwareProfile& profile = rig.profile();
   const Firmware fw = profile.firmware;
@@ -526,6 +538,12 @@ void hover_on_the_estimate(FirmwareRig& rig, double before, std::int64_t airborn
   } else {
     EXPECT_LE(vz_max, kHoverVzLimit_m_s) << context(rig);
   }
+  // The estimate was aided: the firmware's vertical velocity reached the bridge.
+  const auto s = rig.state();
+  ASSERT_TRUE(s.has_value());
+  EXPECT_TRUE(std::any_of(s->streams.begin(), s->streams.end(), [](const msg::FcStream& f) {
+    return f.name == "LOCAL_POSITION_NED" && f.arriving;
+  })) << context(rig);
   EXPECT_LE(error, kHoverEstimateTolerance) << context(rig);
   // Otherwise the test would not show the estimator learning anything.
   EXPECT_GT(start_error, kHoverEstimateTolerance);
@@ -724,6 +742,196 @@ void link_streams_and_parameters(const FirmwareProfile& profile, const FirmwareB
   EXPECT_EQ(rig.bridge().terminate(), 0);
 }
 
+// --- a task held by a parameter -----------------------------------------------------------
+
+// The rest of COVER that takes a task for UAV 0, on the rig's DDS domain beside the real
+// bridge: cover-task-manager (its database in the test's scratch directory), and, standing
+// in for the UAV agent and two UGVs, their status and IMU topics at 20 Hz (the manager
+// takes a task only for a UAV whose agent it hears, between UGVs whose IMU it hears; what
+// holds it here is the real bridge's cover/uav/0/fc). `cover` runs as an operator runs it.
+class TaskSystem {
+ public:
+  explicit TaskSystem(int domain)
+      : domain_(domain), participant_([domain] {
+          dds::ParticipantOptions options;
+          options.vendor = dds::Vendor::Cyclone;
+          options.domain_id = domain;
+          return options;
+        }()) {
+    const std::string config = cover::test::scratch_path("task_manager.yaml");
+    std::ofstream(config) << "task_manager: {}\n";
+    process::SpawnOptions options = environment("task_manager.log");
+    options.null_stdin = true;
+    manager_ = std::make_unique<process::ChildProcess>(
+        std::vector<std::string>{COVER_TASK_MANAGER, "--db", cover::test::scratch_path("tasks.db"),
+                                 "--config", config},
+        options);
+    agent_ = participant_.make_writer(dds::topics::uav_status(0));
+    ugvs_.push_back(participant_.make_writer(dds::topics::ugv_imu(0)));
+    ugvs_.push_back(participant_.make_writer(dds::topics::ugv_imu(1)));
+    thread_ = std::thread([this] { publish(); });
+  }
+  ~TaskSystem() {
+    stop_ = true;
+    thread_.join();
+    manager_->terminate(cover::test::scaled(10s), SIGINT);
+  }
+  TaskSystem(const TaskSystem&) = delete;
+  TaskSystem& operator=(const TaskSystem&) = delete;
+
+  CliRun cover(const std::vector<std::string>& args) const {
+    std::vector<std::string> argv{COVER_CLI};
+    argv.insert(argv.end(), args.begin(), args.end());
+    process::SpawnOptions options = environment("cover.log");
+    options.append_log = true;
+    options.capture_stdout = true;
+    options.null_stdin = true;
+    process::ChildProcess cli(argv, options);
+    CliRun run;
+    while (const auto line = cli.read_line(cover::test::scaled(60s))) run.output += *line + "\n";
+    run.exit_code = cli.wait(cover::test::scaled(20s)).value_or(-1);
+    return run;
+  }
+  // A hop from UGV 0 to UGV 1 for UAV 0.
+  std::string task_file(const std::string& id) const {
+    const std::string path = cover::test::scratch_path(id + ".yaml");
+    std::ofstream(path) << "task_id: " << id << "\nuav_id: 0\nprocesses:\n"
+                        << "  - {from_ugv: 0, to_ugv: 1, initial_point_m: [0, 0, 1.0], "
+                           "transition_point_m: [0, 0, 1.0], final_point_m: [0, 0, 0.05], "
+                           "final_action: land, vmax_m_s: 1.5}\n";
+    return path;
+  }
+  std::string manager_log() const {
+    std::ifstream in(cover::test::scratch_path("task_manager.log"));
+    return "\n  task manager's log:\n" +
+           std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+
+ private:
+  process::SpawnOptions environment(const std::string& log) const {
+    process::SpawnOptions options;
+    options.extra_env = {"COVER_DDS=cyclone", "COVER_DDS_DOMAIN=" + std::to_string(domain_)};
+    options.log_file = cover::test::scratch_path(log);
+    return options;
+  }
+  void publish() {
+    while (!stop_) {
+      const std::int64_t stamp_ns = clock::system_ns();
+      msg::UavStatus status;  // idle: no task
+      status.uav_id = 0;
+      status.stamp_ns = stamp_ns;
+      agent_.write(status);
+      for (std::size_t k = 0; k < ugvs_.size(); ++k) {
+        msg::UgvImu imu;
+        imu.ugv_id = static_cast<std::uint32_t>(k);
+        imu.stamp_ns = stamp_ns;
+        imu.specific_force_m_s2.z = kGravity_m_s2;
+        ugvs_[k].write(imu);
+      }
+      std::this_thread::sleep_for(50ms);  // the publishing rate, not a synchronisation
+    }
+  }
+
+  int domain_;
+  dds::Participant participant_;
+  std::unique_ptr<process::ChildProcess> manager_;
+  dds::Writer<msg::UavStatus> agent_;
+  std::vector<dds::Writer<msg::UgvImu>> ugvs_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// The task's state and reason as `cover status ID --json` gives them.
+struct TaskView {
+  std::string state;
+  std::string reason;
+};
+TaskView task_view(const TaskSystem& system, const std::string& id) {
+  const CliRun run = system.cover({"status", id, "--json"});
+  std::string last;
+  for (std::size_t at = 0; at < run.output.size();) {
+    const std::size_t end = run.output.find('\n', at);
+    const std::string line = run.output.substr(at, end - at);
+    if (!line.empty()) last = line;
+    at = end == std::string::npos ? run.output.size() : end + 1;
+  }
+  const auto record = nlohmann::json::parse(last, nullptr, false);
+  if (record.is_discarded() || !record.contains("tasks") || record["tasks"].empty()) return {};
+  return {record["tasks"][0].value("state", ""), record["tasks"][0].value("reason", "")};
+}
+
+// The blocking parameter a reason names, empty when it names none.
+std::string named_parameter(const FirmwareProfile& profile, const std::string& reason) {
+  for (const std::string& name : profile.blocking_names) {
+    if (reason.find("autopilot parameter " + name + " is") != std::string::npos) return name;
+  }
+  return "";
+}
+
+// The value the firmware needs for `name` (the profile's flight parameters).
+std::optional<double> needed_value(const FirmwareProfile& profile, const std::string& name) {
+  for (const auto& [param, value] : profile.flight_params) {
+    if (param == name) return std::stod(value);
+  }
+  return std::nullopt;
+}
+
+// A ground station's PARAM_SET of `name` to `value`, typed and encoded as the firmware holds
+// it (PX4 puts an integer's bytes in the float field, ArduPilot the integer cast to float).
+std::optional<ParamReading> correct_parameter(FirmwareRig& rig, const std::string& name,
+                                              double value) {
+  const auto held = rig.monitor().read_param(name, cover::test::scaled(10s));
+  if (!held) return std::nullopt;
+  float raw = static_cast<float>(value);
+  if (rig.profile().bytewise_params && held->type != mav::mav_param_type::kReal32) {
+    const auto integer = static_cast<std::int32_t>(std::lround(value));
+    std::memcpy(&raw, &integer, sizeof raw);
+  }
+  return rig.monitor().set_param(name, raw, held->type, cover::test::scaled(10s));
+}
+
+// A task submitted while a blocking parameter is wrong is held (queued, not failed) with
+// the bridge's reason naming it, in `cover status` and `cover list`; each parameter
+// corrected from a ground station (PARAM_SET) moves the hold on to the next, and the last
+// corrected leaves it held by the mode alone (the firmware is not in offboard: no flight).
+void a_task_is_held_by_the_parameters(FirmwareRig& rig) {
+  const FirmwareProfile& profile = rig.profile();
+  TaskSystem system(rig.domain());
+  const CliRun submitted = system.cover({"submit", system.task_file("held")});
+  std::printf("cover submit -> exit %d: %s", submitted.exit_code, submitted.output.c_str());
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output << system.manager_log();
+  std::vector<std::string> named;
+  TaskView view;
+  for (std::size_t round = 0; round <= profile.blocking_names.size(); ++round) {
+    // Held by a parameter not named yet (the first, then the next after each correction),
+    // or by none once every one named has been corrected.
+    const auto moved_on = [&](const TaskView& v) {
+      if (v.state != "MANAGED_QUEUED" || v.reason.rfind("waiting for UAV 0: ", 0) != 0) {
+        return false;
+      }
+      const std::string name = named_parameter(profile, v.reason);
+      return std::find(named.begin(), named.end(), name) == named.end();
+    };
+    ASSERT_TRUE(wait_until([&] { return moved_on(view = task_view(system, "held")); }, 30s))
+        << "state " << view.state << ", reason '" << view.reason << "'" << context(rig)
+        << system.manager_log();
+    std::printf("task held: %s (%s)\n", view.reason.c_str(), view.state.c_str());
+    const std::string name = named_parameter(profile, view.reason);
+    if (name.empty()) break;
+    named.push_back(name);
+    EXPECT_NE(system.cover({"list"}).output.find(view.reason), std::string::npos);
+    const auto value = needed_value(profile, name);
+    ASSERT_TRUE(value.has_value()) << name;
+    ASSERT_TRUE(correct_parameter(rig, name, *value).has_value())
+        << "the firmware did not take " << name << context(rig);
+  }
+  // Every blocking parameter held the task in its turn; then only the mode holds it.
+  EXPECT_EQ(named.size(), profile.blocking_names.size());
+  EXPECT_EQ(named_parameter(profile, view.reason), "");
+  EXPECT_NE(view.reason.find("offboard mode"), std::string::npos) << view.reason;
+  EXPECT_EQ(view.state, "MANAGED_QUEUED");
+}
+
 void wrong_parameters_are_named_and_block_flight(const FirmwareProfile& profile,
                                                  const FirmwareBuild& build) {
   FirmwareRig rig(profile, build, profile.wrong_params);
@@ -749,6 +957,7 @@ void wrong_parameters_are_named_and_block_flight(const FirmwareProfile& profile,
   EXPECT_TRUE(named) << "flight_blocker '" << blocker << "'";
   EXPECT_TRUE(wait_until([&] { return rig.state() && !rig.state()->flight_blocker.empty(); }, 5s))
       << context(rig);
+  a_task_is_held_by_the_parameters(rig);
   EXPECT_EQ(rig.bridge().terminate(), 0);
 }
 

@@ -1,7 +1,7 @@
 // The simulated autopilots against what real PX4 SITL and ArduCopter SITL did with COVER's
-// bridge (docs/autopilots.md, measured on real SITL, docs/autopilots.md "Our simulated autopilots and the real
-// firmware"): streams and SET_MESSAGE_INTERVAL, the lockstep closing IMU, who says what and
-// when, the parameters and their types, auto-disarm, the estimator's state. Each decoded
+// bridge (docs/autopilots.md, measured on real SITL, docs/autopilots.md "Our simulated autopilots
+// and the real firmware"): streams and SET_MESSAGE_INTERVAL, the lockstep closing IMU, who says
+// what and when, the parameters and their types, auto-disarm, the estimator's state. Each decoded
 // with our codec and, where the bridge reads it, with the bridge's own decoders.
 #include <gtest/gtest.h>
 
@@ -12,6 +12,7 @@
 
 #include "autopilot_bench.hpp"
 #include "cover/fc_bridge/estimator_health.hpp"
+#include "cover/mavlink/state_messages.hpp"
 #include "cover/sim/fc/px4_event.hpp"
 
 namespace {
@@ -93,6 +94,26 @@ TEST(FirmwareBehaviour, Px4StreamRatesChangePerMessage) {
   EXPECT_EQ(bench.interval(mav::EkfStatusReport::kId, 1e6F)->result, mav::mav_result::kFailed);
   EXPECT_EQ(bench.interval(mav::HighresImu::kId, -7.0F)->result, mav::mav_result::kFailed);
   EXPECT_DOUBLE_EQ(bench.autopilot().stream_rate_hz(mav::HighresImu::kId), 50.0);
+}
+
+// LOCAL_POSITION_NED (the vertical velocity that aids the bridge's hover-thrust estimate):
+// both send it when asked (real PX4 SIH and ArduCopter SITL accepted 50 Hz with ACK 0 and
+// sent it, FlightFromCoverCommands); neither of ours sends it unasked. A vehicle resting on
+// the ground: position and velocity zero.
+TEST(FirmwareBehaviour, BothSendLocalPositionNedWhenAsked) {
+  for (const auto profile : {AutopilotProfile::Px4, AutopilotProfile::ArduPilot}) {
+    AutopilotBench bench(profile);
+    bench.idle(1.0);
+    EXPECT_TRUE(bench.sent<mav::LocalPositionNed>().empty());
+    EXPECT_EQ(bench.interval(mav::LocalPositionNed::kId, 20000.0F)->result,
+              mav::mav_result::kAccepted);
+    bench.clear();
+    bench.idle(1.0);
+    const auto positions = bench.sent<mav::LocalPositionNed>();
+    ASSERT_EQ(positions.size(), 50u);
+    EXPECT_NEAR(positions.back().vz, 0.0F, 1e-3F);
+    EXPECT_NEAR(positions.back().z, 0.0F, 0.5F);
+  }
 }
 
 // A rate change lands on the new rate's grid of simulated time: a frame both rates would

@@ -42,6 +42,7 @@ StreamRates stream_rates(const FcBridgeParams& p) {
   r.battery_status_hz = p.stream_battery_status_hz;
   r.estimator_status_hz = p.stream_estimator_status_hz;
   r.attitude_target_hz = p.stream_attitude_target_hz;
+  r.local_position_ned_hz = p.stream_local_position_ned_hz;
   return r;
 }
 
@@ -54,6 +55,9 @@ HoverThrustEstimatorParams estimator_params(const FcBridgeParams& p) {
   e.noise_per_sqrt_s = p.hover_thrust_noise_per_sqrt_s;
   e.accel_noise_m_s2 = p.accel_noise_m_s2;
   e.gravity_m_s2 = p.gravity_m_s2;
+  e.velocity_noise_m_s = p.velocity_noise_m_s;
+  e.velocity_model_noise_m_s_per_sqrt_s = p.velocity_model_noise_m_s_per_sqrt_s;
+  e.velocity_timeout_s = p.velocity_timeout_s;
   return e;
 }
 
@@ -167,6 +171,12 @@ void Bridge::on_frame(const mavlink::Frame& frame, double now_s) {
     case mav::HighresImu::kId:
     case mav::ScaledImu::kId:
       on_imu(frame, now);
+      break;
+    case mav::LocalPositionNed::kId:
+      on_local_position(frame, now);
+      break;
+    case mav::AttitudeQuaternion::kId:
+      on_attitude(frame);
       break;
     case mav::SysStatus::kId:
       estimator_health_.on_sys_status(mav::SysStatus::unpack(frame.payload.data()));
@@ -306,11 +316,40 @@ void Bridge::on_imu(const mavlink::Frame& frame, double now_s) {
   } else {
     return;
   }
-  // Our thrust flies the UAV only in offboard, with our stream flowing, in the air.
-  const bool ours = view(now_s).cover_flying() && stream_.streaming_for_s(now_s) > 0.0 &&
-                    session_.landed_state() == LandedState::InAir &&
-                    last_thrust_ >= config_.params.estimator_min_thrust;
-  if (!ours || !estimator_.update(last_thrust_, specific_force_up, now_s)) return;
+  if (!flying_our_thrust(now_s) || !estimator_.update(last_thrust_, specific_force_up, now_s)) {
+    return;
+  }
+  note_estimate();
+}
+
+// Our thrust flies the UAV only in offboard, with our stream flowing, in the air.
+bool Bridge::flying_our_thrust(double now_s) const {
+  return view(now_s).cover_flying() && stream_.streaming_for_s(now_s) > 0.0 &&
+         session_.landed_state() == LandedState::InAir &&
+         last_thrust_ >= config_.params.estimator_min_thrust;
+}
+
+// The autopilot's own vertical velocity, while its estimator says it is valid.
+void Bridge::on_local_position(const mavlink::Frame& frame, double now_s) {
+  if (!estimator_health_.vertical_velocity_ok() || !flying_our_thrust(now_s)) return;
+  const double velocity_up = -mav::LocalPositionNed::unpack(frame.payload.data()).vz;  // NED
+  const bool was_aided = estimator_.velocity_aided();
+  if (!estimator_.update_velocity(last_thrust_, velocity_up, now_s)) return;
+  if (!was_aided) {
+    note(Notice::Level::Info,
+         "the autopilot's vertical velocity (LOCAL_POSITION_NED) aids the hover-thrust estimate");
+  }
+  note_estimate();
+}
+
+// cos(tilt) of the body's up axis: the (3,3) element of the body-to-NED rotation.
+void Bridge::on_attitude(const mavlink::Frame& frame) {
+  const auto a = mav::AttitudeQuaternion::unpack(frame.payload.data());
+  const double x = a.q2, y = a.q3;
+  estimator_.set_tilt_cos(1.0 - 2.0 * (x * x + y * y));
+}
+
+void Bridge::note_estimate() {
   const double estimate = estimator_.estimate();
   if (std::abs(estimate - seen_.hover_logged) > 0.01) {
     note(Notice::Level::Info, format("hover thrust estimate %.3f (was %.3f, +-%.3f)", estimate,

@@ -83,4 +83,8 @@ EstimatorHealth EstimatorHealthTracker::health() const {
   return h;
 }
 
+bool EstimatorHealthTracker::vertical_velocity_ok() const {
+  return !flags_seen_ || (flags_ & mavlink::estimator_flags::kVelocityVert) != 0;
+}
+
 }  // namespace cover::fc_bridge

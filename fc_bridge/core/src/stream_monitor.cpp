@@ -115,7 +115,9 @@ std::vector<StreamState> StreamMonitor::states(double now_s) const {
 std::string StreamMonitor::missing_summary(double now_s) const {
   std::string summary;
   for (const Track& track : tracks_) {
-    if (view(track, now_s).arriving || !track.state.asked) continue;
+    if (track.state.request.optional || view(track, now_s).arriving || !track.state.asked) {
+      continue;
+    }
     // Not missing yet while its first frames may still be on the way.
     const double since_s = now_s - std::max(track.asked_at_s, track.last_frame_s);
     if (since_s <= allowed_silence_s(track)) continue;
@@ -131,8 +133,9 @@ std::string StreamMonitor::missing_summary(double now_s) const {
 
 std::vector<StreamRequest> stream_plan(AutopilotKind kind, const StreamRates& rates) {
   std::vector<StreamRequest> plan;
-  const auto add = [&plan](std::uint32_t id, const char* name, double rate_hz) {
-    if (rate_hz > 0.0) plan.push_back({id, name, rate_hz});
+  const auto add = [&plan](std::uint32_t id, const char* name, double rate_hz,
+                           bool optional = false) {
+    if (rate_hz > 0.0) plan.push_back({id, name, rate_hz, optional});
   };
   add(mav::HighresImu::kId, "HIGHRES_IMU", rates.highres_imu_hz);
   add(mav::ExtendedSysState::kId, "EXTENDED_SYS_STATE", rates.extended_sys_state_hz);
@@ -144,6 +147,7 @@ std::vector<StreamRequest> stream_plan(AutopilotKind kind, const StreamRates& ra
     add(mav::EkfStatusReport::kId, "EKF_STATUS_REPORT", rates.estimator_status_hz);
   }
   add(mav::AttitudeTarget::kId, "ATTITUDE_TARGET", rates.attitude_target_hz);
+  add(mav::LocalPositionNed::kId, "LOCAL_POSITION_NED", rates.local_position_ned_hz, true);
   return plan;
 }
 

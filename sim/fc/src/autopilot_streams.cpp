@@ -34,8 +34,8 @@ constexpr std::uint32_t kPropulsion = 0x40000000;
 constexpr std::uint32_t kImuBaroMag =
     sensor::kGyro3d | sensor::kAccel3d | sensor::kMag3d | sensor::kAbsolutePressure;
 
-// SYS_STATUS sensor bits as PX4 SITL and ArduCopter SITL sent them (real SITL, docs/autopilots.md), without
-// GPS and RC receiver (the simulated vehicle has neither). PX4 reports the AHRS healthy
+// SYS_STATUS sensor bits as PX4 SITL and ArduCopter SITL sent them (real SITL, docs/autopilots.md),
+// without GPS and RC receiver (the simulated vehicle has neither). PX4 reports the AHRS healthy
 // without declaring it present; ArduPilot enables and passes it (and its pre-arm check)
 // once EKF3 has aligned.
 struct SensorBits {
@@ -140,6 +140,21 @@ Eigen::Vector3d euler(const Eigen::Quaterniond& q) {
   return {roll, pitch, yaw};
 }
 
+// LOCAL_POSITION_NED: the world's ENU position and velocity in NED, as an autopilot's
+// estimator would give them (exact: the simulated autopilot's estimate is the truth).
+mavlink::LocalPositionNed local_position(double now_s, const World& world) {
+  const auto& uav = world.state().uav;
+  mavlink::LocalPositionNed p;
+  p.time_boot_ms = boot_ms(now_s);
+  p.x = static_cast<float>(uav.position_m.y);
+  p.y = static_cast<float>(uav.position_m.x);
+  p.z = static_cast<float>(-uav.position_m.z);
+  p.vx = static_cast<float>(uav.velocity_m_s.y);
+  p.vy = static_cast<float>(uav.velocity_m_s.x);
+  p.vz = static_cast<float>(-uav.velocity_m_s.z);
+  return p;
+}
+
 }  // namespace
 
 void SimulatedAutopilot::queue_streams(double now_s, const World& world,
@@ -162,6 +177,11 @@ void SimulatedAutopilot::queue_streams(double now_s, const World& world,
       profile_ == AutopilotProfile::Px4 ? mav::EstimatorStatus::kId : mav::EkfStatusReport::kId;
   if (streams_.due(estimator, now_s)) outbox_.push_back(estimator_report(now_s));
   queue_unknown_types(now_s, world);
+  // In lockstep every step carries the position too, asked or not: a vertical velocity that
+  // began when a request happened to arrive would feed the bridge's hover estimate from a
+  // step that depends on the machine's load, and the run would not repeat bit for bit.
+  const bool position_due = streams_.due(mav::LocalPositionNed::kId, now_s);
+  if (position_due || closing_ == StepClosing::HighresImu) queue(local_position(now_s, world));
   // Last: the simulator's lockstep contract (StepClosing) closes every step's frames with
   // the IMU sample of the step, whatever its stream's rate; otherwise at that rate.
   const bool imu_due = streams_.due(mav::HighresImu::kId, now_s);

@@ -37,6 +37,7 @@ MessageStreams::MessageStreams(AutopilotProfile profile, const StreamRates& r) {
       {mav::BatteryStatus::kId, r.battery_status_hz},
       {estimator, r.estimator_hz},
       {mav::ExtendedSysState::kId, r.extended_sys_state_hz},
+      {mav::LocalPositionNed::kId, r.local_position_ned_hz},
   };
   for (const auto& [id, rate_hz] : rates) {
     streams_.push_back({id, period_of(rate_hz), period_of(rate_hz), 0.0});

@@ -322,4 +322,45 @@ std::optional<ParamReading> FirmwareMonitor::read_param(const std::string& name,
   return reading;
 }
 
+std::optional<ParamReading> FirmwareMonitor::set_param(const std::string& name, float raw,
+                                                       std::uint8_t type,
+                                                       std::chrono::milliseconds timeout) {
+  if (!connected()) return std::nullopt;
+  mav::ParamSet set;
+  set.param_value = raw;
+  set.param_type = type;
+  set.target_system = system_id();
+  set.target_component = mav::mav_comp::kAutopilot1;
+  set.param_id = mav::param_id_from(name);
+  const std::int64_t asked_ns = clock::monotonic_ns();
+  std::optional<ParamReading> reading;
+  auto next_send = std::chrono::steady_clock::now();
+  poll_until(
+      [&] {
+        {
+          std::lock_guard<std::mutex> lock(mutex_);
+          for (const auto& p : params_) {
+            // The same bytes: PX4's integers are bit patterns, not numbers, in the float.
+            if (p.at_ns < asked_ns || mav::param_id_string(p.value.param_id) != name ||
+                std::memcmp(&p.value.param_value, &raw, sizeof raw) != 0) {
+              continue;
+            }
+            ParamReading r;
+            r.raw = p.value.param_value;
+            r.type = p.value.param_type;
+            std::memcpy(r.bytes.data(), &p.value.param_value, r.bytes.size());
+            reading = r;
+            return true;
+          }
+        }
+        if (std::chrono::steady_clock::now() >= next_send) {
+          send(encoder_.encode(set));
+          next_send += kResendPeriod;
+        }
+        return false;
+      },
+      timeout);
+  return reading;
+}
+
 }  // namespace cover::firmware

@@ -127,6 +127,10 @@ class Bridge {
   void note(Notice::Level level, std::string text);
   void note_session_changes(double now_s);
   void on_imu(const mavlink::Frame& frame, double now_s);
+  void on_local_position(const mavlink::Frame& frame, double now_s);
+  void on_attitude(const mavlink::Frame& frame);
+  bool flying_our_thrust(double now_s) const;
+  void note_estimate();
   void send_setpoint(const AgentCommand& command, double now_s);
   bool send_command(const CommandSpec& spec, Origin origin, std::string what,
                     const std::string& request_id, double now_s, bool preempt);

@@ -25,6 +25,9 @@ class EstimatorHealthTracker {
   void on_sys_status(const mavlink::SysStatus& status);
   void on_estimator_flags(std::uint16_t flags);  // ESTIMATOR_STATUS / EKF_STATUS_REPORT
   EstimatorHealth health() const;
+  // False only when the estimator's flags say its vertical velocity is not valid (no flags
+  // reported: the velocity's own stream is the evidence).
+  bool vertical_velocity_ok() const;
 
  private:
   std::string sensor_problems() const;

@@ -17,18 +17,22 @@ struct FcBridgeParams {
   double hover_thrust_min = 0.15;  // the estimate stays within [min, max]
   double hover_thrust_max = 0.85;
   double hover_thrust_initial_std = 0.1;          // 1-sigma doubt about hover_thrust at start
-  double hover_thrust_noise_per_sqrt_s = 0.0036;  // random walk of the true hover thrust
+  double hover_thrust_noise_per_sqrt_s = 0.0015;  // random walk of the true hover thrust
   double accel_noise_m_s2 = 1.0;                  // 1-sigma of the body z specific force
-  double estimator_min_thrust = 0.1;              // below this commanded thrust the estimator rests
-  double cmd_timeout_s = 0.1;                     // armed in offboard with no agent command: land
-  double heartbeat_timeout_s = 1.5;               // no autopilot HEARTBEAT: link lost
-  double ack_timeout_s = 0.25;     // a COMMAND_LONG unanswered this long is sent again
-  int command_retries = 3;         // resends before "no answer"
-  double offboard_stream_s = 1.0;  // setpoints stream this long before OFFBOARD
-  double state_rate_hz = 10.0;     // cover/uav/U/fc
-  int system_id = 0;               // the companion's MAVLink system id; 0: the autopilot's
-  int component_id = 191;          // MAV_COMP_ID_ONBOARD_COMPUTER
-  bool auto_arm = false;           // simulation only: arm without an operator
+  // The autopilot's vertical velocity (LOCAL_POSITION_NED) aiding the estimate.
+  double velocity_noise_m_s = 0.05;                   // its 1-sigma noise
+  double velocity_model_noise_m_s_per_sqrt_s = 0.02;  // drag, wind, lag beyond the model
+  double velocity_timeout_s = 0.5;                    // older: the accelerometer alone
+  double estimator_min_thrust = 0.1;  // below this commanded thrust the estimator rests
+  double cmd_timeout_s = 0.1;         // armed in offboard with no agent command: land
+  double heartbeat_timeout_s = 1.5;   // no autopilot HEARTBEAT: link lost
+  double ack_timeout_s = 0.25;        // a COMMAND_LONG unanswered this long is sent again
+  int command_retries = 3;            // resends before "no answer"
+  double offboard_stream_s = 1.0;     // setpoints stream this long before OFFBOARD
+  double state_rate_hz = 10.0;        // cover/uav/U/fc
+  int system_id = 0;                  // the companion's MAVLink system id; 0: the autopilot's
+  int component_id = 191;             // MAV_COMP_ID_ONBOARD_COMPUTER
+  bool auto_arm = false;              // simulation only: arm without an operator
   double gravity_m_s2 = 9.81;
   // Streams asked of the autopilot (SET_MESSAGE_INTERVAL); 0: left as the autopilot sends it.
   double stream_highres_imu_hz = 100.0;
@@ -37,10 +41,11 @@ struct FcBridgeParams {
   double stream_battery_status_hz = 1.0;
   double stream_estimator_status_hz = 1.0;
   double stream_attitude_target_hz = 0.0;
-  double stream_reask_s = 5.0;               // a missing stream is asked for again this often
-  double param_read_timeout_s = 0.5;         // a PARAM_REQUEST_READ unanswered this long: again
-  int param_read_tries = 3;                  // tries per name before "absent"
-  double param_refresh_s = 10.0;             // the parameters are read again this often
+  double stream_local_position_ned_hz = 50.0;  // optional: not every vehicle has one
+  double stream_reask_s = 5.0;                 // a missing stream is asked for again this often
+  double param_read_timeout_s = 0.5;           // a PARAM_REQUEST_READ unanswered this long: again
+  int param_read_tries = 3;                    // tries per name before "absent"
+  double param_refresh_s = 10.0;               // the parameters are read again this often
   bool hover_thrust_from_autopilot = false;  // start the estimate at MPC_THR_HOVER / MOT_THST_HOVER
 
   // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
@@ -66,6 +71,20 @@ struct FcBridgeParams {
           Field("1/sqrt(s)", "random walk of the true hover thrust").at_least(0.0).at_most(1.0));
     visit("accel_noise_m_s2", self.accel_noise_m_s2,
           Field("m/s^2", "1-sigma of the body z specific force").at_least(0.01).at_most(50.0));
+    visit("velocity_noise_m_s", self.velocity_noise_m_s,
+          Field("m/s", "1-sigma noise of the autopilot's vertical velocity (LOCAL_POSITION_NED)")
+              .at_least(0.001)
+              .at_most(5.0));
+    visit("velocity_model_noise_m_s_per_sqrt_s", self.velocity_model_noise_m_s_per_sqrt_s,
+          Field("m/s/sqrt(s)",
+                "how far the vertical velocity departs from the thrust model (drag, wind, the "
+                "motors' lag)")
+              .at_least(0.0)
+              .at_most(5.0));
+    visit("velocity_timeout_s", self.velocity_timeout_s,
+          Field("s", "no vertical velocity this long: the estimate on the accelerometer alone")
+              .at_least(0.05)
+              .at_most(10.0));
     visit("estimator_min_thrust", self.estimator_min_thrust,
           Field("", "below this commanded thrust the estimator rests").at_least(0.0).at_most(0.9));
     visit("cmd_timeout_s", self.cmd_timeout_s,
@@ -128,6 +147,13 @@ struct FcBridgeParams {
               "ATTITUDE_TARGET asked (the autopilot's echo of the setpoint it flies); 0: not asked")
             .at_least(0.0)
             .at_most(500.0));
+    visit("stream_local_position_ned_hz", self.stream_local_position_ned_hz,
+          Field("Hz",
+                "LOCAL_POSITION_NED asked (its vertical velocity aids the hover-thrust estimate); "
+                "optional: not named missing when the autopilot has no position estimate; 0: not "
+                "asked")
+              .at_least(0.0)
+              .at_most(500.0));
     visit("stream_reask_s", self.stream_reask_s,
           Field("s", "a requested stream that does not arrive is asked for again this often")
               .at_least(0.5)

@@ -15,6 +15,9 @@ struct StreamRequest {
   std::uint32_t message_id = 0;
   const char* name = "";
   double rate_hz = 0.0;
+  // Used when it comes, not missed when it does not (LOCAL_POSITION_NED: a vehicle without
+  // a position estimate has none). Still asked for again every reask_s.
+  bool optional = false;
 };
 
 // How one requested stream is doing.
@@ -48,7 +51,7 @@ class StreamMonitor {
   // The streams in the plan's order, their measured rate and whether they arrive.
   std::vector<StreamState> states(double now_s) const;
   // "HIGHRES_IMU (asked 100 Hz, none for 2.1 s), ..." or empty when every stream arrives
-  // (or was not asked yet).
+  // (or was not asked yet, or is optional).
   std::string missing_summary(double now_s) const;
   bool has(std::uint32_t message_id) const;
 
@@ -80,6 +83,7 @@ struct StreamRates {
   double battery_status_hz = 1.0;
   double estimator_status_hz = 1.0;
   double attitude_target_hz = 0.0;
+  double local_position_ned_hz = 0.0;  // optional
 };
 std::vector<StreamRequest> stream_plan(AutopilotKind kind, const StreamRates& rates);
 

@@ -80,6 +80,11 @@ class FirmwareMonitor {
   // PARAM_REQUEST_READ by name, asked again every 0.5 s; nullopt after `timeout`.
   std::optional<ParamReading> read_param(const std::string& name,
                                          std::chrono::milliseconds timeout);
+  // PARAM_SET of `name` to `raw` (the float field as the firmware encodes it) typed `type`
+  // (MAV_PARAM_TYPE), sent again every 0.5 s until the firmware's PARAM_VALUE says `raw`;
+  // that reading, or nullopt after `timeout`. A ground station's correction of a parameter.
+  std::optional<ParamReading> set_param(const std::string& name, float raw, std::uint8_t type,
+                                        std::chrono::milliseconds timeout);
 
  private:
   struct Pending {

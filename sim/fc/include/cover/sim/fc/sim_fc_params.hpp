@@ -56,13 +56,15 @@ struct StreamRates {
   double extended_sys_state_hz = 0.0;
   double sys_status_hz = 0.0;
   double battery_status_hz = 0.0;
-  double estimator_hz = 0.0;  // ESTIMATOR_STATUS (PX4) / EKF_STATUS_REPORT (ArduPilot)
+  double estimator_hz = 0.0;           // ESTIMATOR_STATUS (PX4) / EKF_STATUS_REPORT (ArduPilot)
+  double local_position_ned_hz = 0.0;  // LOCAL_POSITION_NED: sent when asked
   // PX4 only: ALTITUDE (141) and VFR_HUD (74), two of the ~25 message types real PX4 streams
   // that COVER's codec does not know: a bridge must skip them whole.
   double codec_unknown_hz = 0.0;
 
   // PX4's "onboard" link (mavlink_main.cpp MAVLINK_MODE_ONBOARD), as measured from PX4 SITL
-  // (docs/autopilots.md, measured on real SITL): ATTITUDE 98, ATTITUDE_QUATERNION and HIGHRES_IMU 49, ...
+  // (docs/autopilots.md, measured on real SITL): ATTITUDE 98, ATTITUDE_QUATERNION and HIGHRES_IMU
+  // 49, ...
   static StreamRates px4_onboard();
   // ArduCopter: every stream rate 0 on every port; HEARTBEAT only.
   static StreamRates ardupilot_default() { return StreamRates{}; }
@@ -85,6 +87,8 @@ struct StreamRates {
     visit("battery_status_hz", self.battery_status_hz, rate("BATTERY_STATUS"));
     visit("estimator_hz", self.estimator_hz,
           rate("ESTIMATOR_STATUS (PX4) / EKF_STATUS_REPORT (ArduPilot)"));
+    visit("local_position_ned_hz", self.local_position_ned_hz,
+          rate("LOCAL_POSITION_NED, the estimate's position and velocity"));
     visit("codec_unknown_hz", self.codec_unknown_hz,
           rate("PX4: ALTITUDE and VFR_HUD, message types COVER's codec does not know"));
   }

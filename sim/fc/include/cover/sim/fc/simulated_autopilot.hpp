@@ -49,7 +49,9 @@ struct AutopilotStep {
 // How a step's frames end. Real firmware has no such handshake; the simulator's lockstep
 // does: in lockstep every step's frames end with a HIGHRES_IMU stamped with the step's time,
 // whatever the HIGHRES_IMU stream's rate (even off), and a bridge takes it as the end of
-// that step's frames (docs/flight-controller.md, "Lockstep").
+// that step's frames (docs/flight-controller.md, "Lockstep"). Each step also carries a
+// LOCAL_POSITION_NED, asked or not, so that the bridge's velocity-aided hover estimate does
+// not depend on when its request arrived.
 enum class StepClosing { None, HighresImu };
 
 // One UAV's flight controller as a companion computer meets it over MAVLink, with the rules
