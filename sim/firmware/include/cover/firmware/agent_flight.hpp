@@ -5,10 +5,10 @@
 #include <chrono>
 #include <cstdint>
 
-#include "agent_stream.hpp"
+#include "cover/firmware/agent_stream.hpp"
 #include "cover/firmware/firmware_monitor.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
 
 constexpr double kGravity_m_s2 = 9.81;  // the bridge's gravity_m_s2
 
@@ -42,4 +42,4 @@ AgentStream::Policy roll_rate_doublet(const FirmwareMonitor& monitor, double hei
                                       std::chrono::milliseconds duration,
                                       std::chrono::milliseconds pause);
 
-}  // namespace cover::firmware::test
+}  // namespace cover::firmware

@@ -13,7 +13,7 @@
 #include "cover/mavlink/messages.hpp"
 #include "cover/mavlink/protocol.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
 
 namespace mav = cover::mavlink;
 
@@ -67,4 +67,4 @@ bool is_control_command(const mav::CommandLong& command);
 // it does not answer.
 std::optional<double> firmware_hover_thrust(Firmware firmware, FirmwareMonitor& monitor);
 
-}  // namespace cover::firmware::test
+}  // namespace cover::firmware

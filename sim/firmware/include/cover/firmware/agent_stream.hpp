@@ -1,8 +1,8 @@
 #pragma once
-// The UAV agent's side of a firmware test: UavCommand samples on cover/uav/0/cmd at 100 Hz
+// The UAV agent's side of a firmware run: UavCommand samples on cover/uav/0/cmd at 100 Hz
 // from a thread, as cover-uav-agent publishes them (stamped with the host's clock: the
-// bridge runs --clock system), each computed by the flight the test chooses (a policy,
-// called on that thread). The test can make the agent fall silent, as a crashed agent does.
+// bridge runs --clock system), each computed by the flight the run chooses (a policy,
+// called on that thread). The run can make the agent fall silent, as a crashed agent does.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -14,7 +14,7 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
 
 // One command: collective thrust per unit mass and body rates, FLU, as the agent's.
 struct AgentSetpoint {
@@ -86,4 +86,4 @@ class AgentStream {
   std::thread thread_;
 };
 
-}  // namespace cover::firmware::test
+}  // namespace cover::firmware
