@@ -90,7 +90,7 @@ void LinkTap::from_firmware(const std::uint8_t* data, std::size_t size, const so
 }
 
 void LinkTap::from_bridge(const std::uint8_t* data, std::size_t size) {
-  if (cut_) return;
+  const bool cut = cut_;
   std::optional<sockaddr_in> firmware;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -98,7 +98,7 @@ void LinkTap::from_bridge(const std::uint8_t* data, std::size_t size) {
   }
   // Nothing to answer before the firmware has written: the bridge (udpin) writes only
   // after it has heard it, so nothing is lost.
-  if (firmware) {
+  if (firmware && !cut) {
     ::sendto(firmware_fd_, data, size, 0, reinterpret_cast<const sockaddr*>(&*firmware),
              sizeof(*firmware));
   }
@@ -106,8 +106,8 @@ void LinkTap::from_bridge(const std::uint8_t* data, std::size_t size) {
   std::lock_guard<std::mutex> lock(mutex_);
   bridge_parser_.feed(data, size, [&](const mav::Frame& frame) {
     if (const auto command = mav::decode<mav::CommandLong>(frame)) {
-      commands_.push_back({at_ns, *command});
-    } else if (const auto setpoint = mav::decode<mav::SetAttitudeTarget>(frame)) {
+      commands_.push_back({at_ns, *command});  // what the bridge did, delivered or not
+    } else if (const auto setpoint = mav::decode<mav::SetAttitudeTarget>(frame); setpoint && !cut) {
       setpoint_log_.push_back({at_ns, *setpoint});
     }
   });

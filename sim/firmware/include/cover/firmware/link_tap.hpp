@@ -46,7 +46,8 @@ class LinkTap {
   std::vector<Timed<mavlink::AttitudeTarget>> attitude_targets_since(std::int64_t since_ns) const;
 
   // Cuts the link both ways (a broken cable, a radio out of range): while cut, every
-  // datagram either side sends is dropped here, read by nobody; `false` mends it.
+  // datagram either side sends is dropped here. The bridge's COMMAND_LONGs are still
+  // recorded in commands() (what it tried), its setpoints are not (none arrived).
   void cut(bool cut);
 
  private:
