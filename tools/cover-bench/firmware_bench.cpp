@@ -379,14 +379,18 @@ Step rate_step(fw::FirmwareRig& rig, double height) {
   fly_for(1500ms);
   auto started = std::make_shared<std::int64_t>(0);
   auto mutex = std::make_shared<std::mutex>();
+  // The step starts at the agent's first command at or after t0 (the doublet would fly it
+  // from its first call on); until then the level hold.
   const std::int64_t t0 = now_ns() + 50'000'000;
+  const auto level = fw::hold_height(monitor, height);
   const auto doublet =
       fw::roll_rate_doublet(monitor, height, t0, kStepRate_rad_s, kStepDuration, 0ms);
-  rig.agent_flies([doublet, started, mutex, t0] {
+  rig.agent_flies([level, doublet, started, mutex, t0] {
     const std::int64_t now = now_ns();
+    if (now < t0) return level();
     {
       std::lock_guard<std::mutex> lock(*mutex);
-      if (*started == 0 && now >= t0) *started = now;
+      if (*started == 0) *started = now;
     }
     return doublet();
   });
@@ -443,9 +447,16 @@ double failsafe_after_s(fw::FirmwareRig& rig, std::int64_t from_ns,
           }
           return false;
         }
+        // The first moment from which the yaw rate stays below 70 % of the turn for 100 ms
+        // (one low sample of a noisy rate loop is no failsafe).
+        std::optional<std::int64_t> below_since;
         for (const auto& a : rig.monitor().attitudes_since(from_ns)) {
-          if (std::abs(a.value.yawspeed) < 0.7 * kTurnRate_rad_s) {
-            at = a.at_ns;
+          if (std::abs(a.value.yawspeed) >= 0.7 * kTurnRate_rad_s) {
+            below_since.reset();
+          } else if (!below_since) {
+            below_since = a.at_ns;
+          } else if (a.at_ns - *below_since >= 100'000'000) {
+            at = below_since;
             return true;
           }
         }
@@ -474,18 +485,23 @@ double mode_after_s(fw::FirmwareRig& rig, std::int64_t from_ns,
   return at ? ms(from_ns, *at) * 1e-3 : NAN;
 }
 
-// Turns at kTurnRate_rad_s while holding the height, until the firmware flies it.
+// Turns at kTurnRate_rad_s while holding the height, until the firmware has flown it
+// steadily for 0.5 s (above 80 % of it in every report): the fault's effect is its end.
 void turn(fw::FirmwareRig& rig, double height) {
   fw::AgentSetpoint extra;
   extra.yaw_rate = kTurnRate_rad_s;
   rig.agent_flies(fw::hold_height(rig.monitor(), height, extra));
   require(wait_for(
               [&] {
-                const auto a = rig.monitor().attitude();
-                return a && std::abs(a->value.yawspeed) > 0.8 * kTurnRate_rad_s;
+                const auto recent = rig.monitor().attitudes_since(now_ns() - 500'000'000);
+                if (recent.size() < 20) return false;
+                for (const auto& a : recent) {
+                  if (std::abs(a.value.yawspeed) < 0.8 * kTurnRate_rad_s) return false;
+                }
+                return true;
               },
-              5s),
-          "the turn before the fault");
+              10s),
+          "a steady turn before the fault");
 }
 
 FaultTry agent_killed(fw::FirmwareRig& rig) {
@@ -542,10 +558,24 @@ FaultTry link_cut(fw::FirmwareRig& rig, double height, double loss_s) {
         return false;
       },
       5s);
+  // What the bridge asks of the firmware it no longer hears (nothing arrives).
+  std::optional<std::int64_t> land_at;
+  wait_for(
+      [&] {
+        for (const auto& c : rig.tap().commands()) {
+          if (c.at_ns >= cut && fw::is_land_command(rig.firmware_kind(), c.value)) {
+            land_at = c.at_ns;
+            return true;
+          }
+        }
+        return false;
+      },
+      3s);
   std::string bridge_sent;
   for (const auto& c : rig.tap().commands()) {
-    if (c.at_ns >= cut)
+    if (c.at_ns >= cut) {
       bridge_sent += (bridge_sent.empty() ? "" : ", ") + std::to_string(c.value.command);
+    }
   }
   rig.tap().cut(false);
   FaultTry t;
@@ -553,8 +583,42 @@ FaultTry link_cut(fw::FirmwareRig& rig, double height, double loss_s) {
   t.row = {{"firmware_failsafe_s", figure_json(firmware_s)},
            {"bridge_link_lost_s", figure_json(lost_at ? ms(cut, *lost_at) * 1e-3 : NAN)},
            {"bridge_failsafe", bridge_says},
+           {"bridge_land_command_s", figure_json(land_at ? ms(cut, *land_at) * 1e-3 : NAN)},
            {"bridge_commands_during_cut", bridge_sent}};
   return t;
+}
+
+// The firmware's yaw rate every 0.1 s from 0.2 s before `at_ns` to 1 s after: how it left
+// the turn, for a reader.
+nlohmann::json yaw_trace(fw::FirmwareRig& rig, std::int64_t at_ns) {
+  nlohmann::json trace = nlohmann::json::array();
+  std::int64_t next = at_ns - 200'000'000;
+  for (const auto& a : rig.monitor().attitudes_since(next)) {
+    if (a.at_ns > at_ns + 1'000'000'000) break;
+    if (a.at_ns < next) continue;
+    trace.push_back(std::round(a.value.yawspeed * 1000.0) / 1000.0);
+    next += 100'000'000;
+  }
+  return trace;
+}
+
+// What the firmware said (STATUSTEXT) and which modes its HEARTBEAT gave in the second
+// after `at_ns`.
+std::string said_after(fw::FirmwareRig& rig, std::int64_t at_ns) {
+  std::string text;
+  for (const auto& t : rig.monitor().texts()) {
+    if (t.at_ns >= at_ns && t.at_ns < at_ns + 1'000'000'000) text += "'" + t.value + "' ";
+  }
+  std::uint32_t mode = 0xFFFFFFFF;
+  for (const auto& hb : rig.monitor().heartbeats_since(at_ns - 1'000'000'000)) {
+    if (hb.at_ns > at_ns + 1'000'000'000) break;
+    if (hb.value.custom_mode != mode) {
+      mode = hb.value.custom_mode;
+      text += "mode " + std::to_string(mode) + " at " +
+              figure_text("%.2f s", ms(at_ns, hb.at_ns) * 1e-3) + "; ";
+    }
+  }
+  return text;
 }
 
 FaultTry bridge_killed(fw::FirmwareRig& rig, double height, double loss_s) {
@@ -599,7 +663,10 @@ FaultTry bridge_killed(fw::FirmwareRig& rig, double height, double loss_s) {
           "the agent's stream at the restarted bridge");
   FaultTry t;
   t.headline = firmware_s;
-  t.row = {{"firmware_failsafe_s", figure_json(firmware_s)}, {"land_mode_s", figure_json(mode_s)}};
+  t.row = {{"firmware_failsafe_s", figure_json(firmware_s)},
+           {"land_mode_s", figure_json(mode_s)},
+           {"yaw_rate_after", yaw_trace(rig, last_ns)},
+           {"firmware_after", said_after(rig, last_ns)}};
   return t;
 }
 
