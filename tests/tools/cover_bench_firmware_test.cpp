@@ -56,7 +56,8 @@ double number(const nlohmann::json& j, const std::string& a, const std::string& 
 }
 
 const nlohmann::json* fault(const nlohmann::json& autopilot, const std::string& name) {
-  for (const auto& f : autopilot.value("faults", nlohmann::json::array())) {
+  if (!autopilot.contains("faults")) return nullptr;
+  for (const auto& f : autopilot.at("faults")) {
     if (f.value("fault", "") == name) return &f;
   }
   return nullptr;
