@@ -1,6 +1,6 @@
 #pragma once
-// What the test's agent flies: COVER's kind of command (collective thrust and body rates),
-// computed from what the firmware says of its own state (FirmwareMonitor), as
+// What a firmware run's agent flies: COVER's kind of command (collective thrust and body
+// rates), computed from what the firmware says of its own state (FirmwareMonitor), as
 // cover-uav-agent computes it from its relative state.
 #include <chrono>
 #include <cstdint>
