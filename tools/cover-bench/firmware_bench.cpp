@@ -689,6 +689,25 @@ nlohmann::json summary(const std::string& fault, const std::vector<FaultTry>& tr
 
 // --- one autopilot ---------------------------------------------------------------------------
 
+// A fault the benchmark injects --tries times, and the figure its table shows.
+struct FaultPlan {
+  std::string fault;
+  std::string figure;
+  std::string note;
+  std::function<FaultTry(fw::FirmwareRig&, double height, double loss_s)> run;
+};
+
+std::vector<FaultPlan> fault_plans(const fw::FirmwareProfile& profile) {
+  const std::string loss = " (" + profile.offboard_loss_param + ")";
+  return {{"agent_killed", "land_command_ms",
+           "the agent's last command -> the bridge's land command on the link",
+           [](fw::FirmwareRig& rig, double, double) { return agent_killed(rig); }},
+          {"heartbeat_loss", "firmware_failsafe_s",
+           "link cut both ways -> the firmware's own failsafe" + loss, &link_cut},
+          {"bridge_killed", "firmware_failsafe_s", "SIGKILL -> the firmware's own failsafe" + loss,
+           &bridge_killed}};
+}
+
 struct Options {
   int tries = 3;
   int hold_s = 10;
@@ -709,6 +728,19 @@ nlohmann::json fly_autopilot(const fw::FirmwareProfile& profile, const fw::Firmw
   fw::FirmwareRig rig(setup, profile, build, profile.flight_params, profile.bridge_hover_start);
   out["console_log"] = rig.firmware().console_log().string();
   std::string stage = "arm and take off";
+  out["faults"] = nlohmann::json::array();
+  std::optional<FaultPlan> current;
+  std::vector<FaultTry> tries;
+  const auto open_fault = [&](const FaultPlan& plan) {
+    current = plan;
+    stage = plan.fault;
+    tries.clear();
+  };
+  const auto close_fault = [&] {
+    if (current)
+      out["faults"].push_back(summary(current->fault, tries, current->figure, current->note));
+    current.reset();
+  };
   try {
     const double height = arm_and_take_off(rig);
     const std::int64_t airborne = now_ns();
@@ -763,36 +795,15 @@ nlohmann::json fly_autopilot(const fw::FirmwareProfile& profile, const fw::Firmw
     require(loss.has_value(), profile.offboard_loss_param + " not read");
     const double loss_s = loss->value(profile.bytewise_params);
     out["offboard_loss_param"] = {{"name", profile.offboard_loss_param}, {"value_s", loss_s}};
-    out["faults"] = nlohmann::json::array();
-    nlohmann::json& faults = out["faults"];
-    std::vector<FaultTry> tries;
-    stage = "agent killed";
-    for (int i = 0; i < options.tries; ++i) {
-      tries.push_back(agent_killed(rig));
-      take_back(rig, height);
+    for (const FaultPlan& plan : fault_plans(profile)) {
+      open_fault(plan);
+      for (int i = 0; i < options.tries; ++i) {
+        tries.push_back(plan.run(rig, height, loss_s));
+        take_back(rig, height);
+      }
+      close_fault();
     }
-    faults.push_back(summary("agent_killed", tries, "land_command_ms",
-                             "the agent's last command -> the bridge's land command on the link"));
-    tries.clear();
-    stage = "heartbeat loss";
-    for (int i = 0; i < options.tries; ++i) {
-      tries.push_back(link_cut(rig, height, loss_s));
-      take_back(rig, height);
-    }
-    faults.push_back(summary(
-        "heartbeat_loss", tries, "firmware_failsafe_s",
-        "link cut both ways -> the firmware's own failsafe (" + profile.offboard_loss_param + ")"));
-    tries.clear();
-    stage = "bridge killed";
-    for (int i = 0; i < options.tries; ++i) {
-      tries.push_back(bridge_killed(rig, height, loss_s));
-      take_back(rig, height);
-    }
-    faults.push_back(
-        summary("bridge_killed", tries, "firmware_failsafe_s",
-                "SIGKILL -> the firmware's own failsafe (" + profile.offboard_loss_param + ")"));
-    out["faults"] = faults;
-    for (const auto& f : faults) {
+    for (const auto& f : out["faults"]) {
       if (f["measured"].get<std::size_t>() < static_cast<std::size_t>(options.tries)) {
         missing.add(name + " " + f["fault"].get<std::string>() + ": " +
                     std::to_string(f["measured"].get<std::size_t>()) + " of " +
@@ -800,6 +811,7 @@ nlohmann::json fly_autopilot(const fw::FirmwareProfile& profile, const fw::Firmw
       }
     }
   } catch (const Failed& f) {
+    close_fault();  // the tries it did measure
     out["failed"] = stage + ": " + f.what;
     missing.add(name + ": the flight stopped at " + stage + " (" + f.what + "), see " +
                 rig.firmware().console_log().string());
