@@ -126,6 +126,16 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw Failed{what};
 }
 
+// After a phase: the firmware still flies COVER's setpoints, or the phase measured
+// something else (a loaded machine can starve the agent past the bridge's cmd_timeout_s,
+// and the bridge lands the UAV): the bridge's reason is named.
+void still_flying(fw::FirmwareRig& rig, const std::string& phase) {
+  if (flying_for_cover(rig)) return;
+  const auto state = rig.state();
+  throw Failed{"the firmware left offboard during the " + phase +
+               (state && !state->failsafe.empty() ? " (bridge: " + state->failsafe + ")" : "")};
+}
+
 // --- the flight ---------------------------------------------------------------------------
 
 // The operator's start (docs/flight-controller.md): the agent streams motors-off, then
@@ -188,7 +198,13 @@ void take_back(fw::FirmwareRig& rig, double height) {
               },
               10s),
           "the agent's stream at the bridge after the fault");
-  require(rig.cover_fc({"offboard", "0"}).exit_code == 0, "cover fc offboard 0 after the fault");
+  // The bridge refuses while a mode change of its own awaits an answer (its blind land
+  // request of a link cut, answered once the link is back): "try again", as an operator does.
+  bool offboard = false;
+  for (int attempt = 0; attempt < 5 && !offboard; ++attempt) {
+    offboard = rig.cover_fc({"offboard", "0"}).exit_code == 0;
+  }
+  require(offboard, "cover fc offboard 0 after the fault");
   require(wait_for([&] { return flying_for_cover(rig); }, 5s), "offboard again after the fault");
   require(wait_for(
               [&] {
@@ -748,6 +764,7 @@ nlohmann::json fly_autopilot(const fw::FirmwareProfile& profile, const fw::Firmw
 
     stage = "setpoint rate and latency";
     const RateAndLatency rl = rate_and_latency(rig, height, std::chrono::seconds(options.hold_s));
+    still_flying(rig, stage);
     out["setpoint_rate_hz"] = {
         {"median", figure_json(median(rl.window_hz))},
         {"worst_window", figure_json(rl.window_hz.empty() ? NAN
@@ -771,6 +788,7 @@ nlohmann::json fly_autopilot(const fw::FirmwareProfile& profile, const fw::Firmw
 
     stage = "hover estimate";
     const Hover h = hover_estimate(rig, before.value_or(NAN), airborne);
+    still_flying(rig, stage);
     out["hover"] = {{"estimate", figure_json(h.estimate)},
                     {"firmware", figure_json(h.truth)},
                     {"firmware_source", h.truth_source},
@@ -782,6 +800,7 @@ nlohmann::json fly_autopilot(const fw::FirmwareProfile& profile, const fw::Firmw
 
     stage = "rate step";
     const Step st = rate_step(rig, height);
+    still_flying(rig, stage);
     out["rate_step"] = {{"rate_rad_s", kStepRate_rad_s},
                         {"duration_ms", kStepDuration.count()},
                         {"rise_90_ms", figure_json(st.rise_90_ms)},
