@@ -741,6 +741,10 @@ nlohmann::json fly_autopilot(const fw::FirmwareProfile& profile, const fw::Firmw
   setup.cli = kCli;
   setup.workdir = options.workdir / name;
   setup.log = stderr;
+  // As the launch files run them: the agent's stream must not miss cmd_timeout_s because
+  // the machine is busy.
+  setup.bridge_priority = 55;
+  setup.agent_priority = 50;
   fw::FirmwareRig rig(setup, profile, build, profile.flight_params, profile.bridge_hover_start);
   out["console_log"] = rig.firmware().console_log().string();
   std::string stage = "arm and take off";

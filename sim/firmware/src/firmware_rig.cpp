@@ -194,7 +194,7 @@ void FirmwareRig::agent_flies(AgentStream::Policy policy) {
   if (agent_) {
     agent_->fly(std::move(policy));
   } else {
-    agent_ = std::make_unique<AgentStream>(*participant_, std::move(policy));
+    agent_ = std::make_unique<AgentStream>(*participant_, std::move(policy), setup_.agent_priority);
   }
 }
 
@@ -216,6 +216,7 @@ void FirmwareRig::restart_bridge() {
   options.append_log = true;
   options.null_stdin = true;
   options.close_other_fds = true;
+  options.realtime_priority = setup_.bridge_priority;
   bridge_ = std::make_unique<process::ChildProcess>(bridge_argv_, options);
 }
 

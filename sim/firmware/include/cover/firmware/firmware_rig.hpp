@@ -41,6 +41,11 @@ struct RigSetup {
   // test's COVER_TEST_TIME_SCALE. They are how long to wait, never a measurement.
   double deadline_scale = 1.0;
   std::FILE* log = stdout;  // what the rig says it did (a benchmark's JSON owns stdout)
+  // SCHED_FIFO priorities of the bridge process and the agent's thread, as the launch files
+  // give cover-fc-bridge (55) and cover-uav-agent (50); 0: the caller's policy. On a loaded
+  // machine an agent at the default policy can miss the bridge's 100 ms cmd_timeout_s.
+  int bridge_priority = 0;
+  int agent_priority = 0;
 };
 
 struct CliRun {
