@@ -15,13 +15,13 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "agent_flight.hpp"
+#include "cover/firmware/agent_flight.hpp"
 #include "cover/clock/clock.hpp"
 #include "cover/mavlink/state_messages.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
-#include "firmware_rig.hpp"
+#include "test_rig.hpp"
 
 namespace cover::firmware::test {
 namespace {

@@ -3,7 +3,7 @@
 // for both autopilots (firmware_profile.hpp says how they differ). Each uses gtest's
 // assertions; px4_sih_test.cpp and arducopter_test.cpp run them.
 #include "cover/firmware/firmware_build.hpp"
-#include "firmware_profile.hpp"
+#include "cover/firmware/firmware_profile.hpp"
 
 namespace cover::firmware::test {
 

@@ -143,6 +143,9 @@ void FirmwareMonitor::take(const mav::Frame& frame, std::int64_t at_ns) {
     case mav::HighresImu::kId:
       imus_.push_back({at_ns, mav::HighresImu::unpack(frame.payload.data())});
       break;
+    case mav::AttitudeTarget::kId:
+      attitude_targets_.push_back({at_ns, mav::AttitudeTarget::unpack(frame.payload.data())});
+      break;
     case mav::ExtendedSysState::kId:
       extended_state_ = mav::ExtendedSysState::unpack(frame.payload.data());
       break;
@@ -211,6 +214,12 @@ std::vector<Timed<mav::AttitudeQuaternion>> FirmwareMonitor::attitudes_since(
 std::vector<Timed<mav::HighresImu>> FirmwareMonitor::imus_since(std::int64_t since_ns) const {
   std::lock_guard<std::mutex> lock(mutex_);
   return since(imus_, since_ns);
+}
+
+std::vector<Timed<mav::AttitudeTarget>> FirmwareMonitor::attitude_targets_since(
+    std::int64_t since_ns) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return since(attitude_targets_, since_ns);
 }
 
 std::optional<mav::ExtendedSysState> FirmwareMonitor::extended_state() const {

@@ -73,6 +73,7 @@ void LinkTap::run() {
 }
 
 void LinkTap::from_firmware(const std::uint8_t* data, std::size_t size, const sockaddr_in& sender) {
+  if (cut_) return;
   // Passed on first: the reading below must not delay the bridge.
   ::sendto(bridge_fd_, data, size, 0, reinterpret_cast<const sockaddr*>(&bridge_), sizeof(bridge_));
   const std::int64_t at_ns = clock::monotonic_ns();
@@ -80,11 +81,16 @@ void LinkTap::from_firmware(const std::uint8_t* data, std::size_t size, const so
   firmware_ = sender;
   firmware_parser_.feed(data, size, [&](const mav::Frame& frame) {
     arrivals_[frame.message_id].push_back(at_ns);
-    if (const auto ack = mav::decode<mav::CommandAck>(frame)) acks_.push_back({at_ns, *ack});
+    if (const auto ack = mav::decode<mav::CommandAck>(frame)) {
+      acks_.push_back({at_ns, *ack});
+    } else if (const auto target = mav::decode<mav::AttitudeTarget>(frame)) {
+      attitude_targets_.push_back({at_ns, *target});
+    }
   });
 }
 
 void LinkTap::from_bridge(const std::uint8_t* data, std::size_t size) {
+  const bool cut = cut_;
   std::optional<sockaddr_in> firmware;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -92,7 +98,7 @@ void LinkTap::from_bridge(const std::uint8_t* data, std::size_t size) {
   }
   // Nothing to answer before the firmware has written: the bridge (udpin) writes only
   // after it has heard it, so nothing is lost.
-  if (firmware) {
+  if (firmware && !cut) {
     ::sendto(firmware_fd_, data, size, 0, reinterpret_cast<const sockaddr*>(&*firmware),
              sizeof(*firmware));
   }
@@ -100,10 +106,9 @@ void LinkTap::from_bridge(const std::uint8_t* data, std::size_t size) {
   std::lock_guard<std::mutex> lock(mutex_);
   bridge_parser_.feed(data, size, [&](const mav::Frame& frame) {
     if (const auto command = mav::decode<mav::CommandLong>(frame)) {
-      commands_.push_back({at_ns, *command});
-    } else if (const auto setpoint = mav::decode<mav::SetAttitudeTarget>(frame)) {
-      last_setpoint_ = Timed<mav::SetAttitudeTarget>{at_ns, *setpoint};
-      ++setpoints_;
+      commands_.push_back({at_ns, *command});  // what the bridge did, delivered or not
+    } else if (const auto setpoint = mav::decode<mav::SetAttitudeTarget>(frame); setpoint && !cut) {
+      setpoint_log_.push_back({at_ns, *setpoint});
     }
   });
 }
@@ -135,12 +140,39 @@ std::vector<Timed<mav::CommandLong>> LinkTap::commands() const {
 
 std::optional<Timed<mav::SetAttitudeTarget>> LinkTap::last_setpoint() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return last_setpoint_;
+  if (setpoint_log_.empty()) return std::nullopt;
+  return setpoint_log_.back();
 }
 
 std::uint64_t LinkTap::setpoints() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return setpoints_;
+  return setpoint_log_.size();
+}
+
+namespace {
+template <typename T>
+std::vector<Timed<T>> since(const std::vector<Timed<T>>& log, std::int64_t since_ns) {
+  std::vector<Timed<T>> out;
+  for (const auto& t : log) {
+    if (t.at_ns >= since_ns) out.push_back(t);
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<Timed<mav::SetAttitudeTarget>> LinkTap::setpoints_since(std::int64_t since_ns) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return since(setpoint_log_, since_ns);
+}
+
+std::vector<Timed<mav::AttitudeTarget>> LinkTap::attitude_targets_since(
+    std::int64_t since_ns) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return since(attitude_targets_, since_ns);
+}
+
+void LinkTap::cut(bool cut) {
+  cut_ = cut;
 }
 
 }  // namespace cover::firmware

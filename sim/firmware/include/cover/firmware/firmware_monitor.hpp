@@ -63,6 +63,8 @@ class FirmwareMonitor {
   std::optional<Timed<mavlink::AttitudeQuaternion>> attitude() const;
   std::vector<Timed<mavlink::AttitudeQuaternion>> attitudes_since(std::int64_t since_ns) const;
   std::vector<Timed<mavlink::HighresImu>> imus_since(std::int64_t since_ns) const;
+  // ATTITUDE_TARGET: the setpoint the firmware says it flies.
+  std::vector<Timed<mavlink::AttitudeTarget>> attitude_targets_since(std::int64_t since_ns) const;
   std::optional<mavlink::ExtendedSysState> extended_state() const;
   std::optional<mavlink::SysStatus> sys_status() const;
   std::vector<Timed<std::string>> texts() const;  // STATUSTEXT, "severity: text"
@@ -104,6 +106,7 @@ class FirmwareMonitor {
   std::vector<Timed<mavlink::LocalPositionNed>> positions_;
   std::vector<Timed<mavlink::AttitudeQuaternion>> attitudes_;
   std::vector<Timed<mavlink::HighresImu>> imus_;
+  std::vector<Timed<mavlink::AttitudeTarget>> attitude_targets_;
   std::optional<mavlink::ExtendedSysState> extended_state_;
   std::optional<mavlink::SysStatus> sys_status_;
   std::vector<Timed<std::string>> texts_;

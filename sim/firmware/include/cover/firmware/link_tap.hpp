@@ -40,6 +40,15 @@ class LinkTap {
   // The newest SET_ATTITUDE_TARGET the bridge sent, and how many.
   std::optional<Timed<mavlink::SetAttitudeTarget>> last_setpoint() const;
   std::uint64_t setpoints() const;
+  // Every SET_ATTITUDE_TARGET passed on to the firmware since `since_ns`, and the
+  // firmware's ATTITUDE_TARGETs (what it says its setpoint is) to the bridge.
+  std::vector<Timed<mavlink::SetAttitudeTarget>> setpoints_since(std::int64_t since_ns) const;
+  std::vector<Timed<mavlink::AttitudeTarget>> attitude_targets_since(std::int64_t since_ns) const;
+
+  // Cuts the link both ways (a broken cable, a radio out of range): while cut, every
+  // datagram either side sends is dropped here. The bridge's COMMAND_LONGs are still
+  // recorded in commands() (what it tried), its setpoints are not (none arrived).
+  void cut(bool cut);
 
  private:
   void run();
@@ -56,8 +65,9 @@ class LinkTap {
   std::map<std::uint32_t, std::vector<std::int64_t>> arrivals_;
   std::vector<Timed<mavlink::CommandAck>> acks_;
   std::vector<Timed<mavlink::CommandLong>> commands_;
-  std::optional<Timed<mavlink::SetAttitudeTarget>> last_setpoint_;
-  std::uint64_t setpoints_ = 0;
+  std::vector<Timed<mavlink::SetAttitudeTarget>> setpoint_log_;
+  std::vector<Timed<mavlink::AttitudeTarget>> attitude_targets_;
+  std::atomic<bool> cut_{false};
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };

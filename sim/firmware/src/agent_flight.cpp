@@ -1,11 +1,11 @@
-#include "agent_flight.hpp"
+#include "cover/firmware/agent_flight.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "cover/clock/clock.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
 namespace {
 
 constexpr double kHeightGain_per_s = 1.0;  // climb speed asked per metre below the height
@@ -80,4 +80,4 @@ AgentStream::Policy roll_rate_doublet(const FirmwareMonitor& monitor, double hei
   };
 }
 
-}  // namespace cover::firmware::test
+}  // namespace cover::firmware

@@ -1,29 +1,52 @@
 #pragma once
-// One firmware test's whole setup: a fresh real firmware instance (its own instance number,
-// ports and scratch working directory), the LinkTap on its companion link, the real
-// cover-fc-bridge process on a DDS domain of the test's own, the test's FirmwareMonitor on
-// the firmware's ground-station port, a DDS participant reading cover/uav/0/fc, and the
-// agent's command stream when the test starts it. `cover fc ...` runs as the operator runs
-// it. Everything is stopped when the rig goes.
+// One firmware run's whole setup (a firmware test's, or cover-bench firmware's): a fresh
+// real firmware instance (its own instance number, ports and working directory), the
+// LinkTap on its companion link, the real cover-fc-bridge process on a DDS domain of the
+// run's own, a FirmwareMonitor on the firmware's ground-station port, a DDS participant
+// reading cover/uav/0/fc, and the agent's command stream when the run starts it.
+// `cover fc ...` runs as the operator runs it. Everything is stopped when the rig goes.
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "agent_stream.hpp"
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
+#include "cover/firmware/agent_stream.hpp"
 #include "cover/firmware/firmware_monitor.hpp"
+#include "cover/firmware/firmware_profile.hpp"
 #include "cover/firmware/link_tap.hpp"
 #include "cover/firmware/sitl_process.hpp"
 #include "cover/process/child_process.hpp"
-#include "firmware_profile.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
+
+// Where the rig finds COVER's programs and puts its files, and how it waits.
+struct RigSetup {
+  std::filesystem::path fc_bridge;  // the cover-fc-bridge executable
+  std::filesystem::path cli;        // the `cover` executable
+  // The firmware's working directory goes in a folder of it, named after the firmware;
+  // the bridge's log and the CLI's are fc_bridge.log and cover_fc.log in it.
+  std::filesystem::path workdir;
+  // The DDS domains the rig may claim one of (tests/fc_bridge uses 200..209).
+  int first_domain = 145;
+  int last_domain = 149;
+  // Deadlines the rig waits on (a CLI's answer, a process's exit) are multiplied by it: a
+  // test's COVER_TEST_TIME_SCALE. They are how long to wait, never a measurement.
+  double deadline_scale = 1.0;
+  std::FILE* log = stdout;  // what the rig says it did (a benchmark's JSON owns stdout)
+  // SCHED_FIFO priorities of the bridge process and the agent's thread, as the launch files
+  // give cover-fc-bridge (55) and cover-uav-agent (50); 0: the caller's policy. On a loaded
+  // machine an agent at the default policy can miss the bridge's 100 ms cmd_timeout_s.
+  int bridge_priority = 0;
+  int agent_priority = 0;
+};
 
 struct CliRun {
   int exit_code = -1;
@@ -34,7 +57,7 @@ class FirmwareRig {
  public:
   // Starts the firmware with `params` and the bridge with its hover-thrust estimate at
   // `bridge_hover_thrust` (0: the bridge's configured default).
-  FirmwareRig(const FirmwareProfile& profile, const FirmwareBuild& build,
+  FirmwareRig(const RigSetup& setup, const FirmwareProfile& profile, const FirmwareBuild& build,
               const FirmwareParams& params, double bridge_hover_thrust = 0.0);
   ~FirmwareRig();
   FirmwareRig(const FirmwareRig&) = delete;
@@ -68,11 +91,18 @@ class FirmwareRig {
 
   // The bridge dies as a process killed hard does (SIGKILL): no goodbye, no land.
   void kill_bridge();
+  // A new cover-fc-bridge process with the first one's arguments (as a supervisor restarts
+  // it), after kill_bridge.
+  void restart_bridge();
+
+  std::chrono::milliseconds deadline(std::chrono::milliseconds d) const;
 
  private:
+  RigSetup setup_;
   FirmwareProfile profile_;
   dds::DomainClaim domain_;
   int bridge_port_ = 0;
+  std::vector<std::string> bridge_argv_;
   std::unique_ptr<LinkTap> tap_;
   std::unique_ptr<process::ChildProcess> bridge_;
   std::optional<SitlProcess> firmware_;
@@ -84,4 +114,4 @@ class FirmwareRig {
   std::unique_ptr<AgentStream> agent_;
 };
 
-}  // namespace cover::firmware::test
+}  // namespace cover::firmware

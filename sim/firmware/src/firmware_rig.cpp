@@ -1,4 +1,4 @@
-#include "firmware_rig.hpp"
+#include "cover/firmware/firmware_rig.hpp"
 
 #include <netinet/in.h>
 #include <signal.h>
@@ -6,25 +6,29 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <stdexcept>
+#include <thread>
 
 #include "cover/clock/clock.hpp"
 #include "cover/mavlink/protocol.hpp"
 #include "cover/mavlink/state_messages.hpp"
-#include "cover/test/scratch_dir.hpp"
-#include "cover/test/time_scale.hpp"
-#include "cover/test/wait_until.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
 namespace {
 
-namespace mav = cover::mavlink;
 using namespace std::chrono_literals;
 
-// The test's DDS domains: 145..149 are no other test's (tests/fc_bridge uses 200..209).
-constexpr int kFirstDomain = 145;
-constexpr int kLastDomain = 149;
+// Polls `condition` until it holds or `timeout` passes (then one last look).
+bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (!condition()) {
+    if (std::chrono::steady_clock::now() >= end) return condition();
+    std::this_thread::sleep_for(5ms);  // polling a condition with a deadline
+  }
+  return true;
+}
 
 // A loopback UDP port free now, below Linux's ephemeral range, for the bridge's udpin.
 int free_udp_port() {
@@ -42,15 +46,18 @@ dds::ParticipantOptions on_domain(int domain) {
   dds::ParticipantOptions options;
   options.vendor = dds::Vendor::Cyclone;
   options.domain_id = domain;
-  options.participant_name = "firmware-test";
+  options.participant_name = "firmware-rig";
   return options;
 }
 
 }  // namespace
 
-FirmwareRig::FirmwareRig(const FirmwareProfile& profile, const FirmwareBuild& build,
-                         const FirmwareParams& params, double bridge_hover_thrust)
-    : profile_(profile), domain_(dds::DomainClaim::claim_any(kFirstDomain, kLastDomain)) {
+FirmwareRig::FirmwareRig(const RigSetup& setup, const FirmwareProfile& profile,
+                         const FirmwareBuild& build, const FirmwareParams& params,
+                         double bridge_hover_thrust)
+    : setup_(setup),
+      profile_(profile),
+      domain_(dds::DomainClaim::claim_any(setup.first_domain, setup.last_domain)) {
   InstanceSlot slot =
       InstanceSlot::claim(profile.firmware, profile.first_instance, profile.last_instance);
   const int n = slot.instance();
@@ -58,7 +65,8 @@ FirmwareRig::FirmwareRig(const FirmwareProfile& profile, const FirmwareBuild& bu
   // The tap first: the firmware's first frames on its companion link go to it.
   tap_ = std::make_unique<LinkTap>(companion_port(n), bridge_port_);
 
-  std::vector<std::string> argv{COVER_FC_BRIDGE,
+  std::filesystem::create_directories(setup_.workdir);
+  std::vector<std::string> argv{setup_.fc_bridge.string(),
                                 "--id",
                                 "0",
                                 "--autopilot",
@@ -74,19 +82,17 @@ FirmwareRig::FirmwareRig(const FirmwareProfile& profile, const FirmwareBuild& bu
   if (bridge_hover_thrust > 0.0) {
     argv.insert(argv.end(), {"--hover-thrust", std::to_string(bridge_hover_thrust)});
   }
-  process::SpawnOptions bridge_options;
-  bridge_options.log_file = cover::test::scratch_path("fc_bridge.log");
-  bridge_options.null_stdin = true;
-  bridge_options.close_other_fds = true;
-  bridge_ = std::make_unique<process::ChildProcess>(argv, bridge_options);
+  bridge_argv_ = argv;
+  restart_bridge();
 
-  const auto workdir = cover::test::scratch_dir() / to_string(profile.firmware);
+  const auto workdir = setup_.workdir / to_string(profile.firmware);
   firmware_.emplace(profile.firmware == Firmware::Px4
                         ? SitlProcess::start_px4(build, std::move(slot), workdir, params)
                         : SitlProcess::start_arducopter(build, std::move(slot), workdir, params));
-  std::printf("%s SITL instance %d (system %d) in %s, bridge on UDP %d, DDS domain %d\n",
-              to_string(profile.firmware), n, firmware_->system_id(), workdir.c_str(), bridge_port_,
-              domain_.domain());
+  std::fprintf(setup_.log,
+               "%s SITL instance %d (system %d) in %s, bridge on UDP %d, DDS domain %d\n",
+               to_string(profile.firmware), n, firmware_->system_id(), workdir.c_str(),
+               bridge_port_, domain_.domain());
 
   monitor_ =
       profile.firmware == Firmware::Px4 ? FirmwareMonitor::px4(n) : FirmwareMonitor::arducopter(n);
@@ -123,27 +129,27 @@ std::vector<Timed<msg::FcState>> FirmwareRig::states_since(std::int64_t since_ns
 }
 
 CliRun FirmwareRig::cover_fc(const std::vector<std::string>& args) {
-  std::vector<std::string> argv{COVER_CLI, "fc"};
+  std::vector<std::string> argv{setup_.cli.string(), "fc"};
   argv.insert(argv.end(), args.begin(), args.end());
   argv.insert(argv.end(), {"--dds", "cyclone", "--domain", std::to_string(domain_.domain())});
   process::SpawnOptions options;
   options.capture_stdout = true;
-  options.log_file = cover::test::scratch_path("cover_fc.log");
+  options.log_file = (setup_.workdir / "cover_fc.log").string();
   options.append_log = true;
   options.null_stdin = true;
   process::ChildProcess cli(argv, options);
   CliRun run;
-  while (const auto line = cli.read_line(cover::test::scaled(60s))) run.output += *line + "\n";
-  run.exit_code = cli.wait(cover::test::scaled(20s)).value_or(-1);
+  while (const auto line = cli.read_line(deadline(60s))) run.output += *line + "\n";
+  run.exit_code = cli.wait(deadline(20s)).value_or(-1);
   std::string shown;
   for (const auto& a : args) shown += " " + a;
-  std::printf("cover fc%s -> exit %d: %s", shown.c_str(), run.exit_code,
-              run.output.empty() ? "\n" : run.output.c_str());
+  std::fprintf(setup_.log, "cover fc%s -> exit %d: %s", shown.c_str(), run.exit_code,
+               run.output.empty() ? "\n" : run.output.c_str());
   return run;
 }
 
 bool FirmwareRig::connect_monitor(std::chrono::milliseconds timeout) {
-  if (!cover::test::wait_until([&] { return monitor_->connected(); }, timeout)) return false;
+  if (!wait_until([&] { return monitor_->connected(); }, deadline(timeout))) return false;
   // What the monitor reads, at rates enough to time a mode change or a failsafe to 20 ms
   // (PX4's ground-station link sends some of them already; ArduCopter nothing).
   struct Ask {
@@ -159,9 +165,9 @@ bool FirmwareRig::connect_monitor(std::chrono::milliseconds timeout) {
   for (const Ask& ask : asks) {
     const auto result = monitor_->request_stream(ask.id, ask.hz);
     if (!result || *result != mav::mav_result::kAccepted) {
-      std::printf("monitor: the firmware %s message %u at %.0f Hz (result %d)\n",
-                  result ? "refused" : "did not answer a request for", ask.id, ask.hz,
-                  result ? *result : -1);
+      std::fprintf(setup_.log, "monitor: the firmware %s message %u at %.0f Hz (result %d)\n",
+                   result ? "refused" : "did not answer a request for", ask.id, ask.hz,
+                   result ? *result : -1);
       all_needed = all_needed && !ask.needed;
     }
   }
@@ -188,7 +194,7 @@ void FirmwareRig::agent_flies(AgentStream::Policy policy) {
   if (agent_) {
     agent_->fly(std::move(policy));
   } else {
-    agent_ = std::make_unique<AgentStream>(*participant_, std::move(policy));
+    agent_ = std::make_unique<AgentStream>(*participant_, std::move(policy), setup_.agent_priority);
   }
 }
 
@@ -201,7 +207,22 @@ std::int64_t FirmwareRig::agent_falls_silent() {
 
 void FirmwareRig::kill_bridge() {
   ::kill(bridge_->pid(), SIGKILL);
-  bridge_->wait(cover::test::scaled(5s));
+  bridge_->wait(deadline(5s));
 }
 
-}  // namespace cover::firmware::test
+void FirmwareRig::restart_bridge() {
+  process::SpawnOptions options;
+  options.log_file = (setup_.workdir / "fc_bridge.log").string();
+  options.append_log = true;
+  options.null_stdin = true;
+  options.close_other_fds = true;
+  options.realtime_priority = setup_.bridge_priority;
+  bridge_ = std::make_unique<process::ChildProcess>(bridge_argv_, options);
+}
+
+std::chrono::milliseconds FirmwareRig::deadline(std::chrono::milliseconds d) const {
+  return std::chrono::milliseconds(
+      static_cast<long long>(static_cast<double>(d.count()) * setup_.deadline_scale));
+}
+
+}  // namespace cover::firmware

@@ -1,7 +1,7 @@
 #pragma once
-// What the firmware tests need to know of each autopilot, in one place: how to start it for
-// COVER, its modes as its HEARTBEAT says them, its land command, the parameter that times
-// its own offboard-loss failsafe, and its true hover thrust.
+// What a firmware run (the firmware tests, cover-bench firmware) needs to know of each
+// autopilot, in one place: how to start it for COVER, its modes as its HEARTBEAT says them,
+// its land command, the parameter that times its own offboard-loss failsafe, its hover thrust.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,7 +13,7 @@
 #include "cover/mavlink/messages.hpp"
 #include "cover/mavlink/protocol.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
 
 namespace mav = cover::mavlink;
 
@@ -67,4 +67,4 @@ bool is_control_command(const mav::CommandLong& command);
 // it does not answer.
 std::optional<double> firmware_hover_thrust(Firmware firmware, FirmwareMonitor& monitor);
 
-}  // namespace cover::firmware::test
+}  // namespace cover::firmware

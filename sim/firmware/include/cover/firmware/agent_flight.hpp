@@ -1,14 +1,14 @@
 #pragma once
-// What the test's agent flies: COVER's kind of command (collective thrust and body rates),
-// computed from what the firmware says of its own state (FirmwareMonitor), as
+// What a firmware run's agent flies: COVER's kind of command (collective thrust and body
+// rates), computed from what the firmware says of its own state (FirmwareMonitor), as
 // cover-uav-agent computes it from its relative state.
 #include <chrono>
 #include <cstdint>
 
-#include "agent_stream.hpp"
+#include "cover/firmware/agent_stream.hpp"
 #include "cover/firmware/firmware_monitor.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
 
 constexpr double kGravity_m_s2 = 9.81;  // the bridge's gravity_m_s2
 
@@ -42,4 +42,4 @@ AgentStream::Policy roll_rate_doublet(const FirmwareMonitor& monitor, double hei
                                       std::chrono::milliseconds duration,
                                       std::chrono::milliseconds pause);
 
-}  // namespace cover::firmware::test
+}  // namespace cover::firmware

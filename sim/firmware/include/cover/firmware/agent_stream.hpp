@@ -1,8 +1,11 @@
 #pragma once
-// The UAV agent's side of a firmware test: UavCommand samples on cover/uav/0/cmd at 100 Hz
+// The UAV agent's side of a firmware run: UavCommand samples on cover/uav/0/cmd at 100 Hz
 // from a thread, as cover-uav-agent publishes them (stamped with the host's clock: the
-// bridge runs --clock system), each computed by the flight the test chooses (a policy,
-// called on that thread). The test can make the agent fall silent, as a crashed agent does.
+// bridge runs --clock system), each computed by the flight the run chooses (a policy,
+// called on that thread). The run can make the agent fall silent, as a crashed agent does.
+#include <pthread.h>
+#include <sched.h>
+
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -14,7 +17,7 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
 
 // One command: collective thrust per unit mass and body rates, FLU, as the agent's.
 struct AgentSetpoint {
@@ -29,10 +32,19 @@ class AgentStream {
  public:
   using Policy = std::function<AgentSetpoint()>;
 
-  AgentStream(dds::Participant& participant, Policy policy)
+  // `priority` > 0: the agent's thread runs SCHED_FIFO at it (as cover-uav-agent under the
+  // launch files), when the system allows it.
+  AgentStream(dds::Participant& participant, Policy policy, int priority = 0)
       : writer_(participant.make_writer(dds::topics::uav_command(0))),
         policy_(std::move(policy)),
-        thread_([this] { run(); }) {}
+        thread_([this, priority] {
+          if (priority > 0) {
+            sched_param param{};
+            param.sched_priority = priority;
+            pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);  // refused: default policy
+          }
+          run();
+        }) {}
   ~AgentStream() { fall_silent(); }
   AgentStream(const AgentStream&) = delete;
   AgentStream& operator=(const AgentStream&) = delete;
@@ -86,4 +98,4 @@ class AgentStream {
   std::thread thread_;
 };
 
-}  // namespace cover::firmware::test
+}  // namespace cover::firmware

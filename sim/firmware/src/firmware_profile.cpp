@@ -1,10 +1,10 @@
-#include "firmware_profile.hpp"
+#include "cover/firmware/firmware_profile.hpp"
 
 #include <chrono>
 
 #include "cover/mavlink/state_messages.hpp"
 
-namespace cover::firmware::test {
+namespace cover::firmware {
 namespace {
 
 using namespace std::chrono_literals;
@@ -108,4 +108,4 @@ std::optional<double> firmware_hover_thrust(Firmware firmware, FirmwareMonitor& 
   return mass->value(true) * kStandardGravity_m_s2 / (4.0 * max_thrust->value(true));
 }
 
-}  // namespace cover::firmware::test
+}  // namespace cover::firmware
