@@ -25,13 +25,14 @@ ORDER = [
     # The fleet's vocabulary: data types every process shares; Eigen and the standard
     # library only.
     ["vocabulary"],
-    # Services without DDS: configuration, logging, clocks, processes, shared memory,
+    # Services without DDS: configuration, logging, clocks, processes, one start-up, shared memory,
     # MAVLink and VRPN codecs, MCAP files.
     [
         "services/config",
         "services/logging",
         "services/clock",
         "services/process",
+        "services/startup",
         "services/shm",
         "services/mavlink",
         "services/vrpn",

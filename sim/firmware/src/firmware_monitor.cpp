@@ -304,31 +304,7 @@ std::optional<ParamReading> FirmwareMonitor::read_param(const std::string& name,
   request.target_system = system_id();
   request.target_component = mav::mav_comp::kAutopilot1;
   request.param_id = mav::param_id_from(name);
-  const std::int64_t asked_ns = clock::monotonic_ns();
-  std::optional<ParamReading> reading;
-  auto next_send = std::chrono::steady_clock::now();
-  poll_until(
-      [&] {
-        {
-          std::lock_guard<std::mutex> lock(mutex_);
-          for (const auto& p : params_) {
-            if (p.at_ns < asked_ns || mav::param_id_string(p.value.param_id) != name) continue;
-            ParamReading r;
-            r.raw = p.value.param_value;
-            r.type = p.value.param_type;
-            std::memcpy(r.bytes.data(), &p.value.param_value, r.bytes.size());
-            reading = r;
-            return true;
-          }
-        }
-        if (std::chrono::steady_clock::now() >= next_send) {
-          send(encoder_.encode(request));
-          next_send += kResendPeriod;
-        }
-        return false;
-      },
-      timeout);
-  return reading;
+  return exchange_param(name, encoder_.encode(request), std::nullopt, timeout);
 }
 
 std::optional<ParamReading> FirmwareMonitor::set_param(const std::string& name, float raw,
@@ -341,35 +317,46 @@ std::optional<ParamReading> FirmwareMonitor::set_param(const std::string& name, 
   set.target_system = system_id();
   set.target_component = mav::mav_comp::kAutopilot1;
   set.param_id = mav::param_id_from(name);
+  return exchange_param(name, encoder_.encode(set), raw, timeout);
+}
+
+std::optional<ParamReading> FirmwareMonitor::exchange_param(const std::string& name,
+                                                            const mav::EncodedFrame& request,
+                                                            std::optional<float> expected_raw,
+                                                            std::chrono::milliseconds timeout) {
   const std::int64_t asked_ns = clock::monotonic_ns();
   std::optional<ParamReading> reading;
   auto next_send = std::chrono::steady_clock::now();
   poll_until(
       [&] {
-        {
-          std::lock_guard<std::mutex> lock(mutex_);
-          for (const auto& p : params_) {
-            // The same bytes: PX4's integers are bit patterns, not numbers, in the float.
-            if (p.at_ns < asked_ns || mav::param_id_string(p.value.param_id) != name ||
-                std::memcmp(&p.value.param_value, &raw, sizeof raw) != 0) {
-              continue;
-            }
-            ParamReading r;
-            r.raw = p.value.param_value;
-            r.type = p.value.param_type;
-            std::memcpy(r.bytes.data(), &p.value.param_value, r.bytes.size());
-            reading = r;
-            return true;
-          }
-        }
+        if ((reading = param_since(name, asked_ns, expected_raw))) return true;
         if (std::chrono::steady_clock::now() >= next_send) {
-          send(encoder_.encode(set));
+          send(request);
           next_send += kResendPeriod;
         }
         return false;
       },
       timeout);
   return reading;
+}
+
+std::optional<ParamReading> FirmwareMonitor::param_since(const std::string& name,
+                                                         std::int64_t since_ns,
+                                                         std::optional<float> expected_raw) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const auto& p : params_) {
+    if (p.at_ns < since_ns || mav::param_id_string(p.value.param_id) != name) continue;
+    // The same bytes: PX4's integers are bit patterns, not numbers, in the float.
+    if (expected_raw && std::memcmp(&p.value.param_value, &*expected_raw, sizeof(float)) != 0) {
+      continue;
+    }
+    ParamReading r;
+    r.raw = p.value.param_value;
+    r.type = p.value.param_type;
+    std::memcpy(r.bytes.data(), &p.value.param_value, r.bytes.size());
+    return r;
+  }
+  return std::nullopt;
 }
 
 }  // namespace cover::firmware

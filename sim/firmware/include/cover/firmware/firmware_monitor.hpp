@@ -95,6 +95,14 @@ class FirmwareMonitor {
   void run();
   void take(const mavlink::Frame& frame, std::int64_t at_ns);
   void send(const mavlink::EncodedFrame& frame);
+  // Sends `request` (again every resend period) until a PARAM_VALUE of `name` arrives after
+  // it, carrying `expected_raw`'s bytes when given; nullopt after `timeout`.
+  std::optional<ParamReading> exchange_param(const std::string& name,
+                                             const mavlink::EncodedFrame& request,
+                                             std::optional<float> expected_raw,
+                                             std::chrono::milliseconds timeout);
+  std::optional<ParamReading> param_since(const std::string& name, std::int64_t since_ns,
+                                          std::optional<float> expected_raw) const;
 
   std::unique_ptr<ByteTransport> transport_;
   mavlink::Encoder encoder_;
