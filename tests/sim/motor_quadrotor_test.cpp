@@ -181,6 +181,33 @@ TEST(MotorQuadrotor, RotorSpeedFollowsTheFirstOrderStep) {
   EXPECT_NEAR(s.body.thrust_n, 20.0 * std::pow(1.0 - std::exp(-3.0), 2), 1e-3);
 }
 
+TEST(MotorQuadrotor, TorqueFreeTumbleKeepsAngularMomentumAndEnergy) {
+  // Motors stopped, no gravity, a full inertia tensor (products of inertia included):
+  // Euler's equations J w' = -w x J w keep the world-frame angular momentum R J w and the
+  // energy w^T J w / 2 constant, while w itself wobbles (an asymmetric body about no
+  // principal axis).
+  MotorQuadrotorParams params;
+  params.inertia_products_kg_m2 = Eigen::Vector3d(0.002, -0.001, 0.003);
+  const MotorQuadrotor plant(params);
+  const Eigen::Matrix3d j = params.inertia_kg_m2();
+  MotorQuadrotorState s;
+  s.body.body_rate_rad_s = Vec3(1.0, 2.0, 3.0);
+  const auto momentum = [&] {
+    return Eigen::Vector3d(s.body.attitude.eigen().toRotationMatrix() * j *
+                           s.body.body_rate_rad_s.eigen());
+  };
+  const auto energy = [&] {
+    const Eigen::Vector3d w = s.body.body_rate_rad_s.eigen();
+    return 0.5 * w.dot(j * w);
+  };
+  const Eigen::Vector3d momentum_0 = momentum();
+  const double energy_0 = energy();
+  for (int i = 0; i < 2000; ++i) plant.step(s, {0.0, 0.0, 0.0, 0.0}, 0.0, 0.0, kDt);
+  EXPECT_GT((s.body.body_rate_rad_s.eigen() - Eigen::Vector3d(1, 2, 3)).norm(), 0.1);
+  EXPECT_LT((momentum() - momentum_0).norm(), 1e-9);
+  EXPECT_NEAR(energy(), energy_0, 1e-9);
+}
+
 TEST(MotorQuadrotor, NonFiniteOrOutOfRangeOutputsAreClipped) {
   const MotorQuadrotor plant(MotorQuadrotorParams{});
   const auto w = plant.steady_rotor_speeds({std::nan(""), -0.5, 1.5, 0.25});
