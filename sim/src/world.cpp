@@ -20,11 +20,6 @@ const WorldParams& validated(const WorldParams& params) {
   return params;
 }
 
-double yaw_of(const Eigen::Quaterniond& attitude) {
-  const Eigen::Matrix3d r = attitude.toRotationMatrix();
-  return std::atan2(r(1, 0), r(0, 0));
-}
-
 bool is_finite(const QuadrotorCommand& command) {
   return std::isfinite(command.thrust_m_s2) && command.body_rate_rad_s.eigen().allFinite();
 }
@@ -62,15 +57,15 @@ World::World(const WorldParams& params)
   if (initial.start_on_ugv >= 0) {
     const UgvState& ugv = state_.ugvs[initial.start_on_ugv];
     state_.uav.position_m = ugv.position_m;
-    start_resting(state_.uav_contact, initial.start_on_ugv, ugv.position_m.eigen(),
-                  ugv.yaw_rad + initial.yaw_rad);
-    rest_uav_on_surface();
+    surfaces().start_resting(state_.uav_contact, initial.start_on_ugv, ugv.position_m.eigen(),
+                             ugv.yaw_rad + initial.yaw_rad);
+    surfaces().carry(state_.uav_contact, state_.uav);
   } else {
     state_.uav.position_m = Vec3(initial.position_m);
     state_.uav.attitude = Quat(yaw_quaternion(initial.yaw_rad));
     if (initial.position_m.z() <= 0.0) {
-      start_resting(state_.uav_contact, -1, initial.position_m, initial.yaw_rad);
-      rest_uav_on_surface();
+      surfaces().start_resting(state_.uav_contact, -1, initial.position_m, initial.yaw_rad);
+      surfaces().carry(state_.uav_contact, state_.uav);
     }
   }
   state_.payload.attached = params_.payload.attached_at_start;
@@ -152,97 +147,14 @@ void World::update_ugvs() {
   }
 }
 
-World::SurfaceHit World::penetrated_surface(const Eigen::Vector3d& point_m) const {
-  for (int k = 0; k < state_.ugv_count; ++k) {
-    const Eigen::Vector3d local = state_.ugvs[k].to_body(point_m);
-    const UgvParams& ugv = params_.ugvs[k];
-    if (local.z() < 0.0 && std::abs(local.x()) <= ugv.deck_half_length_m &&
-        std::abs(local.y()) <= ugv.deck_half_width_m) {
-      return {true, k};
-    }
-  }
-  if (point_m.z() < 0.0) return {true, -1};
-  return {};
-}
-
-double World::surface_height_m(std::int32_t surface) const {
-  return surface < 0 ? 0.0 : state_.ugvs[surface].position_m.z;
-}
-
-double World::surface_yaw_rad(std::int32_t surface) const {
-  return surface < 0 ? 0.0 : state_.ugvs[surface].yaw_rad;
-}
-
-Eigen::Vector3d World::surface_point_velocity(std::int32_t surface,
-                                              const Eigen::Vector3d& point) const {
-  return surface < 0 ? Eigen::Vector3d::Zero() : state_.ugvs[surface].point_velocity_m_s(point);
-}
-
-Eigen::Vector3d World::surface_to_world(std::int32_t surface, const Eigen::Vector3d& offset) const {
-  return surface < 0 ? offset : state_.ugvs[surface].to_world(offset);
-}
-
-Eigen::Vector3d World::world_to_surface(std::int32_t surface, const Eigen::Vector3d& point) const {
-  return surface < 0 ? point : state_.ugvs[surface].to_body(point);
-}
-
-void World::start_resting(ContactState& contact, std::int32_t surface,
-                          const Eigen::Vector3d& point_m, double yaw_rad) const {
-  Eigen::Vector3d on_top = point_m;
-  on_top.z() = surface_height_m(surface);
-  contact.resting = true;
-  contact.surface = surface;
-  contact.offset_in_surface_m = Vec3(world_to_surface(surface, on_top));
-  contact.yaw_offset_rad = yaw_rad - surface_yaw_rad(surface);
-}
-
-// A resting UAV is carried by its surface: pose and velocity are those of its contact
-// point, levelled (the landing gear settles it flat), rate loop at the surface's yaw rate.
-void World::rest_uav_on_surface() {
-  const ContactState& contact = state_.uav_contact;
-  QuadrotorState& uav = state_.uav;
-  const Eigen::Vector3d position =
-      surface_to_world(contact.surface, contact.offset_in_surface_m.eigen());
-  const double surface_yaw_rate =
-      contact.surface < 0 ? 0.0 : state_.ugvs[contact.surface].yaw_rate_rad_s;
-  uav.position_m = Vec3(position);
-  uav.velocity_m_s = Vec3(surface_point_velocity(contact.surface, position));
-  uav.attitude = Quat(yaw_quaternion(surface_yaw_rad(contact.surface) + contact.yaw_offset_rad));
-  uav.body_rate_rad_s = Vec3(0.0, 0.0, surface_yaw_rate);
+SurfaceContact World::surfaces() const {
+  return SurfaceContact(state_.ugvs, state_.ugv_count, params_.ugvs);
 }
 
 void World::update_uav(const QuadrotorCommand& command) {
-  QuadrotorState& uav = state_.uav;
-  ContactState& contact = state_.uav_contact;
   const double mass_kg = params_.uav.mass_true_kg + extra_mass_kg();
-  quadrotor_.step(uav, command, extra_mass_kg(), params_.gravity_m_s2, dt_s_);
-
-  auto can_lift_off = [&] {
-    const double vertical_thrust =
-        uav.attitude.eigen().toRotationMatrix()(2, 2) * uav.thrust_n / mass_kg;
-    return vertical_thrust > params_.gravity_m_s2;
-  };
-
-  if (contact.resting) {
-    if (!can_lift_off()) {
-      rest_uav_on_surface();
-      return;
-    }
-    contact.resting = false;  // thrust exceeds weight: leave the surface
-  }
-
-  const Eigen::Vector3d position = uav.position_m.eigen();
-  const SurfaceHit hit = penetrated_surface(position);
-  if (!hit.hit) return;
-  if (!can_lift_off()) {
-    start_resting(contact, hit.surface, position, yaw_of(uav.attitude.eigen()));
-    rest_uav_on_surface();
-    return;
-  }
-  // Touching while thrusting upward (e.g. just after lift-off): stay on top, never sink.
-  uav.position_m.z = surface_height_m(hit.surface);
-  const double surface_vz = surface_point_velocity(hit.surface, position).z();
-  uav.velocity_m_s.z = std::max(uav.velocity_m_s.z, surface_vz);
+  quadrotor_.step(state_.uav, command, extra_mass_kg(), params_.gravity_m_s2, dt_s_);
+  surfaces().resolve(state_.uav, state_.uav_contact, mass_kg, params_.gravity_m_s2);
 }
 
 void World::update_payload() {
@@ -255,10 +167,11 @@ void World::update_payload() {
   }
   ContactState& contact = payload.contact;
   if (contact.resting) {
+    const SurfaceContact contact_surfaces = surfaces();
     const Eigen::Vector3d position =
-        surface_to_world(contact.surface, contact.offset_in_surface_m.eigen());
+        contact_surfaces.to_world(contact.surface, contact.offset_in_surface_m.eigen());
     payload.position_m = Vec3(position);
-    payload.velocity_m_s = Vec3(surface_point_velocity(contact.surface, position));
+    payload.velocity_m_s = Vec3(contact_surfaces.point_velocity_m_s(contact.surface, position));
     return;
   }
   // Free fall (a dense parcel: drag neglected); exact for constant gravity.
@@ -269,11 +182,14 @@ void World::update_payload() {
   velocity.z() -= g * dt_s_;
   payload.position_m = Vec3(position);
   payload.velocity_m_s = Vec3(velocity);
-  const SurfaceHit hit = penetrated_surface(position);
+  const SurfaceContact contact_surfaces = surfaces();
+  const SurfaceContact::Hit hit = contact_surfaces.penetrated(position);
   if (hit.hit) {
-    start_resting(contact, hit.surface, position, 0.0);
-    payload.position_m = Vec3(surface_to_world(hit.surface, contact.offset_in_surface_m.eigen()));
-    payload.velocity_m_s = Vec3(surface_point_velocity(hit.surface, payload.position_m.eigen()));
+    contact_surfaces.start_resting(contact, hit.surface, position, 0.0);
+    payload.position_m =
+        Vec3(contact_surfaces.to_world(hit.surface, contact.offset_in_surface_m.eigen()));
+    payload.velocity_m_s =
+        Vec3(contact_surfaces.point_velocity_m_s(hit.surface, payload.position_m.eigen()));
   }
 }
 

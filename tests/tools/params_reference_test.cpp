@@ -58,6 +58,13 @@ TEST(ParamsReference, EveryStructWithFieldsIsDocumented) {
   const std::map<std::string, std::string> sub_sections = {
       {"services/config/include/cover/config/param_fields.hpp", ""},  // the machinery
       {"sim/include/cover/sim/quadrotor.hpp", "`uav.plant.mass_true_kg`"},
+      {"sim/include/cover/sim/motor_quadrotor.hpp", "`plant.mass_kg`"},
+      {"sim/include/cover/sim/motor_model.hpp", "`plant.motor.max_thrust_n`"},
+      {"sim/include/cover/sim/rotor_geometry.hpp", "`plant.motor_1.position_flu_m`"},
+      {"sim/include/cover/sim/uav_sensor_suite.hpp", "`sensors.imu.rate_hz`"},
+      {"sim/include/cover/sim/uav_imu.hpp", "`sensors.imu.specific_force_noise_m_s2`"},
+      {"sim/include/cover/sim/barometer.hpp", "`sensors.barometer.rate_hz`"},
+      {"sim/include/cover/sim/magnetometer.hpp", "`sensors.magnetometer.rate_hz`"},
       {"sim/include/cover/sim/relative_sensor.hpp", "`relative_sensor.rate_hz`"},
       {"sim/include/cover/sim/imu_sensor.hpp", "`imu.rate_hz`"},
       {"sim/include/cover/sim/odometry_sensor.hpp", "`odometry.rate_hz`"},

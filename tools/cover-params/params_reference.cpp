@@ -13,6 +13,7 @@
 #include "cover/planner/planner_params.hpp"
 #include "cover/sampc/sampc_params.hpp"
 #include "cover/sim/fc/sim_fc_params.hpp"
+#include "cover/sim/firmware_uav_params.hpp"
 #include "cover/sim/mocap/mocap_server_params.hpp"
 #include "cover/sim/scenario.hpp"
 #include "cover/sim/world_params.hpp"
@@ -115,6 +116,14 @@ std::vector<Section> sections() {
           "`config/sim/sim_fc.yaml`, section `sim_fc` (required): the simulated PX4 / "
           "ArduPilot autopilots. Read by `cover-sim --fc px4|ardupilot` and `--ugv-imu "
           "mavlink` (`--fc-params`)."),
+      section<sim::FirmwareUavParams>(
+          "Simulated UAV for real firmware", "sim/include/cover/sim/firmware_uav_params.hpp",
+          "`config/sim/firmware_uav_px4.yaml` (PX4's SITL iris) and "
+          "`firmware_uav_arducopter.yaml` (ArduCopter's quad X), section `firmware_uav` "
+          "(required): the motor-level quadrotor a real PX4 / ArduCopter SITL flies, and the "
+          "IMU, barometer and magnetometer its estimator reads. Read by the motor-level "
+          "plant's tests (tests/sim); the simulator links of issue 32 (PX4's "
+          "simulator_mavlink, ArduPilot's JSON backend) are to read it."),
       section<fc_bridge::FcBridgeParams>(
           "Flight-controller bridge", "fc_bridge/core/include/cover/fc_bridge/fc_bridge_params.hpp",
           "`config/fc_bridge.yaml`, section `fc_bridge` (required): the link from a UAV agent "

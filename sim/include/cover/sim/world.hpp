@@ -6,6 +6,7 @@
 #include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/quadrotor.hpp"
 #include "cover/sim/relative_sensor.hpp"
+#include "cover/sim/surface_contact.hpp"
 #include "cover/sim/ugv_motion_pattern.hpp"
 #include "cover/sim/world_params.hpp"
 #include "cover/vocabulary/world_state.hpp"
@@ -23,12 +24,8 @@ const char* to_string(StepStatus status);
 // Fixed-step (RK4 at physics_rate_hz), seeded and deterministic: two Worlds built from
 // the same params and fed the same commands produce bit-identical states.
 //
-// Contact model: the ground (z = 0) and each UGV's deck (a rectangle at deck height,
-// moving with the UGV) are rigid and perfectly inelastic. A UAV that touches one while its
-// thrust cannot lift it (T / m <= g) sits on it: levelled, carried along at its contact
-// point (full friction), yaw carried with the surface. It lifts off as soon as T / m > g.
-// Side impacts with a UGV body are not modelled: a UAV entering a deck's footprint below
-// the deck top is put on top of it.
+// Contact model (surface_contact.hpp): the ground (z = 0) and each UGV's deck are rigid and
+// perfectly inelastic; a UAV without the thrust to lift off rests on one, carried along.
 class World {
  public:
   // Validates `params` (throws cover::config::ConfigError at construction, never later).
@@ -59,26 +56,13 @@ class World {
   const Quadrotor& quadrotor() const { return quadrotor_; }
 
  private:
-  struct SurfaceHit {
-    bool hit = false;
-    std::int32_t surface = -1;  // -1 ground, k deck of UGV k
-  };
-
   void update_ugvs();
   void update_uav(const QuadrotorCommand& command);
   void update_payload();
   void update_sensors();
 
   double extra_mass_kg() const;
-  SurfaceHit penetrated_surface(const Eigen::Vector3d& point_m) const;
-  double surface_height_m(std::int32_t surface) const;
-  double surface_yaw_rad(std::int32_t surface) const;
-  Eigen::Vector3d surface_point_velocity(std::int32_t surface, const Eigen::Vector3d& point) const;
-  Eigen::Vector3d surface_to_world(std::int32_t surface, const Eigen::Vector3d& offset) const;
-  Eigen::Vector3d world_to_surface(std::int32_t surface, const Eigen::Vector3d& point) const;
-  void start_resting(ContactState& contact, std::int32_t surface, const Eigen::Vector3d& point_m,
-                     double yaw_rad) const;
-  void rest_uav_on_surface();
+  SurfaceContact surfaces() const;
 
   WorldParams params_;
   std::int64_t dt_ns_;  // the physics step in whole nanoseconds
