@@ -33,24 +33,29 @@ constexpr auto kBoot = 120s;             // start to "would arm": boot, estimato
 constexpr double kFlightHeight_m = 3.0;  // above where it took off
 // The issue's target for the firmware's vertical speed in a 10 s hover on the estimate.
 constexpr double kHoverVzLimit_m_s = 0.2;
-// NOT MET on PX4 SIH in every run (issue 30 stays open on it): with the estimate aided by
-// the firmware's vertical velocity (LOCAL_POSITION_NED) and the hover started at |vz| <
-// 0.05, |vz| max was 0.122-0.170 m/s in 8 of 9 runs and 0.286 in one (2026-12-04; the
-// accelerometer alone: 0.140-0.255). PX4's own vertical-velocity estimate swings +-0.1 m/s
-// in the hover and the aided estimate follows it by +-1 %. This bound is the measured worst
-// with a margin, so that a regression beyond today's still fails.
-constexpr double kPx4SihHoverVzBound_m_s = 0.4;
+// NOT MET on PX4 SIH (issue 30 stays open on it): with the estimate aided by the
+// firmware's vertical velocity and SIH's drag in its model, the hover started once the
+// estimate settled, |vz| max was 0.200-0.216 m/s in 10 runs, over 0.2 in at least 9
+// (2026-12-04, docs/flight-controller.md; without the drag 0.175-0.285 in 3). PX4's own
+// vertical-velocity estimate swings by 0.15-0.2 m/s within 0.5 s, faster than any thrust
+// moves the vehicle, and SIH's noise repeats from boot, so runs meet the same swings. This
+// bound is the measured worst with a margin, so that a regression beyond today's still
+// fails.
+constexpr double kPx4SihHoverVzBound_m_s = 0.3;
 constexpr double kHoverEstimateTolerance = 0.05;
 // The hover starts with the height hold's vertical speed below this.
 constexpr double kHoverStartVz_m_s = 0.05;
-// The estimate counts as settled when over the last 2 s it moved by no more than 0.5 % of
-// itself: an error of 1 % is 0.1 m/s^2 of vertical acceleration on thrust g, 0.2 m/s in
-// 2 s, so a hover begun on an estimate still moving by that much leaves the 0.2 m/s to
-// chance. The bridge publishes its state at 10 Hz; 2 s must hold most of those samples.
-// Not before 8 s after the take-off (the climb's thrust excites the estimate), not later
-// than kSettleDeadline.
+// The estimate counts as settled when over the last 2 s it moved by no more than 1 % of
+// itself: an error of 1 % is 0.1 m/s^2 of vertical acceleration on thrust g, so a hover
+// begun on an estimate still moving by more leaves the 0.2 m/s to chance. (On PX4 SIH the
+// aided estimate follows the firmware's vertical speed by +-0.5-1 % within a second: 0.5 %
+// took 40 s after the take-off in one run and more than 45 s in the next.) A steady bias
+// is not seen here: the bridge's drag model (velocity_drag_per_s) is what removes it. The
+// bridge publishes its state at 10 Hz; 2 s must hold most of those samples. Not before 8 s
+// after the take-off (the climb's thrust excites the estimate), not later than
+// kSettleDeadline.
 constexpr std::int64_t kSettleWindow_ns = 2'000'000'000;
-constexpr double kSettledSpread = 0.005;
+constexpr double kSettledSpread = 0.01;
 constexpr std::size_t kSettleMinStates = 10;
 constexpr std::int64_t kSettleAfterTakeOff_ns = 8'000'000'000;
 constexpr auto kSettleDeadline = 45s;
