@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "cover/firmware/agent_flight.hpp"
 #include "cover/clock/clock.hpp"
+#include "cover/firmware/agent_flight.hpp"
 #include "cover/mavlink/state_messages.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
@@ -33,16 +33,32 @@ constexpr auto kBoot = 120s;             // start to "would arm": boot, estimato
 constexpr double kFlightHeight_m = 3.0;  // above where it took off
 // The issue's target for the firmware's vertical speed in a 10 s hover on the estimate.
 constexpr double kHoverVzLimit_m_s = 0.2;
-// NOT MET on PX4 SIH in every run (issue 30 stays open on it): with the estimate aided by
-// the firmware's vertical velocity (LOCAL_POSITION_NED) and the hover started at |vz| <
-// 0.05, |vz| max was 0.122-0.170 m/s in 8 of 9 runs and 0.286 in one (2026-12-04; the
-// accelerometer alone: 0.140-0.255). PX4's own vertical-velocity estimate swings +-0.1 m/s
-// in the hover and the aided estimate follows it by +-1 %. This bound is the measured worst
-// with a margin, so that a regression beyond today's still fails.
-constexpr double kPx4SihHoverVzBound_m_s = 0.4;
+// NOT MET on PX4 SIH (issue 30 stays open on it): with the estimate aided by the
+// firmware's vertical velocity and SIH's drag in its model, the hover started once the
+// estimate settled, |vz| max was 0.200-0.216 m/s in 10 runs, over 0.2 in at least 9
+// (2026-12-04, docs/flight-controller.md; without the drag 0.175-0.285 in 3). PX4's own
+// vertical-velocity estimate swings by 0.15-0.2 m/s within 0.5 s, faster than any thrust
+// moves the vehicle, and SIH's noise repeats from boot, so runs meet the same swings. This
+// bound is the measured worst with a margin, so that a regression beyond today's still
+// fails.
+constexpr double kPx4SihHoverVzBound_m_s = 0.3;
 constexpr double kHoverEstimateTolerance = 0.05;
 // The hover starts with the height hold's vertical speed below this.
 constexpr double kHoverStartVz_m_s = 0.05;
+// The estimate counts as settled when over the last 2 s it moved by no more than 1 % of
+// itself: an error of 1 % is 0.1 m/s^2 of vertical acceleration on thrust g, so a hover
+// begun on an estimate still moving by more leaves the 0.2 m/s to chance. (On PX4 SIH the
+// aided estimate follows the firmware's vertical speed by +-0.5-1 % within a second: 0.5 %
+// took 40 s after the take-off in one run and more than 45 s in the next.) A steady bias
+// is not seen here: the bridge's drag model (velocity_drag_per_s) is what removes it. The
+// bridge publishes its state at 10 Hz; 2 s must hold most of those samples. Not before 8 s
+// after the take-off (the climb's thrust excites the estimate), not later than
+// kSettleDeadline.
+constexpr std::int64_t kSettleWindow_ns = 2'000'000'000;
+constexpr double kSettledSpread = 0.01;
+constexpr std::size_t kSettleMinStates = 10;
+constexpr std::int64_t kSettleAfterTakeOff_ns = 8'000'000'000;
+constexpr auto kSettleDeadline = 45s;
 constexpr double kLandLatencyLimit_ms = 150.0;
 constexpr double kStepRate_rad_s = 0.5;
 constexpr auto kStepDuration = 300ms;
@@ -320,21 +336,23 @@ void operator_commands_on_the_ground(FirmwareRig& rig) {
 
 // --- the hover ---------------------------------------------------------------------------
 
-// The bridge's estimate moved less than 0.02 over the last 3 s, at least 8 s after the
-// take-off, with the vertical speed within kHoverStartVz_m_s (the agent's height hold has
-// caught it: the hover on thrust g has nothing that brings a speed it starts with back).
+// The bridge's estimate has settled (the issue: "once the hover-thrust estimate has
+// settled"): over the last kSettleWindow_ns it stayed within kSettledSpread of itself, at
+// least kSettleAfterTakeOff_ns after the take-off, and the vertical speed is within
+// kHoverStartVz_m_s (the agent's height hold has caught it: the hover on thrust g has
+// nothing that brings a speed it starts with back).
 bool estimate_settled(FirmwareRig& rig, std::int64_t airborne_ns) {
   const std::int64_t now = now_ns();
-  if (now - airborne_ns < 8'000'000'000) return false;
-  const auto states = rig.states_since(now - 3'000'000'000);
-  if (states.size() < 15) return false;
+  if (now - airborne_ns < kSettleAfterTakeOff_ns) return false;
+  const auto states = rig.states_since(now - kSettleWindow_ns);
+  if (states.size() < kSettleMinStates) return false;
   double lo = 1.0, hi = 0.0;
   for (const auto& s : states) {
     lo = std::min(lo, s.value.hover_thrust);
     hi = std::max(hi, s.value.hover_thrust);
   }
   const auto p = rig.monitor().position();
-  return hi - lo < 0.02 && p && std::abs(p->value.vz) < kHoverStartVz_m_s;
+  return hi - lo <= kSettledSpread * hi && p && std::abs(p->value.vz) < kHoverStartVz_m_s;
 }
 
 double max_abs_vz(const std::vector<Timed<mav::LocalPositionNed>>& positions, std::int64_t to_ns) {
@@ -343,6 +361,31 @@ double max_abs_vz(const std::vector<Timed<mav::LocalPositionNed>>& positions, st
     if (p.at_ns < to_ns) worst = std::max(worst, static_cast<double>(std::abs(p.value.vz)));
   }
   return worst;
+}
+
+// The hover as it was flown, every 0.5 s: the firmware's vertical speed (up) and the
+// bridge's estimate, for reading a miss.
+void print_hover_trace(FirmwareRig& rig, std::int64_t from_ns, std::int64_t to_ns) {
+  const auto positions = rig.monitor().positions_since(from_ns);
+  const auto states = rig.states_since(from_ns);
+  std::string vz = "  vz up (m/s) every 0.5 s:";
+  std::string estimate = "  estimate every 0.5 s:";
+  std::int64_t next_ns = from_ns;
+  std::size_t s = 0;
+  char text[32];
+  for (const auto& p : positions) {
+    if (p.at_ns >= to_ns) break;
+    if (p.at_ns < next_ns) continue;
+    next_ns += 500'000'000;
+    std::snprintf(text, sizeof text, " %+.3f", -p.value.vz);
+    vz += text;
+    while (s + 1 < states.size() && states[s + 1].at_ns <= p.at_ns) ++s;
+    if (!states.empty()) {
+      std::snprintf(text, sizeof text, " %.4f", states[s].value.hover_thrust);
+      estimate += text;
+    }
+  }
+  std::printf("%s\n%s\n", vz.c_str(), estimate.c_str());
 }
 
 // What the bridge's estimator is fed in the hover: the firmware's body-z specific force
@@ -477,8 +520,10 @@ void hover_on_the_estimate(FirmwareRig& rig, double before, std::int64_t airborn
   const FirmwareProfile& profile = rig.profile();
   const Firmware fw = profile.firmware;
   auto& monitor = rig.monitor();
-  ASSERT_TRUE(wait_until([&] { return estimate_settled(rig, airborne_ns); }, 45s))
+  ASSERT_TRUE(wait_until([&] { return estimate_settled(rig, airborne_ns); }, kSettleDeadline))
       << "the bridge's hover-thrust estimate did not settle" << context(rig);
+  std::printf("hover: the estimate settled %.1f s after the take-off at %.4f\n",
+              ms_between(airborne_ns, now_ns()) * 1e-3, rig.state()->hover_thrust);
   rig.agent_flies([] { return hover(); });
   const std::int64_t window_ns = now_ns();
   std::int64_t next_trace_ns = window_ns;
@@ -518,6 +563,7 @@ void hover_on_the_estimate(FirmwareRig& rig, double before, std::int64_t airborn
     source = why;
   }
   print_imu_noise(monitor.imus_since(window_ns), window_end_ns, rig.state()->hover_thrust);
+  print_hover_trace(rig, window_ns, window_end_ns);
   const double error = std::abs(estimate - truth) / truth;
   const double start_error = std::abs(profile.bridge_hover_start - truth) / truth;
   std::printf(

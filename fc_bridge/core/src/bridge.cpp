@@ -58,6 +58,7 @@ HoverThrustEstimatorParams estimator_params(const FcBridgeParams& p) {
   e.velocity_noise_m_s = p.velocity_noise_m_s;
   e.velocity_model_noise_m_s_per_sqrt_s = p.velocity_model_noise_m_s_per_sqrt_s;
   e.velocity_timeout_s = p.velocity_timeout_s;
+  e.velocity_drag_per_s = p.velocity_drag_per_s;
   return e;
 }
 

@@ -52,7 +52,7 @@ void HoverThrustEstimator::drop_stale_velocity(double now_s) {
 }
 
 // From the last measurement to `now_s` under `thrust`: the truth wanders, and the velocity
-// follows v' = g u c / h - g, whose Jacobian in h is -g u c / h^2.
+// follows v' = g u c / h - g - d v, whose Jacobian is -g u c / h^2 in h and -d in v.
 void HoverThrustEstimator::predict(double thrust, double now_s) {
   drop_stale_velocity(now_s);
   if (last_update_s_ < 0.0) return;
@@ -65,13 +65,14 @@ void HoverThrustEstimator::predict(double thrust, double now_s) {
   }
   const double g = params_.gravity_m_s2;
   const double drive = g * thrust * tilt_cos_;
-  velocity_ += (drive / hover_ - g) * dt;
+  const double decay = std::max(0.0, 1.0 - params_.velocity_drag_per_s * dt);  // d v_next / d v
+  velocity_ = velocity_ * decay + (drive / hover_ - g) * dt;
   const double f = -drive * dt / (hover_ * hover_);  // d v_next / d h
   const double qv = params_.velocity_model_noise_m_s_per_sqrt_s;
-  // P' = F P F^T + Q with F = [[1, 0], [f, 1]].
+  // P' = F P F^T + Q with F = [[1, 0], [f, decay]].
   const double p_hh = p_hh_;
-  const double p_hv = p_hv_ + f * p_hh;
-  const double p_vv = p_vv_ + 2.0 * f * p_hv_ + f * f * p_hh + qv * qv * dt;
+  const double p_hv = decay * p_hv_ + f * p_hh;
+  const double p_vv = decay * decay * p_vv_ + 2.0 * f * decay * p_hv_ + f * f * p_hh + qv * qv * dt;
   p_hh_ = std::min(p_hh + q * q * dt, max_p_hh);
   p_hv_ = p_hv;
   p_vv_ = p_vv;

@@ -31,6 +31,9 @@ FirmwareProfile px4_sih_profile() {
   p.wrong_names = {"COM_OBL_RC_ACT", "NAV_DLL_ACT", "COM_OF_LOSS_T"};
   p.blocking_names = {"COM_OBL_RC_ACT"};
   p.bridge_hover_start = 0.54;  // SIH's default quad (1 kg, 4 x 5 N) hovers at 0.490
+  // SIH's drag, SIH_KDV 1 N/(m/s) on SIH_MASS 1 kg: a thrust error it balances at a steady
+  // climb is otherwise invisible to the velocity-aided estimate.
+  p.bridge_params = {{"velocity_drag_per_s", "1.0"}};
   p.offboard_loss_param = "COM_OF_LOSS_T";
   p.pilot_mode_main = mav::px4_mode::kMainAuto;  // AUTO.LOITER: Hold
   p.pilot_mode_sub = mav::px4_mode::kAutoSubLoiter;

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <fstream>
 #include <functional>
 #include <random>
 #include <stdexcept>
@@ -81,6 +82,14 @@ FirmwareRig::FirmwareRig(const RigSetup& setup, const FirmwareProfile& profile,
                                 std::to_string(domain_.domain())};
   if (bridge_hover_thrust > 0.0) {
     argv.insert(argv.end(), {"--hover-thrust", std::to_string(bridge_hover_thrust)});
+  }
+  if (!profile.bridge_params.empty()) {
+    const auto params_file = setup_.workdir / "fc_bridge.yaml";
+    std::ofstream yaml(params_file);
+    yaml << "fc_bridge:\n";
+    for (const auto& [name, value] : profile.bridge_params)
+      yaml << "  " << name << ": " << value << "\n";
+    argv.insert(argv.end(), {"--params", params_file.string()});
   }
   bridge_argv_ = argv;
   restart_bridge();

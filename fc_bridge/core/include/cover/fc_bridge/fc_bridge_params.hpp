@@ -23,6 +23,7 @@ struct FcBridgeParams {
   double velocity_noise_m_s = 0.05;                   // its 1-sigma noise
   double velocity_model_noise_m_s_per_sqrt_s = 0.02;  // drag, wind, lag beyond the model
   double velocity_timeout_s = 0.5;                    // older: the accelerometer alone
+  double velocity_drag_per_s = 0.0;   // vertical deceleration per m/s of vertical speed
   double estimator_min_thrust = 0.1;  // below this commanded thrust the estimator rests
   double cmd_timeout_s = 0.1;         // armed in offboard with no agent command: land
   double heartbeat_timeout_s = 1.5;   // no autopilot HEARTBEAT: link lost
@@ -84,6 +85,12 @@ struct FcBridgeParams {
     visit("velocity_timeout_s", self.velocity_timeout_s,
           Field("s", "no vertical velocity this long: the estimate on the accelerometer alone")
               .at_least(0.05)
+              .at_most(10.0));
+    visit("velocity_drag_per_s", self.velocity_drag_per_s,
+          Field("1/s",
+                "the vehicle's vertical deceleration per m/s of vertical speed (drag over mass, "
+                "the rotors' loss of thrust in a climb) in the velocity model; 0: none")
+              .at_least(0.0)
               .at_most(10.0));
     visit("estimator_min_thrust", self.estimator_min_thrust,
           Field("", "below this commanded thrust the estimator rests").at_least(0.0).at_most(0.9));

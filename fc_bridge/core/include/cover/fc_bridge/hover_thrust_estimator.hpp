@@ -16,6 +16,10 @@ struct HoverThrustEstimatorParams {
   double velocity_noise_m_s = 0.05;
   double velocity_model_noise_m_s_per_sqrt_s = 0.02;
   double velocity_timeout_s = 0.5;
+  // The vertical acceleration per m/s of vertical speed that opposes it (air drag over the
+  // mass, the rotors' loss of thrust in a climb), 1/s. Without it a thrust error that drag
+  // balances at a steady speed looks to the velocity model like the right thrust.
+  double velocity_drag_per_s = 0.0;
 };
 
 // Online estimate of the normalised thrust that hovers: a Kalman filter as PX4's
@@ -25,12 +29,12 @@ struct HoverThrustEstimatorParams {
 // estimated acceleration, not the IMU's).
 //
 // When the autopilot gives its own vertical velocity, the filter carries it as a second
-// state, v' = g u cos(tilt) / u_hover - g, and corrects both with each velocity sample: an
-// error of 1 % in the hover thrust is 0.1 m/s^2 of vertical acceleration, which a noisy
-// accelerometer (PX4 SIH: 1.4 m/s^2) hides for seconds but the velocity shows within one.
-// Without velocity samples (none yet, or none for velocity_timeout_s) it is the
-// accelerometer alone. The estimate stays within [min, max]. The caller decides when a
-// measurement counts: in the air, flying our thrust.
+// state, v' = g u cos(tilt) / u_hover - g - d v (d: velocity_drag_per_s), and corrects both
+// with each velocity sample: an error of 1 % in the hover thrust is 0.1 m/s^2 of vertical
+// acceleration, which a noisy accelerometer (PX4 SIH: 1.4 m/s^2) hides for seconds but the
+// velocity shows within one. Without velocity samples (none yet, or none for
+// velocity_timeout_s) it is the accelerometer alone. The estimate stays within [min, max].
+// The caller decides when a measurement counts: in the air, flying our thrust.
 class HoverThrustEstimator {
  public:
   explicit HoverThrustEstimator(const HoverThrustEstimatorParams& params);

@@ -30,6 +30,9 @@ struct FirmwareProfile {
   // hover thrust, so the test sees it learn (the field's 20 % is the design case; 10 %
   // keeps the climb-out short).
   double bridge_hover_start = 0.0;
+  // The bridge's own settings for this vehicle (keys of config/fc_bridge.yaml's fc_bridge
+  // section), given to it with --params.
+  FirmwareParams bridge_params;
   // The parameter that times the firmware's own reaction to lost setpoints.
   std::string offboard_loss_param;
   // The mode a ground station or a safety pilot's switch selects (DO_SET_MODE custom main
