@@ -14,6 +14,7 @@ namespace {
 constexpr std::uint64_t kRelativeSensorStream = 100;
 constexpr std::uint64_t kImuStream = 200;
 constexpr std::uint64_t kOdometryStream = 300;
+constexpr std::uint64_t kMotorUavStream = 400;
 
 const WorldParams& validated(const WorldParams& params) {
   params.validate();
@@ -52,7 +53,19 @@ World::World(const WorldParams& params)
   for (const auto& ugv : params_.ugvs) patterns_.emplace_back(ugv.pattern);
   state_.ugv_count = static_cast<std::int32_t>(params_.ugvs.size());
   update_ugvs();
+  place_uav_at_start();
+  update_payload();
+  update_sensors();
+}
 
+World::World(const WorldParams& params, const FirmwareUavParams& firmware_uav) : World(params) {
+  firmware_uav.validate("firmware_uav", params_.physics_rate_hz);
+  motor_uav_.emplace(firmware_uav, params_.physics_rate_hz, params_.gravity_m_s2,
+                     derive_seed(params_.seed, kMotorUavStream));
+  if (!state_.uav_contact.resting) motor_uav_->spin_up_to_hover(state_.uav, extra_mass_kg());
+}
+
+void World::place_uav_at_start() {
   const auto& initial = params_.uav_initial;
   if (initial.start_on_ugv >= 0) {
     const UgvState& ugv = state_.ugvs[initial.start_on_ugv];
@@ -74,8 +87,6 @@ World::World(const WorldParams& params)
     // the hover command holds the UAV still from the first step.
     state_.uav.thrust_n = (params_.uav.mass_true_kg + extra_mass_kg()) * params_.gravity_m_s2;
   }
-  update_payload();
-  update_sensors();
 }
 
 StepStatus World::step(const QuadrotorCommand& command) {
@@ -104,6 +115,33 @@ StepStatus World::advance(const QuadrotorCommand& command, double duration_s) {
     if (step(command) != StepStatus::Ok) status = StepStatus::CommandRejected;
   }
   return status;
+}
+
+void World::step(const MotorOutputs& outputs) {
+  ++state_.step_index;
+  state_.time_s = clock::ns_to_s(static_cast<std::int64_t>(state_.step_index) * dt_ns_);
+  update_ugvs();
+  if (settling_) motor_uav_->forget_motion();
+  settling_ = false;
+  motor_uav_->command(outputs);
+  motor_uav_->step(state_.uav, state_.uav_contact, surfaces(), extra_mass_kg());
+  update_payload();
+  update_sensors();
+}
+
+void World::settle_uav(const MotorOutputs& outputs) {
+  std::array<UgvState, kMaxUgvs> still = state_.ugvs;
+  for (int k = 0; k < state_.ugv_count; ++k) {
+    still[k].velocity_m_s = Vec3(0.0, 0.0, 0.0);
+    still[k].acceleration_m_s2 = Vec3(0.0, 0.0, 0.0);
+    still[k].yaw_rate_rad_s = 0.0;
+    still[k].yaw_acceleration_rad_s2 = 0.0;
+  }
+  settling_ = true;
+  motor_uav_->command(outputs);
+  motor_uav_->step(state_.uav, state_.uav_contact,
+                   SurfaceContact(still, state_.ugv_count, params_.ugvs), extra_mass_kg());
+  update_payload();
 }
 
 bool World::release_payload() {

@@ -57,7 +57,7 @@ ORDER = [
     # catalogue, below the tools and the live view.
     ["recording"],
     # The simulator, and what runs the loop inside it.
-    ["sim/fc", "sim/firmware", "sim/mocap", "sim"],
+    ["sim/fc", "sim/firmware", "sim/firmware_link", "sim/mocap", "sim"],
     ["sim/closed_loop"],
     # Processes and tools.
     ["foxglove/params", "foxglove/core"],

@@ -1,8 +1,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
+#include "cover/sim/firmware_uav_params.hpp"
 #include "cover/sim/imu_sensor.hpp"
+#include "cover/sim/motor_uav.hpp"
 #include "cover/sim/odometry_sensor.hpp"
 #include "cover/sim/quadrotor.hpp"
 #include "cover/sim/relative_sensor.hpp"
@@ -30,11 +33,24 @@ class World {
  public:
   // Validates `params` (throws cover::config::ConfigError at construction, never later).
   explicit World(const WorldParams& params);
+  // A world whose UAV is the motor-level quadrotor a real firmware flies (motor_uav.hpp):
+  // step it with the firmware's motor outputs, not with rate commands.
+  World(const WorldParams& params, const FirmwareUavParams& firmware_uav);
 
   // One physics step of 1 / physics_rate_hz, holding `command` (zero-order hold).
   StepStatus step(const QuadrotorCommand& command);
   // Whole steps covering `duration_s`; returns CommandRejected if the command was.
   StepStatus advance(const QuadrotorCommand& command, double duration_s);
+
+  // Motor-level UAV only (has_motor_uav()). One physics step holding `outputs`.
+  void step(const MotorOutputs& outputs);
+  // One physics step of the UAV alone, on the firmware's clock: the world's time and the
+  // UGVs stand still (their decks held at rest, without their initial speeds), so that a
+  // firmware booting on a deck sees a vehicle at rest (PX4 aligns only below 15 deg/s).
+  // The first step() after it carries the UAV off with its deck.
+  void settle_uav(const MotorOutputs& outputs);
+  bool has_motor_uav() const { return motor_uav_.has_value(); }
+  const MotorUav& motor_uav() const { return *motor_uav_; }
 
   // Opens the airdrop: records the release point (world and every G_k) and lets the
   // payload fall. Returns false when no payload is attached.
@@ -58,6 +74,7 @@ class World {
  private:
   void update_ugvs();
   void update_uav(const QuadrotorCommand& command);
+  void place_uav_at_start();
   void update_payload();
   void update_sensors();
 
@@ -72,6 +89,8 @@ class World {
   RelativeSensor relative_sensor_;
   OdometrySensor odometry_sensor_;
   ImuSensor imu_sensor_;
+  std::optional<MotorUav> motor_uav_;
+  bool settling_ = false;  // the last step was settle_uav()
   WorldState state_;
 };
 
