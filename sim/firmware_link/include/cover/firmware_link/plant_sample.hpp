@@ -15,12 +15,12 @@ struct PlantSample {
   std::uint64_t firmware_step = 0;  // physics steps since the firmware booted (its clock)
   double firmware_time_s = 0.0;     // that many steps, in seconds
   double dt_s = 0.0;                // one physics step
-  QuadrotorState body;
+  sim::QuadrotorState body;
   Eigen::Vector3d acceleration_world_m_s2 = Eigen::Vector3d::Zero();
   sim::UavSensorFrame sensors;  // the samples due on this step
 };
 
-inline PlantSample plant_sample(const sim::MotorUav& uav, const QuadrotorState& body) {
+inline PlantSample plant_sample(const sim::MotorUav& uav, const sim::QuadrotorState& body) {
   PlantSample sample;
   sample.firmware_step = uav.firmware_step();
   sample.firmware_time_s = uav.firmware_time_s();
