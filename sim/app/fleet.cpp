@@ -24,6 +24,8 @@ Fleet::Fleet(const Scenario& scenario, const SimProcessParams& params,
             nullptr,
             OffboardFailsafe(params.offboard_timeout_s, params.loss_descent_rate_m_s),
             nullptr,
+            nullptr,
+            {},
             OffboardState::WaitingForAgent,
             {},
             {}};
@@ -41,10 +43,31 @@ Fleet::Fleet(const Scenario& scenario, const SimProcessParams& params,
   fill_shared();
 }
 
+Fleet::Fleet(const Scenario& scenario, const SimProcessParams& params,
+             const mission::MissionParams& mission, FleetFirmware firmware)
+    : Fleet(scenario, params, mission, FleetAutopilots{}) {
+  if (static_cast<int>(firmware.links.size()) != uav_count()) {
+    throw std::invalid_argument("a firmware link per UAV: " + std::to_string(uav_count()) +
+                                " UAVs, " + std::to_string(firmware.links.size()) + " links");
+  }
+  firmware_name_ = firmware.name;
+  for (int u = 0; u < uav_count(); ++u) {
+    uavs_[u].world = std::make_unique<World>(scenario.world_of(u), firmware.uav);
+    uavs_[u].firmware = std::move(firmware.links[u]);
+  }
+  fill_shared();
+}
+
 void Fleet::apply(int u, const mission::ControllerStatus& status,
                   const mission::ControlCommand& command, double command_age_s) {
   Uav& uav = uavs_[u];
   World& world = *uav.world;
+  if (uav.firmware) {
+    // The command went to the bridge and on to the firmware; the plant flies its motors.
+    uav.recorder->record(status, command, world);
+    uav.last_status = status;
+    return;
+  }
   uav.plant_command =
       uav.failsafe.plant_command(to_plant_command(command), command_age_s, command.handover, world);
   const bool offboard = uav.failsafe.state() == OffboardState::Offboard;
@@ -75,10 +98,30 @@ std::vector<mavlink::EncodedFrame> Fleet::apply_autopilot(int u,
 
 void Fleet::advance() {
   for (int i = 0; i < physics_per_control_; ++i) {
-    for (Uav& uav : uavs_) uav.world->step(uav.plant_command);
+    for (Uav& uav : uavs_) {
+      if (uav.firmware) {
+        step_firmware_uav(uav);
+      } else {
+        uav.world->step(uav.plant_command);
+      }
+    }
     capture_imu();
   }
   ++tick_;
+  fill_shared();
+}
+
+// One physics step on the outputs the firmware gave for it, then the firmware's turn: what
+// the step produced goes to it, and its answer is held over the next step.
+void Fleet::step_firmware_uav(Uav& uav) {
+  uav.world->step(uav.outputs);
+  const World& world = *uav.world;
+  uav.outputs =
+      uav.firmware->exchange(firmware_link::plant_sample(world.motor_uav(), world.state().uav));
+}
+
+void Fleet::hold_ugvs(bool hold) {
+  for (Uav& uav : uavs_) uav.world->hold_ugvs(hold);
   fill_shared();
 }
 
@@ -107,8 +150,16 @@ void Fleet::fill_shared() {
     s.contact = w.uav_contact;
     s.payload = w.payload;
     s.command = w.last_command;
-    s.offboard = uavs_[u].autopilot ? uavs_[u].autopilot_view : uavs_[u].failsafe.state();
+    s.offboard = offboard_view(uavs_[u]);
   }
+}
+
+OffboardState Fleet::offboard_view(const Uav& uav) {
+  if (uav.autopilot) return uav.autopilot_view;
+  if (uav.firmware) {
+    return uav.firmware->stats().armed ? OffboardState::Offboard : OffboardState::WaitingForAgent;
+  }
+  return uav.failsafe.state();
 }
 
 // The segment's OffboardState of a UAV flown by a simulated autopilot: flying the

@@ -2,8 +2,10 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "cover/firmware_link/firmware_link.hpp"
 #include "cover/mission/mission_controller.hpp"
 #include "cover/sim/fc/simulated_autopilot.hpp"
 #include "cover/sim/run_recorder.hpp"
@@ -26,6 +28,16 @@ struct FleetAutopilots {
   fc::StepClosing closing = fc::StepClosing::None;
 };
 
+// Real firmware (cover-sim --firmware px4|ardupilot): each UAV is the motor-level quadrotor
+// its firmware (PX4 or ArduCopter SITL) flies through its physics link. The agents'
+// commands reach the firmware through cover-fc-bridge over MAVLink, which the simulator
+// does not see: it steps the plant on the firmware's motor outputs.
+struct FleetFirmware {
+  std::string name;  // "PX4", "ArduCopter"
+  FirmwareUavParams uav;
+  std::vector<std::unique_ptr<firmware_link::FirmwareLink>> links;  // one per UAV, in order
+};
+
 // The simulated fleet: one World per UAV over the same UGVs (UAVs do not interact
 // physically, so each keeps its own plant, sensors and payload; UAV 0's world is exactly
 // the in-process harness's), each with its flight controller and its run recorder. UGV
@@ -34,6 +46,9 @@ class Fleet {
  public:
   Fleet(const Scenario& scenario, const SimProcessParams& params,
         const mission::MissionParams& mission, const FleetAutopilots& autopilots = {});
+  // A fleet flown by real firmware (`firmware.links` has one link per UAV).
+  Fleet(const Scenario& scenario, const SimProcessParams& params,
+        const mission::MissionParams& mission, FleetFirmware firmware);
 
   int uav_count() const { return static_cast<int>(uavs_.size()); }
   const World& world(int uav) const { return *uavs_[uav].world; }
@@ -54,6 +69,13 @@ class Fleet {
   // UAV `uav`'s simulated autopilot; only when has_autopilots().
   fc::SimulatedAutopilot& autopilot(int uav) { return *uavs_[uav].autopilot; }
   const fc::SimulatedAutopilot& autopilot(int uav) const { return *uavs_[uav].autopilot; }
+  bool has_firmware() const { return firmware_name_.has_value(); }
+  const std::string& firmware_name() const { return *firmware_name_; }
+  firmware_link::FirmwareLink& firmware_link(int uav) { return *uavs_[uav].firmware; }
+  const firmware_link::FirmwareLink& firmware_link(int uav) const { return *uavs_[uav].firmware; }
+  // Holds every world's UGVs still (a firmware aligning on its deck) or releases them.
+  void hold_ugvs(bool hold);
+  bool ugvs_held() const { return uavs_[0].world->ugvs_held(); }
   // Advances every world one control period (each holding its applied command).
   void advance();
   bool finished() const;
@@ -75,21 +97,26 @@ class Fleet {
     std::unique_ptr<World> world;
     std::unique_ptr<RunRecorder> recorder;
     OffboardFailsafe failsafe;
-    std::unique_ptr<fc::SimulatedAutopilot> autopilot;  // with FleetAutopilots::profile
+    std::unique_ptr<fc::SimulatedAutopilot> autopilot;      // with FleetAutopilots::profile
+    std::unique_ptr<firmware_link::FirmwareLink> firmware;  // with FleetFirmware
+    MotorOutputs outputs{};                                 // the firmware's, held
     // The autopilot's state as the segment shows it, taken at its last step (the autopilot
     // itself changes on its link's thread; advance() must not read it).
     OffboardState autopilot_view = OffboardState::WaitingForAgent;
     QuadrotorCommand plant_command;
     mission::ControllerStatus last_status;
   };
+  void step_firmware_uav(Uav& uav);
   void capture_imu();
   void fill_shared();
+  static OffboardState offboard_view(const Uav& uav);
   static OffboardState offboard_view(const fc::SimulatedAutopilot& autopilot);
 
   const Scenario& scenario_;
   int physics_per_control_;
   ClosedLoopOptions options_;
   FleetAutopilots autopilots_;
+  std::optional<std::string> firmware_name_;
   std::vector<Uav> uavs_;
   SharedWorld shared_;
   std::uint64_t tick_ = 0;

@@ -15,6 +15,7 @@
 #include "cover/config/config_error.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
+#include "cover/firmware_link/firmware_kind.hpp"
 #include "cover/logging/log.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/shm/segment_name.hpp"
@@ -54,7 +55,11 @@ struct CommandLine {
   std::string ugv_imu = "shm";
   int ugv_imu_bind_port_base = 14680;
   int ugv_imu_peer_port_base = 14640;
-  std::string mocap;  // vrpn[:PORT]
+  // Real firmware (PX4 / ArduCopter SITL) flying the motor-level UAV.
+  std::string firmware;
+  int firmware_port_base = -1;    // -1: the firmware's own (PX4 4560, ArduPilot 9002)
+  std::string firmware_uav_file;  // empty: config/sim/firmware_uav_<firmware>.yaml
+  std::string mocap;              // vrpn[:PORT]
   std::string mocap_config = cover::config::default_config_dir() + "/sim/mocap.yaml";
   cover::dds::DdsCliOptions dds;
 };
@@ -97,6 +102,19 @@ nlohmann::json autopilot_json(const cover::sim::Fleet& fleet, const cover::sim::
   return out;
 }
 
+// UAV u's real firmware at the end of the run: its physics link's counts.
+nlohmann::json firmware_json(const cover::sim::Fleet& fleet, int u) {
+  const cover::firmware_link::FirmwareLink& link = fleet.firmware_link(u);
+  const cover::firmware_link::FirmwareLinkStats stats = link.stats();
+  return {{"firmware", fleet.firmware_name()},
+          {"link", link.describe()},
+          {"frames_sent", stats.frames_sent},
+          {"answers", stats.answers},
+          {"answers_missed", stats.answers_missed},
+          {"frames_rejected", stats.frames_rejected},
+          {"armed", stats.armed}};
+}
+
 nlohmann::json result_json(cover::sim::Fleet& fleet, const cover::sim::SimNode& node,
                            const CommandLine& cli,
                            std::vector<cover::sim::ClosedLoopResult>& runs) {
@@ -113,6 +131,7 @@ nlohmann::json result_json(cover::sim::Fleet& fleet, const cover::sim::SimNode& 
     one["uav"] = u;
     one["task_id"] = fleet.scenario().task_of(u).task_id;
     if (fleet.has_autopilots()) one["fc"] = autopilot_json(fleet, node, u);
+    if (fleet.has_firmware()) one["firmware"] = firmware_json(fleet, u);
     uavs.push_back(one);
     all_succeeded = all_succeeded && r.success;
   }
@@ -181,6 +200,18 @@ void add_mavlink_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--fc-heartbeat-stop", cli.fc_heartbeat_stop_s,
                  "T_S: UAV 0's autopilot sends no HEARTBEAT from simulated time T_S (its other "
                  "streams go on)");
+  app.add_option("--firmware", cli.firmware,
+                 "px4 or ardupilot: each UAV is a motor-level quadrotor flown by a real firmware "
+                 "(PX4 SITL's simulator_mavlink on TCP 4560 + u, ArduPilot SITL's JSON backend "
+                 "on UDP 9002 + 10 u); its cover-fc-bridge talks to the firmware directly. The "
+                 "UGVs hold still until every firmware's estimator has aligned")
+      ->check(CLI::IsMember({"px4", "ardupilot"}));
+  app.add_option("--firmware-port-base", cli.firmware_port_base,
+                 "the first UAV's physics port (default: the firmware's own, 4560 / 9002)")
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--firmware-uav", cli.firmware_uav_file,
+                 "the motor-level UAV and its sensors (default: "
+                 "config/sim/firmware_uav_px4.yaml / firmware_uav_arducopter.yaml)");
   app.add_option("--ugv-imu", cli.ugv_imu,
                  "how the UGV agents read their IMU: shm (the world segment) or mavlink (UGV k's "
                  "simulated PX4 rover sends HIGHRES_IMU for every sample over UDP; the segment "
@@ -300,6 +331,46 @@ cover::sim::SimRunOptions run_options(const CommandLine& cli, const cover::sim::
   return options;
 }
 
+// Real firmware: the motor-level UAV and one physics link per UAV, bound now.
+cover::sim::FleetFirmware fleet_firmware(const CommandLine& cli, int uav_count) {
+  namespace link = cover::firmware_link;
+  const link::FirmwareKind kind = *link::parse_firmware_kind(cli.firmware);
+  cover::sim::FleetFirmware firmware;
+  firmware.name = link::firmware_name(kind);
+  const std::string file =
+      cli.firmware_uav_file.empty()
+          ? cover::config::default_config_dir() + "/sim/" + link::firmware_uav_file_name(kind)
+          : cli.firmware_uav_file;
+  firmware.uav = cover::sim::FirmwareUavParams::load_file(file);
+  const int base =
+      cli.firmware_port_base > 0 ? cli.firmware_port_base : link::default_port_base(kind);
+  if (link::firmware_port(kind, base, uav_count - 1) > 65535) {
+    throw cover::config::ConfigError("--firmware-port-base: " + std::to_string(uav_count) +
+                                     " UAVs pass port 65535");
+  }
+  const link::Pacing pacing =
+      cli.clock == "lockstep" ? link::Pacing::Lockstep : link::Pacing::Realtime;
+  for (int u = 0; u < uav_count; ++u) {
+    firmware.links.push_back(link::make_link(kind, u, base, pacing));
+  }
+  spdlog::info("{} firmware flies each UAV ({}): motor-level UAV from {}", firmware.name,
+               link::to_string(pacing), file);
+  return firmware;
+}
+
+cover::sim::Fleet make_fleet(const CommandLine& cli, const cover::sim::Scenario& scenario,
+                             const cover::sim::SimProcessParams& params,
+                             const cover::mission::MissionParams& mission,
+                             const cover::sim::FleetAutopilots& autopilots) {
+  if (cli.firmware.empty()) return cover::sim::Fleet(scenario, params, mission, autopilots);
+  if (autopilots.profile) {
+    throw cover::config::ConfigError(
+        "--firmware and --fc px4|ardupilot: the UAV is flown by a real firmware or by a "
+        "simulated autopilot, not both");
+  }
+  return cover::sim::Fleet(scenario, params, mission, fleet_firmware(cli, scenario.uav_count()));
+}
+
 // Runs the world to its end (or until stopped); the exit code.
 int run(const CLI::App& app, const CommandLine& cli) {
   cover::sim::Scenario scenario = cover::sim::Scenario::load_file(scenario_file(cli.scenario));
@@ -314,7 +385,7 @@ int run(const CLI::App& app, const CommandLine& cli) {
   // In lockstep every step's frames end with a HIGHRES_IMU, which a bridge waits for
   // (docs/flight-controller.md, "Lockstep"): the simulator's contract, not the firmware's.
   if (cli.clock == "lockstep") autopilots.closing = cover::sim::fc::StepClosing::HighresImu;
-  cover::sim::Fleet fleet(scenario, params, mission, autopilots);
+  cover::sim::Fleet fleet = make_fleet(cli, scenario, params, mission, autopilots);
   const cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-sim");
   const cover::sim::SimRunOptions options = run_options(cli, fleet, autopilots);
   const std::string segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
@@ -329,7 +400,8 @@ int run(const CLI::App& app, const CommandLine& cli) {
       "{}: {} UAV(s), {} UGV(s), seed {}, clock {}, flight controller {}, UGV IMU {}, {} on "
       "domain {}, segment {}",
       scenario.name, fleet.uav_count(), scenario.world.ugvs.size(), scenario.world.seed, cli.clock,
-      cli.fc, cli.ugv_imu, cover::dds::vendor_name(dds.vendor), dds.domain_id, segment_name);
+      cli.firmware.empty() ? cli.fc : cli.firmware + " firmware", cli.ugv_imu,
+      cover::dds::vendor_name(dds.vendor), dds.domain_id, segment_name);
   switch (node.run()) {
     case cover::sim::SimExit::Finished:
       return finish(fleet, node, cli);

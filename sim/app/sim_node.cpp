@@ -50,6 +50,10 @@ SimNode::SimNode(dds::Participant& participant, shm::SeqlockWriter<SharedWorld>&
     }
     trace_readers_.push_back(participant.make_reader(
         dds::topics::uav_trace(uav), [this, u](const msg::ControlTrace& t) { on_trace(u, t); }));
+    if (fleet.has_firmware()) {
+      fc_state_readers_.push_back(participant.make_reader(
+          dds::topics::fc_state(uav), [this, u](const msg::FcState& s) { on_fc_state(u, s); }));
+    }
   }
   task_status_reader_ =
       participant.make_reader(dds::topics::task_status(), [this](const msg::TaskStatus& s) {
@@ -90,7 +94,7 @@ void SimNode::on_command(int u, const msg::UavCommand& command) {
 }
 
 SimExit SimNode::run() {
-  if (!wait_for_agents()) {
+  if (!wait_for_agents() || (fleet_.has_firmware() && !wait_for_firmware())) {
     // Stopped while waiting is a stop (a standing world's normal end), not a failed start.
     return process::ShutdownSignal::requested() ? SimExit::Interrupted : SimExit::StartupTimeout;
   }
@@ -325,6 +329,7 @@ SimExit SimNode::run_lockstep() {
     apply_commands(true);
     fleet_.advance();
     if (uses_autopilots()) set_sim_time();
+    if (!release_ugvs_when_aligned()) return SimExit::StartupTimeout;
   }
   return SimExit::Finished;
 }
@@ -340,6 +345,7 @@ SimExit SimNode::run_realtime() {
     apply_commands(false);
     fleet_.advance();
     if (uses_autopilots()) set_sim_time();
+    if (!release_ugvs_when_aligned()) return SimExit::StartupTimeout;
   }
   return SimExit::Finished;
 }

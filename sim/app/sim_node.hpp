@@ -53,6 +53,8 @@ struct SimRunOptions {
 
 // Why a run ended.
 enum class SimExit { Finished, Interrupted, Stalled, StartupTimeout };
+// Real firmware: its physics link did not connect, or its estimator never aligned, are
+// StartupTimeout.
 
 // cover-sim's DDS, shared-memory and MAVLink side around the Fleet: publishes relative
 // states (as a motion-capture bridge would), the clock and the world segment; takes every
@@ -94,6 +96,9 @@ class SimNode {
     std::uint64_t setpoints = 0;
     std::int64_t setpoint_received_ns = 0;  // monotonic, of the newest
     std::size_t events_logged = 0;
+    // Real firmware: as its bridge reports it (cover/uav/<u>/fc).
+    bool estimator_ok = false;
+    bool firmware_armed = false;
   };
 
   bool wait_for_agents();
@@ -109,6 +114,12 @@ class SimNode {
   void on_trace(int uav, const msg::ControlTrace& trace);
   bool answered(const Mailbox& box, std::int64_t tick_ns) const;
   void log_stall(int uav, const Mailbox& box, std::int64_t tick_ns, double timeout_s) const;
+  // Real firmware (sim_node_firmware.cpp).
+  bool wait_for_firmware();
+  void on_fc_state(int uav, const msg::FcState& state);
+  // While the UGVs are held: releases them once every firmware has aligned; false when one
+  // has not within firmware_align_timeout_s.
+  bool release_ugvs_when_aligned();
   // Autopilots (sim_node_autopilot.cpp); the mutex held where named _locked.
   bool uses_autopilots() const { return fleet_.has_autopilots(); }
   std::int64_t latency_key(std::int64_t relative_stamp_ns) const;
@@ -153,6 +164,7 @@ class SimNode {
 
   std::vector<dds::Reader<msg::UavCommand>> command_readers_;
   std::vector<dds::Reader<msg::ControlTrace>> trace_readers_;
+  std::vector<dds::Reader<msg::FcState>> fc_state_readers_;  // real firmware
   dds::Reader<msg::TaskStatus> task_status_reader_;
   // Last: its reader threads call into the members above.
   std::unique_ptr<AutopilotLinks> autopilot_links_;

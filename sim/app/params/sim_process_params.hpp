@@ -20,6 +20,10 @@ struct SimProcessParams {
   // then, s (discovery can take a while; later ticks get stall_timeout_s).
   double startup_timeout_s = 30.0;
   double control_rate_hz = 100.0;
+  // Real firmware (--firmware): the UGVs hold still until every UAV's firmware reports its
+  // attitude estimate valid (PX4 aligns only below 15 deg/s); after this much simulated
+  // time without it the run stops with an error naming the UAV, s.
+  double firmware_align_timeout_s = 60.0;
 
   // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
   // the documentation walk this list.
@@ -37,6 +41,10 @@ struct SimProcessParams {
           Field("s", "every UAV agent must have answered the first tick by then").above(0.0));
     visit("control_rate_hz", self.control_rate_hz,
           Field("Hz", "the agents' control rate, one tick each").above(0.0).at_most(1000.0));
+    visit("firmware_align_timeout_s", self.firmware_align_timeout_s,
+          Field("s", "real firmware: simulated time for its estimator to align, UGVs held still")
+              .above(0.0)
+              .at_most(600.0));
   }
 
   static SimProcessParams load_file(const std::string& path);
