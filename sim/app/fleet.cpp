@@ -120,8 +120,15 @@ void Fleet::step_firmware_uav(Uav& uav) {
       uav.firmware->exchange(firmware_link::plant_sample(world.motor_uav(), world.state().uav));
 }
 
-void Fleet::hold_ugvs(bool hold) {
-  for (Uav& uav : uavs_) uav.world->hold_ugvs(hold);
+void Fleet::settle_firmware() {
+  for (int i = 0; i < physics_per_control_; ++i) {
+    for (Uav& uav : uavs_) {
+      uav.world->settle_uav(uav.outputs);
+      const World& world = *uav.world;
+      uav.outputs =
+          uav.firmware->exchange(firmware_link::plant_sample(world.motor_uav(), world.state().uav));
+    }
+  }
   fill_shared();
 }
 

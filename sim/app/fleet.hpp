@@ -73,9 +73,11 @@ class Fleet {
   const std::string& firmware_name() const { return *firmware_name_; }
   firmware_link::FirmwareLink& firmware_link(int uav) { return *uavs_[uav].firmware; }
   const firmware_link::FirmwareLink& firmware_link(int uav) const { return *uavs_[uav].firmware; }
-  // Holds every world's UGVs still (a firmware aligning on its deck) or releases them.
-  void hold_ugvs(bool hold);
-  bool ugvs_held() const { return uavs_[0].world->ugvs_held(); }
+  // Real firmware: one control period of the firmware alone on a still deck (its clock
+  // runs, the world's stands: World::settle_uav), while it boots and aligns.
+  void settle_firmware();
+  // The firmware's time of UAV `uav` (its steps since it booted), s.
+  double firmware_time_s(int uav) const { return uavs_[uav].world->motor_uav().firmware_time_s(); }
   // Advances every world one control period (each holding its applied command).
   void advance();
   bool finished() const;

@@ -329,7 +329,6 @@ SimExit SimNode::run_lockstep() {
     apply_commands(true);
     fleet_.advance();
     if (uses_autopilots()) set_sim_time();
-    if (!release_ugvs_when_aligned()) return SimExit::StartupTimeout;
   }
   return SimExit::Finished;
 }
@@ -345,7 +344,6 @@ SimExit SimNode::run_realtime() {
     apply_commands(false);
     fleet_.advance();
     if (uses_autopilots()) set_sim_time();
-    if (!release_ugvs_when_aligned()) return SimExit::StartupTimeout;
   }
   return SimExit::Finished;
 }

@@ -117,9 +117,10 @@ class SimNode {
   // Real firmware (sim_node_firmware.cpp).
   bool wait_for_firmware();
   void on_fc_state(int uav, const msg::FcState& state);
-  // While the UGVs are held: releases them once every firmware has aligned; false when one
-  // has not within firmware_align_timeout_s.
-  bool release_ugvs_when_aligned();
+  // Steps the firmware alone until every one has aligned; false when one has not within
+  // firmware_align_timeout_s of its time (or a stop was asked).
+  bool settle_firmware();
+  int first_unaligned_uav() const;  // -1: none
   // Autopilots (sim_node_autopilot.cpp); the mutex held where named _locked.
   bool uses_autopilots() const { return fleet_.has_autopilots(); }
   std::int64_t latency_key(std::int64_t relative_stamp_ns) const;

@@ -172,28 +172,9 @@ double World::extra_mass_kg() const {
   return state_.payload.attached ? params_.payload.mass_kg : 0.0;
 }
 
-void World::hold_ugvs(bool hold) {
-  if (hold == ugvs_held_) return;
-  if (!hold) {
-    ugv_clock_lag_s_ = state_.time_s - held_ugv_time_s_;
-    if (motor_uav_) motor_uav_->forget_motion();
-  } else {
-    held_ugv_time_s_ = state_.time_s - ugv_clock_lag_s_;
-  }
-  ugvs_held_ = hold;
-  update_ugvs();
-}
-
 void World::update_ugvs() {
-  const double ugv_time_s = ugvs_held_ ? held_ugv_time_s_ : state_.time_s - ugv_clock_lag_s_;
   for (int k = 0; k < state_.ugv_count; ++k) {
-    UgvKinematics kin = patterns_[k].at(ugv_time_s);
-    if (ugvs_held_) {
-      kin.velocity_m_s.setZero();
-      kin.acceleration_m_s2.setZero();
-      kin.yaw_rate_rad_s = 0.0;
-      kin.yaw_acceleration_rad_s2 = 0.0;
-    }
+    const UgvKinematics kin = patterns_[k].at(state_.time_s);
     UgvState& ugv = state_.ugvs[k];
     ugv.position_m = Vec3(kin.position_m.x(), kin.position_m.y(), params_.ugvs[k].deck_height_m);
     ugv.velocity_m_s = Vec3(kin.velocity_m_s.x(), kin.velocity_m_s.y(), 0.0);

@@ -20,9 +20,9 @@ struct SimProcessParams {
   // then, s (discovery can take a while; later ticks get stall_timeout_s).
   double startup_timeout_s = 30.0;
   double control_rate_hz = 100.0;
-  // Real firmware (--firmware): the UGVs hold still until every UAV's firmware reports its
-  // attitude estimate valid (PX4 aligns only below 15 deg/s); after this much simulated
-  // time without it the run stops with an error naming the UAV, s.
+  // Real firmware (--firmware): the world waits, its UGVs still, until every UAV's firmware
+  // reports its attitude estimate valid (PX4 aligns only below 15 deg/s); after this much
+  // of the firmware's time without it the run stops with an error naming the UAV, s.
   double firmware_align_timeout_s = 60.0;
 
   // Each field once (config/param_fields.hpp): load, validate, the shipped-file test and
@@ -42,7 +42,7 @@ struct SimProcessParams {
     visit("control_rate_hz", self.control_rate_hz,
           Field("Hz", "the agents' control rate, one tick each").above(0.0).at_most(1000.0));
     visit("firmware_align_timeout_s", self.firmware_align_timeout_s,
-          Field("s", "real firmware: simulated time for its estimator to align, UGVs held still")
+          Field("s", "real firmware: its time to align on a still deck before the world starts")
               .above(0.0)
               .at_most(600.0));
   }

@@ -49,11 +49,6 @@ class World {
   // firmware booting on a deck sees a vehicle at rest (PX4 aligns only below 15 deg/s).
   // The first step() after it carries the UAV off with its deck.
   void settle_uav(const MotorOutputs& outputs);
-  // Holds every UGV still where it is (decks at rest, no speed), or releases them: their
-  // patterns then go on from where they were held, their clock behind the world's by the
-  // time held. A real firmware boots on a still deck (PX4 aligns only below 15 deg/s).
-  void hold_ugvs(bool hold);
-  bool ugvs_held() const { return ugvs_held_; }
   bool has_motor_uav() const { return motor_uav_.has_value(); }
   const MotorUav& motor_uav() const { return *motor_uav_; }
 
