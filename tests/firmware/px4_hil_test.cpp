@@ -308,6 +308,8 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
   double sum_sq_altitude_error = 0.0;
   double worst_tilt_deg = 0.0;
   double worst_speed = 0.0;
+  double worst_yaw_error_deg = 0.0;
+  double worst_tilt_estimate_error_deg = 0.0;
   int samples = 0;
   const double hover_from = physics.truth().firmware_time_s;
   double last_t = 0.0;
@@ -323,6 +325,23 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
           std::max(worst_tilt_deg, std::acos(std::clamp(up_z, -1.0, 1.0)) * 180 / M_PI);
       worst_speed = std::max(worst_speed, t.body.velocity_m_s.eigen().norm());
       ++samples;
+      // PX4's own attitude estimate against the truth (the frames' check: a wrong FRD or
+      // NED conversion shows here first): heading and tilt.
+      if (const auto estimate = monitor->attitude()) {
+        const Eigen::Matrix3d r_est = Eigen::Quaterniond(estimate->value.q1, estimate->value.q2,
+                                                         estimate->value.q3, estimate->value.q4)
+                                          .normalized()
+                                          .toRotationMatrix();
+        const Eigen::Matrix3d r_true = t.body.attitude.eigen().normalized().toRotationMatrix();
+        const double yaw_est_ned = std::atan2(r_est(1, 0), r_est(0, 0));
+        const double yaw_true_ned = M_PI / 2.0 - std::atan2(r_true(1, 0), r_true(0, 0));
+        const double yaw_error = std::remainder(yaw_est_ned - yaw_true_ned, 2.0 * M_PI);
+        worst_yaw_error_deg = std::max(worst_yaw_error_deg, std::abs(yaw_error) * 180.0 / M_PI);
+        const double tilt_est = std::acos(std::clamp(r_est(2, 2), -1.0, 1.0));
+        const double tilt_true = std::acos(std::clamp(r_true(2, 2), -1.0, 1.0));
+        worst_tilt_estimate_error_deg =
+            std::max(worst_tilt_estimate_error_deg, std::abs(tilt_est - tilt_true) * 180.0 / M_PI);
+      }
     }
     if (!px4.running()) break;
     std::this_thread::sleep_for(milliseconds(2));  // sampling the truth, not synchronising
@@ -341,8 +360,8 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
       "%.2f s firmware; flying (paced): %.1f s firmware in %.1f s wall (real-time factor %.2f), "
       "%.0f answers/s; answers %llu, missed %llu, matched after arming %llu of %llu, time "
       "mismatches %llu, rejected %llu, free-run frames %llu, connections %llu; hover 10 s: "
-      "altitude error rms %.3f m, max %.3f m, tilt max %.2f deg, speed max %.3f m/s; outputs "
-      "%.3f %.3f %.3f %.3f\n",
+      "altitude error rms %.3f m, max %.3f m, tilt max %.2f deg, speed max %.3f m/s; PX4's "
+      "estimate vs truth: yaw %.2f deg, tilt %.2f deg at most; outputs %.3f %.3f %.3f %.3f\n",
       connect_s, aligned_wall_s, at_alignment.firmware_time_s, unpaced_answers_per_s, ready_wall_s,
       ready_firmware_s, firmware_flying_s, wall_flying_s, firmware_flying_s / wall_flying_s,
       answers_per_s, static_cast<unsigned long long>(stats.answers),
@@ -353,7 +372,8 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
       static_cast<unsigned long long>(stats.frames_rejected),
       static_cast<unsigned long long>(px4_stats.free_run_frames),
       static_cast<unsigned long long>(px4_stats.connections), rms, worst_altitude_error,
-      worst_tilt_deg, worst_speed, end.outputs[0], end.outputs[1], end.outputs[2], end.outputs[3]);
+      worst_tilt_deg, worst_speed, worst_yaw_error_deg, worst_tilt_estimate_error_deg,
+      end.outputs[0], end.outputs[1], end.outputs[2], end.outputs[3]);
   RecordProperty("aligned_firmware_s", std::to_string(at_alignment.firmware_time_s));
   RecordProperty("real_time_factor", std::to_string(firmware_flying_s / wall_flying_s));
 
@@ -370,6 +390,8 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
   EXPECT_LT(worst_altitude_error, 0.3) << "rms " << rms;
   EXPECT_LT(worst_tilt_deg, 10.0);
   EXPECT_LT(worst_speed, 0.5);
+  EXPECT_LT(worst_yaw_error_deg, 10.0);
+  EXPECT_LT(worst_tilt_estimate_error_deg, 3.0);
   const auto hb = monitor->heartbeat();
   ASSERT_TRUE(hb.has_value());
   EXPECT_EQ(mav::px4_mode::main_mode(hb->custom_mode), mav::px4_mode::kMainOffboard);

@@ -52,6 +52,10 @@ bool Px4HilLink::connected() const {
 
 sim::MotorOutputs Px4HilLink::exchange(const PlantSample& sample) {
   check_reconnection();
+  // A magnetometer or barometer sample due between IMU samples (100 Hz mag against a 250 Hz
+  // IMU) rides on the next HIL_SENSOR rather than being lost.
+  if (sample.sensors.magnetometer) pending_.magnetometer = sample.sensors.magnetometer;
+  if (sample.sensors.barometer) pending_.barometer = sample.sensors.barometer;
   if (!sample.sensors.imu) {
     // Between IMU samples PX4 gets nothing (its clock advances only with HIL_SENSOR): take
     // what has come, hold the outputs.
@@ -85,7 +89,9 @@ sim::MotorOutputs Px4HilLink::exchange(const PlantSample& sample) {
   }
   const auto timeout =
       config_.pacing == Pacing::Lockstep ? config_.lockstep_timeout : config_.realtime_timeout;
-  if (!receive_until(time_usec, Clock::now() + timeout) && link_->has_client()) {
+  const std::uint64_t connection = px4_.connections;
+  if (!receive_until(time_usec, Clock::now() + timeout) && link_->has_client() &&
+      px4_.connections == connection) {
     ++stats_.answers_missed;
     if (config_.pacing == Pacing::Lockstep) {
       spdlog::warn(
@@ -98,7 +104,11 @@ sim::MotorOutputs Px4HilLink::exchange(const PlantSample& sample) {
 }
 
 void Px4HilLink::send_frames(const PlantSample& sample, std::uint64_t time_usec) {
-  write(encoder_.encode(hil_sensor(sample, time_usec)));
+  PlantSample with_pending = sample;
+  with_pending.sensors.magnetometer = pending_.magnetometer;
+  with_pending.sensors.barometer = pending_.barometer;
+  pending_ = {};
+  write(encoder_.encode(hil_sensor(with_pending, time_usec)));
   px4_.last_sensor_usec = time_usec;
   const double period_usec = 1e6 / config_.ground_truth_rate_hz;
   if (last_ground_truth_usec_ == 0 ||
@@ -116,6 +126,7 @@ void Px4HilLink::write(const mavlink::EncodedFrame& frame) {
 bool Px4HilLink::receive_until(std::uint64_t until_usec, Clock::time_point deadline) {
   std::array<std::uint8_t, 2048> buffer{};
   answer_arrived_ = false;
+  const std::uint64_t connection = px4_.connections;
   for (;;) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - Clock::now() + std::chrono::microseconds(999));
@@ -125,8 +136,9 @@ bool Px4HilLink::receive_until(std::uint64_t until_usec, Clock::time_point deadl
     parser_.feed(buffer.data(), n, [&](const mavlink::Frame& f) { take(f, until_usec); });
     stats_.frames_rejected = parser_.stats().errors() + parser_.stats().unknown_ids;
     if (answer_arrived_ && px4_.last_answer_usec >= until_usec) return true;
+    // PX4 gone or back as a new connection: nothing will answer this frame.
+    if (px4_.connections != connection || !link_->has_client()) return false;
     if (n == 0 && Clock::now() >= deadline) return false;
-    if (!link_->has_client() && Clock::now() >= deadline) return false;
   }
 }
 
