@@ -218,12 +218,16 @@ class Px4Hil : public ::testing::Test {
   FirmwareLookup lookup_;
 };
 
-TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
+// Lockstep: the loop runs as fast as PX4 answers until PX4 has aligned, then paced to the
+// wall clock for the companion's stream. Realtime: paced from the start, each frame waits
+// only a few ms for its answer.
+void boot_align_arm_and_hover(const FirmwareBuild& build, Pacing pacing) {
   InstanceSlot slot = InstanceSlot::claim(Firmware::Px4, 4, 9);
   const int n = slot.instance();
   Px4HilConfig config;
   config.port = firmware_link::px4_hil_port(n);
-  config.pacing = Pacing::Lockstep;
+  config.pacing = pacing;
+  const bool lockstep = pacing == Pacing::Lockstep;
   Px4HilLink link(config);  // listening before PX4 starts: it connects at once
   ASSERT_EQ(link.port(), firmware_link::px4_hil_port(n));
 
@@ -237,13 +241,14 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
 
   const auto started = std::chrono::steady_clock::now();
   SitlProcess px4 =
-      SitlProcess::start_px4_hil(build(), std::move(slot), cover::test::scratch_path("px4_hil"),
+      SitlProcess::start_px4_hil(build, std::move(slot), cover::test::scratch_path("px4_hil"),
                                  read_params_file(config_path("firmware/px4_hil.params")));
   ASSERT_TRUE(link.wait_for_firmware(cover::test::scaled(milliseconds(30000))))
       << "PX4 did not connect to TCP " << config.port << "; console: " << px4.console_log();
   const double connect_s = seconds_since(started);
 
   PhysicsLoop physics(world, link);
+  if (!lockstep) physics.pace_to_wall_clock();
   const auto monitor = FirmwareMonitor::px4(n);
   HoverStream stream(n, physics);
   ASSERT_TRUE(stream.opened());
@@ -261,7 +266,7 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
   const Truth at_alignment = physics.truth();
   const auto stats_at_alignment = link.stats();
   ASSERT_TRUE(aligned) << "PX4's AHRS never healthy; console: " << px4.console_log();
-  const double unpaced_answers_per_s =
+  const double boot_answers_per_s =
       static_cast<double>(stats_at_alignment.answers) / (aligned_wall_s - connect_s);
   physics.pace_to_wall_clock();
   const auto attitude = monitor->attitude();
@@ -355,16 +360,17 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
       static_cast<double>(stats.answers - stats_at_arm.answers) / wall_flying_s;
   const double rms = std::sqrt(sum_sq_altitude_error / std::max(samples, 1));
   std::printf(
-      "px4 hil: connected %.2f s after start; aligned (AHRS healthy) %.2f s wall after start, "
-      "%.2f s firmware time, unpaced %.0f answers/s; ready in OFFBOARD (STANDBY) %.2f s wall, "
+      "px4 hil (%s): connected %.2f s after start; aligned (AHRS healthy) %.2f s wall after start, "
+      "%.2f s firmware time, boot at %.0f answers/s; ready in OFFBOARD (STANDBY) %.2f s wall, "
       "%.2f s firmware; flying (paced): %.1f s firmware in %.1f s wall (real-time factor %.2f), "
       "%.0f answers/s; answers %llu, missed %llu, matched after arming %llu of %llu, time "
       "mismatches %llu, rejected %llu, free-run frames %llu, connections %llu; hover 10 s: "
       "altitude error rms %.3f m, max %.3f m, tilt max %.2f deg, speed max %.3f m/s; PX4's "
       "estimate vs truth: yaw %.2f deg, tilt %.2f deg at most; outputs %.3f %.3f %.3f %.3f\n",
-      connect_s, aligned_wall_s, at_alignment.firmware_time_s, unpaced_answers_per_s, ready_wall_s,
-      ready_firmware_s, firmware_flying_s, wall_flying_s, firmware_flying_s / wall_flying_s,
-      answers_per_s, static_cast<unsigned long long>(stats.answers),
+      firmware_link::to_string(pacing), connect_s, aligned_wall_s, at_alignment.firmware_time_s,
+      boot_answers_per_s, ready_wall_s, ready_firmware_s, firmware_flying_s, wall_flying_s,
+      firmware_flying_s / wall_flying_s, answers_per_s,
+      static_cast<unsigned long long>(stats.answers),
       static_cast<unsigned long long>(stats.answers_missed),
       static_cast<unsigned long long>(px4_stats.answers_matched - px4_at_arm.answers_matched),
       static_cast<unsigned long long>(stats.answers - stats_at_arm.answers),
@@ -374,17 +380,21 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
       static_cast<unsigned long long>(px4_stats.connections), rms, worst_altitude_error,
       worst_tilt_deg, worst_speed, worst_yaw_error_deg, worst_tilt_estimate_error_deg,
       end.outputs[0], end.outputs[1], end.outputs[2], end.outputs[3]);
-  RecordProperty("aligned_firmware_s", std::to_string(at_alignment.firmware_time_s));
-  RecordProperty("real_time_factor", std::to_string(firmware_flying_s / wall_flying_s));
 
   EXPECT_TRUE(px4.running()) << "PX4 exited; console: " << px4.console_log();
   EXPECT_EQ(px4_stats.connections, 1U);
   EXPECT_GT(px4_stats.heartbeats, 0U);
-  EXPECT_EQ(stats.answers_missed, 0U);
   EXPECT_EQ(px4_stats.answer_time_mismatches, 0U);
-  // Lockstep: every answer after arming is the one to the frame it followed.
-  EXPECT_EQ(px4_stats.answers_matched - px4_at_arm.answers_matched,
-            stats.answers - stats_at_arm.answers);
+  if (lockstep) {
+    EXPECT_EQ(stats.answers_missed, 0U);
+    // Every answer after arming is the one to the frame it followed.
+    EXPECT_EQ(px4_stats.answers_matched - px4_at_arm.answers_matched,
+              stats.answers - stats_at_arm.answers);
+  } else {
+    // A few ms per frame: PX4 keeps up on an idle machine; a loaded one may miss some.
+    EXPECT_LT(stats.answers_missed - stats_at_arm.answers_missed,
+              (stats.answers - stats_at_arm.answers) / 20);
+  }
   EXPECT_EQ(stats.frames_rejected, 0U);
   EXPECT_GT(samples, 500);
   EXPECT_LT(worst_altitude_error, 0.3) << "rms " << rms;
@@ -400,6 +410,14 @@ TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
   stream.fly(false);
   physics.stop();  // PX4 waits for the next frame (it ignores SIGTERM there): stop kills it
   px4.stop(milliseconds(3000));
+}
+
+TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInLockstep) {
+  boot_align_arm_and_hover(build(), Pacing::Lockstep);
+}
+
+TEST_F(Px4Hil, BootsAlignsArmsAndHoversCoversPlantInRealtime) {
+  boot_align_arm_and_hover(build(), Pacing::Realtime);
 }
 
 }  // namespace
