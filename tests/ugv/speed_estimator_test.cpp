@@ -216,7 +216,7 @@ CircleError measure_on_circle(double speed_m_s, double yaw_rate_rad_s, bool odom
     params.uav_initial.start_on_ugv = -1;
     sim::World world(params);
     for (int i = 0; i < 10000; ++i) {  // 10 s; measured after the first 2 s
-      world.step({});
+      world.step(cover::sim::QuadrotorCommand{});
       if (i < 2000 || world.state().step_index % 5 != 0) continue;
       const SpeedEstimate& estimate = world.imu_sensor().latest(0).speed;
       ++samples;
