@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cover/mavlink/event_messages.hpp"
+#include "cover/mavlink/hil_messages.hpp"
 #include "cover/mavlink/message_table.hpp"
 #include "cover/mavlink/messages.hpp"
 #include "cover/mavlink/parameter_messages.hpp"
@@ -107,6 +108,20 @@ void decode_any(const mav::Frame& frame) {
       break;
     case mav::EkfStatusReport::kId:
       require(mav::decode<mav::EkfStatusReport>(frame).has_value(), "ekf decodes");
+      break;
+    // PX4 SITL's simulator_mavlink answers (firmware_link::Px4HilLink reads them) and the
+    // frames a simulator sends it.
+    case mav::HilActuatorControls::kId:
+      require(mav::decode<mav::HilActuatorControls>(frame).has_value(), "hil_actuators decodes");
+      break;
+    case mav::HilSensor::kId:
+      require(mav::decode<mav::HilSensor>(frame).has_value(), "hil_sensor decodes");
+      break;
+    case mav::HilStateQuaternion::kId:
+      require(mav::decode<mav::HilStateQuaternion>(frame).has_value(), "hil_state decodes");
+      break;
+    case mav::HilGps::kId:
+      require(mav::decode<mav::HilGps>(frame).has_value(), "hil_gps decodes");
       break;
     case mav::LocalPositionNed::kId:
       require(mav::decode<mav::LocalPositionNed>(frame).has_value(), "local position decodes");
@@ -208,8 +223,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const mav::ParserStats& p = pieces.stats;
   require(p.frames == s.frames && p.garbage_bytes == s.garbage_bytes &&
               p.crc_errors == s.crc_errors && p.unknown_ids == s.unknown_ids &&
-              p.unknown_frames == s.unknown_frames &&
-              p.bad_length == s.bad_length && p.signature_errors == s.signature_errors &&
+              p.unknown_frames == s.unknown_frames && p.bad_length == s.bad_length &&
+              p.signature_errors == s.signature_errors &&
               p.unsigned_refused == s.unsigned_refused && p.sequence_gaps == s.sequence_gaps,
           "chunking changes no count");
   if (options.signing_key && options.require_signed) {

@@ -12,6 +12,7 @@
 
 #include "cover/mavlink/crc.hpp"
 #include "cover/mavlink/encoder.hpp"
+#include "cover/mavlink/hil_messages.hpp"
 #include "cover/mavlink/message_table.hpp"
 #include "cover/mavlink/messages.hpp"
 #include "cover/mavlink/parser.hpp"
@@ -623,6 +624,39 @@ TEST(MavlinkSurvival, ResetForgetsAPartialFrameAsGarbage) {
   EXPECT_EQ(parser.stats().garbage_bytes, 5U);
   parser.feed(frame.data(), frame.size(), count);
   EXPECT_EQ(frames, 1);
+}
+
+}  // namespace
+}  // namespace cover::mavlink
+
+namespace cover::mavlink {
+namespace {
+
+// common.xml's order, which a hand-written codec easily gets wrong: time_usec, flags (u64)
+// BEFORE controls (float[16]), then mode. PX4 fills HIL_ACTUATOR_CONTROLS this way.
+TEST(MavlinkHil, ActuatorControlsWireOrderIsFlagsBeforeControls) {
+  HilActuatorControls m;
+  m.time_usec = 0x0102030405060708ULL;
+  m.flags = 1;
+  m.controls[0] = 1.0F;  // 0x3F800000
+  m.mode = 129;
+  std::array<std::uint8_t, kMaxPayloadLength> payload{};
+  m.pack(payload.data());
+  EXPECT_EQ(payload[0], 0x08);
+  EXPECT_EQ(payload[7], 0x01);
+  EXPECT_EQ(payload[8], 0x01);  // flags
+  for (int i = 9; i < 16; ++i) EXPECT_EQ(payload[i], 0) << i;
+  EXPECT_EQ(payload[16], 0x00);  // controls[0], little endian
+  EXPECT_EQ(payload[18], 0x80);
+  EXPECT_EQ(payload[19], 0x3F);
+  EXPECT_EQ(payload[80], 129);  // mode
+}
+
+TEST(MavlinkHil, SensorFieldGroupsAreCommonXmlBits) {
+  EXPECT_EQ(hil_sensor_fields::kImu, 63U);
+  EXPECT_EQ(hil_sensor_fields::kImu | hil_sensor_fields::kMag, 511U);
+  EXPECT_EQ(hil_sensor_fields::kBaro, 6656U);
+  EXPECT_EQ(hil_sensor_fields::kImu | hil_sensor_fields::kMag | hil_sensor_fields::kBaro, 7167U);
 }
 
 }  // namespace

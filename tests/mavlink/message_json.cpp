@@ -160,6 +160,69 @@ nlohmann::json to_json(const StatusText& m) {
           {"chunk_seq", m.chunk_seq}};
 }
 
+nlohmann::json to_json(const HilSensor& m) {
+  return {{"time_usec", std::to_string(m.time_usec)},
+          {"xacc", m.xacc},
+          {"yacc", m.yacc},
+          {"zacc", m.zacc},
+          {"xgyro", m.xgyro},
+          {"ygyro", m.ygyro},
+          {"zgyro", m.zgyro},
+          {"xmag", m.xmag},
+          {"ymag", m.ymag},
+          {"zmag", m.zmag},
+          {"abs_pressure", m.abs_pressure},
+          {"diff_pressure", m.diff_pressure},
+          {"pressure_alt", m.pressure_alt},
+          {"temperature", m.temperature},
+          {"fields_updated", m.fields_updated},
+          {"id", m.id}};
+}
+
+nlohmann::json to_json(const HilActuatorControls& m) {
+  return {{"time_usec", std::to_string(m.time_usec)},
+          {"flags", std::to_string(m.flags)},
+          {"controls", array(m.controls)},
+          {"mode", m.mode}};
+}
+
+nlohmann::json to_json(const HilStateQuaternion& m) {
+  return {{"time_usec", std::to_string(m.time_usec)},
+          {"attitude_quaternion", array(m.attitude_quaternion)},
+          {"rollspeed", m.rollspeed},
+          {"pitchspeed", m.pitchspeed},
+          {"yawspeed", m.yawspeed},
+          {"lat", m.lat},
+          {"lon", m.lon},
+          {"alt", m.alt},
+          {"vx", m.vx},
+          {"vy", m.vy},
+          {"vz", m.vz},
+          {"ind_airspeed", m.ind_airspeed},
+          {"true_airspeed", m.true_airspeed},
+          {"xacc", m.xacc},
+          {"yacc", m.yacc},
+          {"zacc", m.zacc}};
+}
+
+nlohmann::json to_json(const HilGps& m) {
+  return {{"time_usec", std::to_string(m.time_usec)},
+          {"lat", m.lat},
+          {"lon", m.lon},
+          {"alt", m.alt},
+          {"eph", m.eph},
+          {"epv", m.epv},
+          {"vel", m.vel},
+          {"vn", m.vn},
+          {"ve", m.ve},
+          {"vd", m.vd},
+          {"cog", m.cog},
+          {"fix_type", m.fix_type},
+          {"satellites_visible", m.satellites_visible},
+          {"id", m.id},
+          {"yaw", m.yaw}};
+}
+
 nlohmann::json frame_to_json(const Frame& frame) {
   switch (frame.message_id) {
     case Heartbeat::kId:
@@ -188,6 +251,14 @@ nlohmann::json frame_to_json(const Frame& frame) {
       return named<ExtendedSysState>("EXTENDED_SYS_STATE", frame);
     case StatusText::kId:
       return named<StatusText>("STATUSTEXT", frame);
+    case HilSensor::kId:
+      return named<HilSensor>("HIL_SENSOR", frame);
+    case HilActuatorControls::kId:
+      return named<HilActuatorControls>("HIL_ACTUATOR_CONTROLS", frame);
+    case HilStateQuaternion::kId:
+      return named<HilStateQuaternion>("HIL_STATE_QUATERNION", frame);
+    case HilGps::kId:
+      return named<HilGps>("HIL_GPS", frame);
     default:
       return nullptr;
   }

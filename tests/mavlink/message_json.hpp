@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cover/mavlink/frame.hpp"
+#include "cover/mavlink/hil_messages.hpp"
 #include "cover/mavlink/messages.hpp"
 
 // The codec's messages as JSON, in the naming the node-mavlink peer uses
@@ -24,8 +25,12 @@ nlohmann::json to_json(const Timesync& m);
 nlohmann::json to_json(const BatteryStatus& m);
 nlohmann::json to_json(const ExtendedSysState& m);
 nlohmann::json to_json(const StatusText& m);
+nlohmann::json to_json(const HilSensor& m);
+nlohmann::json to_json(const HilActuatorControls& m);
+nlohmann::json to_json(const HilStateQuaternion& m);
+nlohmann::json to_json(const HilGps& m);
 
-// {"message": NAME, "fields": {...}} of a frame of one of the 13 messages; null otherwise.
+// {"message": NAME, "fields": {...}} of a frame of one of the 17 messages; null otherwise.
 nlohmann::json frame_to_json(const Frame& frame);
 
 }  // namespace cover::mavlink::test

@@ -17,15 +17,20 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "cover/mavlink/connection_url.hpp"
 #include "cover/mavlink/encoder.hpp"
+#include "cover/mavlink/hil_messages.hpp"
+#include "cover/mavlink/link.hpp"
 #include "cover/mavlink/parser.hpp"
 #include "cover/mavlink/protocol.hpp"
+#include "cover/mavlink/tcp_server_link.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
@@ -131,7 +136,7 @@ TEST_F(MavlinkPeer, ParsesNodeFramesToExactlyItsValues) {
       60);
   const Bytes stream = read_file(frames_path);
   const nlohmann::json expected = read_json(values_path);
-  ASSERT_GE(expected.size(), 26U);  // 13 messages, unsigned and signed, and some v1
+  ASSERT_GE(expected.size(), 34U);  // 17 messages, unsigned and signed, and some v1
 
   ParserOptions options;
   options.signing_key = test::test_key();
@@ -157,7 +162,7 @@ TEST_F(MavlinkPeer, ParsesNodeFramesToExactlyItsValues) {
     EXPECT_EQ(ours["fields"], e["fields"]);
     signed_frames += f.is_signed() ? 1 : 0;
   }
-  EXPECT_EQ(signed_frames, 13U);
+  EXPECT_EQ(signed_frames, 17U);
 
   // The same bytes with a wrong key: exactly the signed frames refused.
   options.signing_key->secret[0] ^= 0x80;
@@ -203,11 +208,23 @@ TEST_F(MavlinkPeer, NodeReadsOurFramesToExactlyOurValues) {
   for (Encoder* encoder : {&plain, &signer}) {
     std::apply(
         [&](const auto&... m) {
-          const char* names[] = {
-              "HEARTBEAT",    "SYS_STATUS",  "SCALED_IMU",          "ATTITUDE_QUATERNION",
-              "COMMAND_LONG", "COMMAND_ACK", "SET_ATTITUDE_TARGET", "ATTITUDE_TARGET",
-              "HIGHRES_IMU",  "TIMESYNC",    "BATTERY_STATUS",      "EXTENDED_SYS_STATE",
-              "STATUSTEXT"};
+          const char* names[] = {"HEARTBEAT",
+                                 "SYS_STATUS",
+                                 "SCALED_IMU",
+                                 "ATTITUDE_QUATERNION",
+                                 "COMMAND_LONG",
+                                 "COMMAND_ACK",
+                                 "SET_ATTITUDE_TARGET",
+                                 "ATTITUDE_TARGET",
+                                 "HIGHRES_IMU",
+                                 "TIMESYNC",
+                                 "BATTERY_STATUS",
+                                 "EXTENDED_SYS_STATE",
+                                 "STATUSTEXT",
+                                 "HIL_SENSOR",
+                                 "HIL_ACTUATOR_CONTROLS",
+                                 "HIL_STATE_QUATERNION",
+                                 "HIL_GPS"};
           std::size_t i = 0;
           (encode_into(stream, sent, *encoder, m, names[i++]), ...);
         },
@@ -490,6 +507,162 @@ TEST_F(MavlinkPeer, FakeAutopilotKeepsItsArdupilotContract) {
   EXPECT_EQ(summary["mode_name"], "LAND");
   ASSERT_EQ(summary["commands"].size(), 3U);
   EXPECT_EQ(summary["commands"][0]["result"], mav_result::kDenied);
+}
+
+// The tcpin:// server against a PX4-like simulator_mavlink client on node's net (peer/
+// hil_client.js): it connects, says HEARTBEAT, answers each HIL_SENSOR with a
+// HIL_ACTUATOR_CONTROLS of the same time, drops the connection and connects again, the
+// later connections beginning with 300 bytes of garbage. The server serves each new
+// connection, decodes every answer node-mavlink wrote, and node decodes every sensor frame
+// to exactly our values.
+TEST_F(MavlinkPeer, TcpServerServesAReconnectingHilClientThroughGarbage) {
+  constexpr int kConnections = 3;
+  constexpr int kAnswers = 4;
+  const auto link = make_tcp_server_link("127.0.0.1", 0);
+  ASSERT_TRUE(link->open()) << link->last_error();
+  ASSERT_GT(link->local_port(), 0);
+  EXPECT_FALSE(link->has_client());
+  Encoder encoder(1, 51);
+  const std::uint8_t probe[1] = {0};
+  EXPECT_FALSE(link->write(probe, 1));  // no client yet
+
+  process::SpawnOptions spawn;
+  spawn.capture_stdout = true;
+  spawn.null_stdin = true;
+  process::ChildProcess client(
+      {node_, (kPeerDir / "hil_client.js").string(), "--port", std::to_string(link->local_port()),
+       "--connections", std::to_string(kConnections), "--answers", std::to_string(kAnswers),
+       "--garbage"},
+      spawn);
+
+  StreamParser parser;
+  std::uint64_t clients = 0;
+  std::uint64_t time_usec = 1000;
+  std::map<std::string, nlohmann::json> sent;  // time_usec -> the sensor frame's fields
+  std::vector<std::pair<std::uint64_t, HilActuatorControls>> answers;  // connection, answer
+  int heartbeats = 0;
+  int answer_time_mismatches = 0;
+  const auto send_sensor = [&] {
+    HilSensor sensor;
+    sensor.time_usec = time_usec;
+    sensor.zacc = -9.80665F;
+    sensor.xgyro = 0.001F * static_cast<float>(time_usec % 7);
+    sensor.abs_pressure = 955.5F;
+    sensor.fields_updated = hil_sensor_fields::kImu | hil_sensor_fields::kBaro;
+    const EncodedFrame frame = encoder.encode(sensor);
+    if (link->write(frame.bytes.data(), frame.size)) {
+      sent[std::to_string(time_usec)] = test::to_json(sensor);
+    }
+  };
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::seconds(30 * cover::test::whole_time_scale());
+  std::array<std::uint8_t, 4096> buffer{};
+  while (answers.size() < static_cast<std::size_t>(kConnections * kAnswers) &&
+         std::chrono::steady_clock::now() < deadline) {
+    const std::size_t n = link->read(buffer.data(), buffer.size(), milliseconds(20));
+    if (link->clients_accepted() != clients) {
+      clients = link->clients_accepted();
+      parser.reset();
+      send_sensor();  // PX4 waits for sensors before it sends any actuator frame
+    }
+    parser.feed(buffer.data(), n, [&](const Frame& f) {
+      if (decode<Heartbeat>(f)) ++heartbeats;
+      if (const auto answer = decode<HilActuatorControls>(f)) {
+        answer_time_mismatches += answer->time_usec == time_usec ? 0 : 1;
+        answers.emplace_back(clients, *answer);
+        time_usec += 4000;
+        send_sensor();
+      }
+    });
+  }
+  ASSERT_EQ(answers.size(), static_cast<std::size_t>(kConnections * kAnswers));
+  EXPECT_EQ(clients, static_cast<std::uint64_t>(kConnections));
+  EXPECT_EQ(heartbeats, kConnections);
+  EXPECT_EQ(answer_time_mismatches, 0);
+  EXPECT_GT(parser.stats().garbage_bytes + parser.stats().refusals(), 0U);
+  for (std::size_t i = 0; i < answers.size(); ++i) {
+    const auto& [connection, answer] = answers[i];
+    SCOPED_TRACE("answer " + std::to_string(i));
+    EXPECT_EQ(connection, i / kAnswers + 1);
+    EXPECT_EQ(answer.flags, kHilActuatorControlsLockstep);
+    EXPECT_EQ(answer.mode, 129);
+    const float first = connection == 1 ? 1.0F / 16.0F : 16.0F / 16.0F;
+    EXPECT_EQ(answer.controls[0], first);
+  }
+
+  std::vector<nlohmann::json> lines;
+  const auto line_deadline =
+      std::chrono::steady_clock::now() + std::chrono::seconds(20 * cover::test::whole_time_scale());
+  while (std::chrono::steady_clock::now() < line_deadline) {
+    // Keep serving: the last connection's frames are read while node prints.
+    link->read(buffer.data(), buffer.size(), milliseconds(10));
+    const auto line = client.read_line(milliseconds(10));
+    if (line) {
+      lines.push_back(nlohmann::json::parse(*line));
+      if (lines.back().contains("done")) break;
+    }
+  }
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines.back()["done"], true);
+  EXPECT_EQ(lines.back()["crc_errors"], 0);
+  ASSERT_EQ(lines.size(), static_cast<std::size_t>(kConnections * kAnswers + 1));
+  for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
+    const nlohmann::json& fields = lines[i]["fields"];
+    const auto it = sent.find(fields["time_usec"].get<std::string>());
+    ASSERT_NE(it, sent.end()) << lines[i].dump();
+    EXPECT_EQ(fields, it->second);
+  }
+  EXPECT_EQ(client.wait(std::chrono::seconds(10 * cover::test::whole_time_scale())), 0);
+}
+
+// tcp:// (client) against tcpin:// (server): bytes both ways, a dropped client noticed by
+// the server (it accepts the reconnection), the client's reopen after the server went.
+TEST(MavlinkTcp, ClientAndServerExchangeAndReconnect) {
+  const auto server = make_tcp_server_link("127.0.0.1", 0);
+  ASSERT_TRUE(server->open()) << server->last_error();
+  const auto url = ConnectionUrl::parse("tcp://127.0.0.1:" + std::to_string(server->local_port()));
+  EXPECT_EQ(url.to_string(), "tcp://127.0.0.1:" + std::to_string(server->local_port()));
+  const auto client = make_link(url);
+  ASSERT_TRUE(client->open()) << client->last_error();
+  std::array<std::uint8_t, 64> buffer{};
+  const std::uint8_t hello[3] = {1, 2, 3};
+  ASSERT_TRUE(client->write(hello, sizeof hello));
+  std::size_t got = 0;
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::seconds(5 * cover::test::whole_time_scale());
+  while (got < sizeof hello && std::chrono::steady_clock::now() < deadline) {
+    got += server->read(buffer.data() + got, buffer.size() - got, milliseconds(50));
+  }
+  ASSERT_EQ(got, sizeof hello);
+  EXPECT_EQ(buffer[2], 3);
+  EXPECT_TRUE(server->has_client());
+  const std::uint8_t back[2] = {9, 8};
+  ASSERT_TRUE(server->write(back, sizeof back));
+  got = 0;
+  while (got < sizeof back && std::chrono::steady_clock::now() < deadline) {
+    got += client->read(buffer.data() + got, buffer.size() - got, milliseconds(50));
+  }
+  EXPECT_EQ(got, sizeof back);
+
+  client->close();  // the server sees the hang-up on its next read
+  while (server->has_client() && std::chrono::steady_clock::now() < deadline) {
+    server->read(buffer.data(), buffer.size(), milliseconds(50));
+  }
+  EXPECT_FALSE(server->has_client());
+  EXPECT_NE(server->last_error().find("closed"), std::string::npos) << server->last_error();
+  ASSERT_TRUE(client->open());
+  while (server->clients_accepted() < 2 && std::chrono::steady_clock::now() < deadline) {
+    server->read(buffer.data(), buffer.size(), milliseconds(50));
+  }
+  EXPECT_EQ(server->clients_accepted(), 2U);
+
+  server->close();
+  while (client->is_open() && std::chrono::steady_clock::now() < deadline) {
+    client->read(buffer.data(), buffer.size(), milliseconds(50));
+  }
+  EXPECT_FALSE(client->is_open());
+  EXPECT_FALSE(client->write(hello, sizeof hello));
+  EXPECT_FALSE(client->open());  // nobody listens any more
 }
 
 }  // namespace

@@ -181,13 +181,100 @@ StatusText status_text() {
   return m;
 }
 
+HilSensor hil_sensor() {
+  HilSensor m;
+  m.time_usec = 18446744073709551000ULL;
+  m.xacc = 0.25F;
+  m.yacc = -0.5F;
+  m.zacc = -9.80665F;
+  m.xgyro = 1e-3F;
+  m.ygyro = -2e-3F;
+  m.zgyro = 3.5F;
+  m.xmag = 0.216F;
+  m.ymag = 0.009F;
+  m.zmag = 0.426F;
+  m.abs_pressure = 955.5F;
+  m.diff_pressure = -0.125F;
+  m.pressure_alt = 488.25F;
+  m.temperature = 11.8F;
+  m.fields_updated = 7167;
+  m.id = 2;  // an extension, set: not trimmed
+  return m;
+}
+
+HilActuatorControls hil_actuator_controls() {
+  HilActuatorControls m;
+  m.time_usec = 1234567890123ULL;
+  m.flags = 0x8000000000000001ULL;
+  for (std::size_t i = 0; i < m.controls.size(); ++i) {
+    m.controls[i] = static_cast<float>(i) * 0.0625F - 0.5F;
+  }
+  m.controls[15] = 1.0F;
+  m.mode = 129;
+  return m;
+}
+
+HilStateQuaternion hil_state_quaternion() {
+  HilStateQuaternion m;
+  m.time_usec = 4000000123ULL;
+  m.attitude_quaternion = {0.5F, -0.5F, 0.5F, -0.5F};
+  m.rollspeed = 0.1F;
+  m.pitchspeed = -0.2F;
+  m.yawspeed = 0.3F;
+  m.lat = 473977418;
+  m.lon = -85455939;
+  m.alt = std::numeric_limits<std::int32_t>::min();
+  m.vx = -32768;
+  m.vy = 32767;
+  m.vz = -5;
+  m.ind_airspeed = 65535;
+  m.true_airspeed = 1200;
+  m.xacc = -1000;
+  m.yacc = 12;
+  m.zacc = 999;
+  return m;
+}
+
+HilGps hil_gps() {
+  HilGps m;
+  m.time_usec = 77ULL;
+  m.lat = -473977418;
+  m.lon = 1799999999;
+  m.alt = 488000;
+  m.eph = 80;
+  m.epv = 120;
+  m.vel = 150;
+  m.vn = -100;
+  m.ve = 110;
+  m.vd = -7;
+  m.cog = 35999;
+  m.fix_type = 3;
+  m.satellites_visible = 12;
+  m.id = 1;
+  m.yaw = 9000;
+  return m;
+}
+
 }  // namespace
 
 AllMessages sample_messages() {
-  return {heartbeat(),    sys_status(),  scaled_imu(),          attitude_quaternion(),
-          command_long(), command_ack(), set_attitude_target(), attitude_target(),
-          highres_imu(),  timesync(),    battery_status(),      extended_sys_state(),
-          status_text()};
+  return {heartbeat(),
+          sys_status(),
+          scaled_imu(),
+          attitude_quaternion(),
+          command_long(),
+          command_ack(),
+          set_attitude_target(),
+          attitude_target(),
+          highres_imu(),
+          timesync(),
+          battery_status(),
+          extended_sys_state(),
+          status_text(),
+          hil_sensor(),
+          hil_actuator_controls(),
+          hil_state_quaternion(),
+          hil_gps()};
 }
 
 }  // namespace cover::mavlink::test

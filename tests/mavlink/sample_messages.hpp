@@ -3,10 +3,11 @@
 #include <cstring>
 #include <tuple>
 
+#include "cover/mavlink/hil_messages.hpp"
 #include "cover/mavlink/messages.hpp"
 #include "cover/mavlink/signing.hpp"
 
-// One instance of each of the codec's 13 messages with every field set to a distinct,
+// One instance of each of the codec's 17 messages with every field set to a distinct,
 // non-trivial value (negatives, type extremes, extensions set), for round trips and the
 // peer tests.
 namespace cover::mavlink::test {
@@ -21,7 +22,8 @@ inline SigningKey test_key(std::uint8_t link_id = 3) {
 
 using AllMessages = std::tuple<Heartbeat, SysStatus, ScaledImu, AttitudeQuaternion, CommandLong,
                                CommandAck, SetAttitudeTarget, AttitudeTarget, HighresImu, Timesync,
-                               BatteryStatus, ExtendedSysState, StatusText>;
+                               BatteryStatus, ExtendedSysState, StatusText, HilSensor,
+                               HilActuatorControls, HilStateQuaternion, HilGps>;
 
 AllMessages sample_messages();
 

@@ -42,6 +42,21 @@ TEST(ConnectionUrl, UdpOutTakesNamesAndIpv6) {
   EXPECT_EQ(url.to_string(), "udpout://[::1]:14580");
 }
 
+TEST(ConnectionUrl, TcpServerAndClient) {
+  auto url = ConnectionUrl::parse("tcpin://0.0.0.0:4560");
+  EXPECT_EQ(url.kind, ConnectionUrl::Kind::TcpIn);
+  EXPECT_EQ(url.host, "0.0.0.0");
+  EXPECT_EQ(url.port, 4560);
+  EXPECT_EQ(url.to_string(), "tcpin://0.0.0.0:4560");
+  url = ConnectionUrl::parse("tcpin://:4561");
+  EXPECT_EQ(url.host, "0.0.0.0");
+  url = ConnectionUrl::parse("tcp://localhost:5760");
+  EXPECT_EQ(url.kind, ConnectionUrl::Kind::TcpOut);
+  EXPECT_EQ(url.host, "localhost");
+  EXPECT_EQ(url.to_string(), "tcp://localhost:5760");
+  EXPECT_EQ(ConnectionUrl::parse("tcpout://[::1]:5760").to_string(), "tcp://[::1]:5760");
+}
+
 TEST(ConnectionUrl, SerialWithAndWithoutBaud) {
   auto url = ConnectionUrl::parse("serial:///dev/ttyACM0:921600");
   EXPECT_EQ(url.kind, ConnectionUrl::Kind::Serial);
@@ -60,7 +75,8 @@ TEST(ConnectionUrl, BadFormsSayWhatIsWrongAndWhatIsAccepted) {
   } cases[] = {
       {"0.0.0.0:14540", "no scheme"},
       {"udp://:14540", "say udpin:// (listen) or udpout://"},
-      {"tcp://1.2.3.4:5760", "TCP is not supported"},
+      {"tcp://:5760", "tcp needs the host"},
+      {"tcpin://0.0.0.0:99999", "port 99999 is out of range 0..65535"},
       {"mavlink://x:1", "unknown scheme 'mavlink'"},
       {"udpin://0.0.0.0", "no :PORT"},
       {"udpin://0.0.0.0:port", "port 'port' is not a number"},

@@ -9,8 +9,8 @@ namespace cover::mavlink {
 namespace {
 
 constexpr const char* kForms =
-    "expected udpin://IP:PORT (listen), udpout://HOST:PORT (send to) or "
-    "serial:///dev/ttyX:BAUD";
+    "expected udpin://IP:PORT (listen), udpout://HOST:PORT (send to), "
+    "tcpin://IP:PORT (TCP server), tcp://HOST:PORT (TCP client) or serial:///dev/ttyX:BAUD";
 constexpr int kDefaultSerialBaud = 57600;  // MAVSDK's default when the URL names none
 
 [[noreturn]] void fail(const std::string& text, const std::string& why) {
@@ -55,12 +55,17 @@ std::pair<std::string, std::string> split_host_port(const std::string& text,
   return {host, rest.substr(colon + 1)};
 }
 
-ConnectionUrl parse_udp(const std::string& text, const std::string& rest, bool listen) {
+ConnectionUrl parse_socket(const std::string& text, const std::string& rest, bool listen,
+                           bool tcp) {
   ConnectionUrl url;
-  url.kind = listen ? ConnectionUrl::Kind::UdpIn : ConnectionUrl::Kind::UdpOut;
+  if (tcp) {
+    url.kind = listen ? ConnectionUrl::Kind::TcpIn : ConnectionUrl::Kind::TcpOut;
+  } else {
+    url.kind = listen ? ConnectionUrl::Kind::UdpIn : ConnectionUrl::Kind::UdpOut;
+  }
   auto [host, port] = split_host_port(text, rest);
   if (host.empty()) {
-    if (!listen) fail(text, "udpout needs the host to send to");
+    if (!listen) fail(text, std::string(tcp ? "tcp" : "udpout") + " needs the host to reach");
     host = "0.0.0.0";  // MAVSDK's udpin://:14540 listens on every interface
   }
   url.host = host;
@@ -99,21 +104,23 @@ ConnectionUrl ConnectionUrl::parse(const std::string& text) {
   if (scheme_end == std::string::npos) fail(text, "no scheme");
   const std::string scheme = text.substr(0, scheme_end);
   const std::string rest = text.substr(scheme_end + 3);
-  if (scheme == "udpin") return parse_udp(text, rest, true);
-  if (scheme == "udpout") return parse_udp(text, rest, false);
+  if (scheme == "udpin") return parse_socket(text, rest, true, false);
+  if (scheme == "udpout") return parse_socket(text, rest, false, false);
+  if (scheme == "tcpin") return parse_socket(text, rest, true, true);
+  if (scheme == "tcp" || scheme == "tcpout") return parse_socket(text, rest, false, true);
   if (scheme == "serial") return parse_serial(text, rest);
   if (scheme == "udp") fail(text, "say udpin:// (listen) or udpout:// (send to)");
-  if (scheme == "tcp" || scheme == "tcpin" || scheme == "tcpout") {
-    fail(text, "TCP is not supported");
-  }
   fail(text, "unknown scheme '" + scheme + "'");
 }
 
 std::string ConnectionUrl::to_string() const {
   if (kind == Kind::Serial) return "serial://" + device + ":" + std::to_string(baud);
   const std::string h = host.find(':') != std::string::npos ? "[" + host + "]" : host;
-  return std::string(kind == Kind::UdpIn ? "udpin://" : "udpout://") + h + ":" +
-         std::to_string(port);
+  const char* scheme = "udpin://";
+  if (kind == Kind::UdpOut) scheme = "udpout://";
+  if (kind == Kind::TcpIn) scheme = "tcpin://";
+  if (kind == Kind::TcpOut) scheme = "tcp://";
+  return std::string(scheme) + h + ":" + std::to_string(port);
 }
 
 }  // namespace cover::mavlink

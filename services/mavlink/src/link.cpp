@@ -1,5 +1,6 @@
 #include "cover/mavlink/link.hpp"
 
+#include "cover/mavlink/tcp_server_link.hpp"
 #include "link_factories.hpp"
 
 namespace cover::mavlink {
@@ -14,6 +15,10 @@ std::unique_ptr<Link> make_link(const ConnectionUrl& url) {
                               url.to_string());
     case ConnectionUrl::Kind::Serial:
       return detail::make_serial(url.device, url.baud);
+    case ConnectionUrl::Kind::TcpIn:
+      return make_tcp_server_link(url.host, url.port);
+    case ConnectionUrl::Kind::TcpOut:
+      return detail::make_tcp_client(url.host, url.port);
   }
   return nullptr;
 }

@@ -24,5 +24,8 @@ struct UdpEndpoints {
 
 std::unique_ptr<Link> make_udp(UdpPeerMode mode, UdpEndpoints endpoints, std::string description);
 std::unique_ptr<Link> make_serial(std::string device, int baud);
+// tcp://HOST:PORT: connects on open(); a dropped connection closes the link, and the
+// owner's next open() connects again.
+std::unique_ptr<Link> make_tcp_client(std::string host, std::uint16_t port);
 
 }  // namespace cover::mavlink::detail

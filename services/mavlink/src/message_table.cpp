@@ -10,7 +10,7 @@ namespace {
 // CURRENT_EVENT_SEQUENCE, which it lacks, against the CRC rule over common.xml's fields) and
 // ardupilotmega.xml's EKF_STATUS_REPORT. ATTITUDE and SYSTEM_TIME have no struct but
 // autopilots stream them on every link: knowing them lets their checksum be checked.
-constexpr std::array<MessageInfo, 23> kMessages{{
+constexpr std::array<MessageInfo, 27> kMessages{{
     {0, 50, 9, "HEARTBEAT"},
     {1, 124, 43, "SYS_STATUS"},
     {2, 137, 12, "SYSTEM_TIME"},
@@ -25,8 +25,12 @@ constexpr std::array<MessageInfo, 23> kMessages{{
     {77, 143, 10, "COMMAND_ACK"},
     {82, 49, 51, "SET_ATTITUDE_TARGET"},
     {83, 22, 37, "ATTITUDE_TARGET"},
+    {93, 47, 81, "HIL_ACTUATOR_CONTROLS"},
     {105, 93, 63, "HIGHRES_IMU"},
+    {107, 108, 65, "HIL_SENSOR"},
     {111, 34, 18, "TIMESYNC"},
+    {113, 124, 39, "HIL_GPS"},
+    {115, 4, 64, "HIL_STATE_QUATERNION"},
     {147, 154, 54, "BATTERY_STATUS"},
     {193, 71, 26, "EKF_STATUS_REPORT"},
     {230, 163, 42, "ESTIMATOR_STATUS"},

@@ -12,6 +12,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kPx4SihQuadAirframe = "10040";  // sihsim_quadx
+constexpr const char* kPx4HilQuadAirframe = "10016";  // none_iris: simulator_mavlink
 // ArduPilot's SITL home (its run-quad default, CMAC-like); SITL's GPS is centred on it.
 constexpr const char* kArduCopterHome = "47.3977,8.5456,488,0";
 
@@ -61,6 +62,30 @@ SitlProcess SitlProcess::start_px4(const FirmwareBuild& build, InstanceSlot slot
   process::SpawnOptions options = spawn_options(console);
   options.extra_env = {std::string("PX4_SYS_AUTOSTART=") + kPx4SihQuadAirframe,
                        "PX4_SIMULATOR=sihsim"};
+  for (const auto& [name, value] : params)
+    options.extra_env.push_back("PX4_PARAM_" + name + "=" + value);
+  const std::string n = std::to_string(slot.instance());
+  const fs::path px4 = link_px4_commands(build, workdir);
+  auto child = std::make_unique<process::ChildProcess>(
+      std::vector<std::string>{px4.string(), "-d", "-i", n, "-w", workdir.string(),
+                               build.data.string()},
+      options);
+  return SitlProcess(Firmware::Px4, std::move(slot), console, std::move(child));
+}
+
+SitlProcess SitlProcess::start_px4_hil(const FirmwareBuild& build, InstanceSlot slot,
+                                       const fs::path& workdir, const FirmwareParams& params) {
+  fs::create_directories(workdir);
+  // A fresh start: parameters of an earlier run would override the airframe's.
+  std::error_code ignored;
+  fs::remove(workdir / "parameters.bson", ignored);
+  fs::remove(workdir / "parameters_backup.bson", ignored);
+  fs::remove(workdir / "dataman", ignored);
+  const fs::path console = workdir / "console.log";
+  process::SpawnOptions options = spawn_options(console);
+  // PX4_SIMULATOR and PX4_SIM_MODEL empty: SYS_AUTOSTART alone picks simulator_mavlink.
+  options.extra_env = {std::string("PX4_SYS_AUTOSTART=") + kPx4HilQuadAirframe,
+                       "PX4_SIMULATOR=", "PX4_SIM_MODEL="};
   for (const auto& [name, value] : params)
     options.extra_env.push_back("PX4_PARAM_" + name + "=" + value);
   const std::string n = std::to_string(slot.instance());

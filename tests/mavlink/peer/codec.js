@@ -1,4 +1,4 @@
-// The 13 messages COVER's codec speaks, as node-mavlink classes, and their values as JSON
+// The 17 messages COVER's codec speaks, as node-mavlink classes, and their values as JSON
 // in the C++ structs' field names (snake_case; COMMAND_LONG's param1..7 as `param`;
 // 64-bit integers as decimal strings, since JSON numbers cannot hold them exactly).
 'use strict'
@@ -18,6 +18,10 @@ const MESSAGES = {
   BATTERY_STATUS: common.BatteryStatus,
   EXTENDED_SYS_STATE: common.ExtendedSysState,
   STATUSTEXT: common.StatusText,
+  HIL_SENSOR: common.HilSensor,
+  HIL_ACTUATOR_CONTROLS: common.HilActuatorControls,
+  HIL_STATE_QUATERNION: common.HilStateQuaternion,
+  HIL_GPS: common.HilGps,
 }
 
 const BY_ID = {}

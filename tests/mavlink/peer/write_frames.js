@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Writes, with node-mavlink, frames of each of the 13 messages COVER's codec speaks, for
+// Writes, with node-mavlink, frames of each of the 17 messages COVER's codec speaks, for
 // the C++ parser to read (tests/mavlink/peer_test.cpp: MavlinkPeer.ParsesNodeFrames).
 //
 //   node write_frames.js --frames OUT.bin --values OUT.json
@@ -57,6 +57,23 @@ const VALUES = {
   EXTENDED_SYS_STATE: { vtol_state: 0, landed_state: 2 },
   STATUSTEXT: { severity: 4, text: 'Offboard: no setpoints for 0.5 s, holding attitude',
                 id: 513, chunk_seq: 7 },
+  HIL_SENSOR: { time_usec: '18446744073709551000', xacc: 0.25, yacc: -0.5, zacc: -9.80665,
+                xgyro: 0.001, ygyro: -0.002, zgyro: 3.5, xmag: 0.216, ymag: 0.009, zmag: 0.426,
+                abs_pressure: 955.5, diff_pressure: -0.125, pressure_alt: 488.25,
+                temperature: 11.8, fields_updated: 7167, id: 2 },
+  // flags before controls on the wire: a codec that swaps them reads other values here
+  HIL_ACTUATOR_CONTROLS: { time_usec: '1234567890123', flags: '9223372036854775809',
+                           controls: [0.5, -0.5, 1, 0, 0.25, -1, 0.125, 0, 0, 0, 0, 0, 0, 0,
+                                      -0.75, 0.875],
+                           mode: 129 },
+  HIL_STATE_QUATERNION: { time_usec: '4000000123', attitude_quaternion: [0.5, -0.5, 0.5, -0.5],
+                          rollspeed: 0.1, pitchspeed: -0.2, yawspeed: 0.3, lat: 473977418,
+                          lon: -85455939, alt: -2147483648, vx: -32768, vy: 32767, vz: -5,
+                          ind_airspeed: 65535, true_airspeed: 1200, xacc: -1000, yacc: 12,
+                          zacc: 999 },
+  HIL_GPS: { time_usec: '77', lat: -473977418, lon: 1799999999, alt: 488000, eph: 80, epv: 120,
+             vel: 150, vn: -100, ve: 110, vd: -7, cog: 35999, fix_type: 3,
+             satellites_visible: 12, id: 1, yaw: 9000 },
 }
 
 const V1_MESSAGES = ['HEARTBEAT', 'COMMAND_LONG', 'ATTITUDE_TARGET', 'EXTENDED_SYS_STATE']

@@ -30,6 +30,15 @@ class SitlProcess {
   // Its onboard link sends to UDP 14540 + N, its ground-station link binds 18570 + N.
   static SitlProcess start_px4(const FirmwareBuild& build, InstanceSlot slot,
                                const std::filesystem::path& workdir, const FirmwareParams& params);
+  // PX4 for an external simulator (simulator_mavlink, airframe 10016 none_iris), headless:
+  //   PX4_SYS_AUTOSTART=10016 bin/px4 -d -i N -w WORKDIR etc
+  // with `params` as for start_px4 (config/firmware/px4_hil.params: read_params_file). PX4
+  // connects to TCP 127.0.0.1:4560 + N (firmware_link::Px4HilLink) and its start script blocks
+  // until the first HIL_SENSOR; blocked there it ignores SIGTERM (stop() then kills it).
+  // MAVLink ports as start_px4's.
+  static SitlProcess start_px4_hil(const FirmwareBuild& build, InstanceSlot slot,
+                                   const std::filesystem::path& workdir,
+                                   const FirmwareParams& params);
   // ArduCopter with SITL's built-in multicopter physics, in WORKDIR:
   //   arducopter --model quad --speedup 1 -I N --sysid N+1 -w --home 47.3977,8.5456,488,0
   //     --defaults copter.parm,WORKDIR/cover.parm --serial0 tcp:0

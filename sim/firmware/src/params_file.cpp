@@ -1,0 +1,31 @@
+#include "cover/firmware/params_file.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace cover::firmware {
+
+FirmwareParams read_params_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read firmware parameters " + path.string());
+  FirmwareParams params;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    std::string name;
+    std::string value;
+    std::string extra;
+    if (!(words >> name)) continue;
+    if (!(words >> value) || (words >> extra)) {
+      throw std::runtime_error(path.string() + ":" + std::to_string(number) +
+                               ": expected `NAME value`");
+    }
+    params.emplace_back(name, value);
+  }
+  return params;
+}
+
+}  // namespace cover::firmware
