@@ -253,13 +253,16 @@ void boot_align_arm_and_hover(const FirmwareBuild& build, Pacing pacing) {
   HoverStream stream(n, physics);
   ASSERT_TRUE(stream.opened());
 
-  // Aligned: PX4's SYS_STATUS says its attitude estimate (AHRS) is healthy.
-  // Until then the loop runs as fast as PX4 answers (lockstep, unpaced).
+  // Aligned: PX4 streams its attitude (vehicle_attitude is published once EKF2's tilt has
+  // aligned) and its SYS_STATUS says the attitude estimate (AHRS) is healthy (a bit PX4 may
+  // set before its checks have run: alone it is not enough). Until then the loop runs as
+  // fast as PX4 answers (lockstep, unpaced).
   const auto ahrs_healthy = [&] {
     const auto status = monitor->sys_status();
     // PX4 reports the AHRS bit in health (and enabled), not in present.
     return status &&
-           (status->onboard_control_sensors_health & mav::mav_sys_status_sensor::kAhrs) != 0;
+           (status->onboard_control_sensors_health & mav::mav_sys_status_sensor::kAhrs) != 0 &&
+           monitor->attitude().has_value();
   };
   const bool aligned = cover::test::wait_until(ahrs_healthy, milliseconds(120000), milliseconds(5));
   const double aligned_wall_s = seconds_since(started);
@@ -360,7 +363,8 @@ void boot_align_arm_and_hover(const FirmwareBuild& build, Pacing pacing) {
       static_cast<double>(stats.answers - stats_at_arm.answers) / wall_flying_s;
   const double rms = std::sqrt(sum_sq_altitude_error / std::max(samples, 1));
   std::printf(
-      "px4 hil (%s): connected %.2f s after start; aligned (AHRS healthy) %.2f s wall after start, "
+      "px4 hil (%s): connected %.2f s after start; aligned (attitude streamed, AHRS healthy) %.2f "
+      "s wall after start, "
       "%.2f s firmware time, boot at %.0f answers/s; ready in OFFBOARD (STANDBY) %.2f s wall, "
       "%.2f s firmware; flying (paced): %.1f s firmware in %.1f s wall (real-time factor %.2f), "
       "%.0f answers/s; answers %llu, missed %llu, matched after arming %llu of %llu, time "

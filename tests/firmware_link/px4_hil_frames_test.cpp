@@ -73,7 +73,7 @@ TEST(Px4HilFrames, GroundTruthFacingEastIsYaw90InNed) {
                              m.attitude_quaternion[2], m.attitude_quaternion[3]);
   const Eigen::Matrix3d r = q.toRotationMatrix();
   EXPECT_NEAR(std::atan2(r(1, 0), r(0, 0)), M_PI / 2.0, 1e-6);  // yaw
-  EXPECT_NEAR(r(2, 2), 1.0, 1e-6);                               // level: FRD z down
+  EXPECT_NEAR(r(2, 2), 1.0, 1e-6);                              // level: FRD z down
   EXPECT_FLOAT_EQ(m.rollspeed, 0.1F);
   EXPECT_FLOAT_EQ(m.pitchspeed, -0.2F);
   EXPECT_FLOAT_EQ(m.yawspeed, -0.3F);

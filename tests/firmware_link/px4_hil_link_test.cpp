@@ -26,10 +26,10 @@ namespace {
 using std::chrono::milliseconds;
 
 struct FakePx4Options {
-  int boot_frames = 3;           // frames left unanswered while "booting"
-  int silent_frame = -1;         // this frame (0-based) gets no answer
-  int garbage_before = -1;       // garbage bytes are written before this frame's answer
-  int reconnect_after = -1;      // drop the connection after this many frames, connect again
+  int boot_frames = 3;       // frames left unanswered while "booting"
+  int silent_frame = -1;     // this frame (0-based) gets no answer
+  int garbage_before = -1;   // garbage bytes are written before this frame's answer
+  int reconnect_after = -1;  // drop the connection after this many frames, connect again
 };
 
 struct SeenSensor {
@@ -78,9 +78,9 @@ class FakePx4 {
             sensors_.push_back({sensor->time_usec, sensor->fields_updated, connection});
           }
           const int index = frames++;
-          const int in_connection = static_cast<int>(std::count_if(
-              sensors_.begin(), sensors_.end(),
-              [&](const SeenSensor& s) { return s.connection == connection; }));
+          const int in_connection = static_cast<int>(
+              std::count_if(sensors_.begin(), sensors_.end(),
+                            [&](const SeenSensor& s) { return s.connection == connection; }));
           if (in_connection <= options_.boot_frames || index == options_.silent_frame) return;
           if (index == options_.garbage_before) {
             const std::array<std::uint8_t, 40> garbage{0xFD, 0x51, 0x00, 0x00, 0x07, 0xFD, 0x01};
@@ -119,7 +119,7 @@ sim::World plant() {
   sim::WorldParams params = sim::WorldParams::load_file(dir + "world_default.yaml");
   params.uav_initial.start_on_ugv = -1;
   return sim::World(params, sim::FirmwareUavParams::load_file(dir + "firmware_uav_px4.yaml",
-                                                             params.physics_rate_hz));
+                                                              params.physics_rate_hz));
 }
 
 // Steps the world `steps` times, exchanging each step.
@@ -161,8 +161,8 @@ TEST(Px4HilLink, BootsFreeRunningThenWaitsForEachAnswer) {
     with_mag += (seen[i].fields_updated & 448U) == 448U ? 1 : 0;
     with_baro += (seen[i].fields_updated & 6656U) == 6656U ? 1 : 0;
   }
-  EXPECT_EQ(with_mag, 40);   // 100 Hz: every sample rides on the next IMU frame
-  EXPECT_EQ(with_baro, 20);  // 50 Hz
+  EXPECT_EQ(with_mag, 40);                   // 100 Hz: every sample rides on the next IMU frame
+  EXPECT_EQ(with_baro, 20);                  // 50 Hz
   EXPECT_GE(px4.ground_truth_frames(), 19);  // 50 Hz of firmware time
   EXPECT_LE(px4.ground_truth_frames(), 21);
 
@@ -220,6 +220,13 @@ TEST(Px4HilLink, APx4ThatReconnectsBootsAgain) {
   ASSERT_FALSE(seen.empty());
   EXPECT_EQ(seen.back().connection, 2);
   EXPECT_GT(link.stats().answers, 80U);
+}
+
+TEST(Px4HilLink, APortAlreadyHeldIsAnErrorAtConstruction) {
+  Px4HilLink first(test_config(Pacing::Lockstep));
+  Px4HilConfig config = test_config(Pacing::Lockstep);
+  config.port = first.port();
+  EXPECT_THROW(Px4HilLink second(config), std::runtime_error);
 }
 
 TEST(Px4HilLink, RealtimeWaitsOnlyBrieflyForAnAnswer) {

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <thread>
 
 #include "cover/mavlink/messages.hpp"
@@ -31,7 +32,9 @@ Px4HilLink::Px4HilLink(Px4HilConfig config)
     : config_(std::move(config)),
       link_(mavlink::make_tcp_server_link(config_.bind_host, config_.port)),
       encoder_(kSimulatorSystemId, kSimulatorComponentId) {
-  if (!link_->open()) spdlog::error("px4 hil: {}", link_->last_error());
+  // Bound at construction: a port another simulator holds is an error now, not a PX4 that
+  // never connects later.
+  if (!link_->open()) throw std::runtime_error("PX4 HIL link: " + link_->last_error());
 }
 
 Px4HilLink::~Px4HilLink() = default;

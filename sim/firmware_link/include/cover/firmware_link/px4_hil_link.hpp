@@ -50,8 +50,8 @@ struct Px4HilStats {
 
 // The simulator end of PX4 SITL's simulator_mavlink for one UAV (real-autopilots notes §2):
 // a TCP server PX4 connects to; after each physics step whose IMU sample is due it sends a
-// HIL_SENSOR (IMU, + mag, + baro due since the last frame; PX4's clock = the firmware's step time in us) and,
-// at ground_truth_rate_hz, a HIL_STATE_QUATERNION; it takes HIL_ACTUATOR_CONTROLS
+// HIL_SENSOR (IMU, + mag, + baro due since the last frame; PX4's clock = the firmware's step time
+// in us) and, at ground_truth_rate_hz, a HIL_STATE_QUATERNION; it takes HIL_ACTUATOR_CONTROLS
 // controls[0..3] as the motor outputs and `mode` & 128 as armed.
 // Lockstep as PX4 expects it: until PX4's first answer the frames are paced at most one
 // sensor period of wall time apart (PX4 boots on them, its start script blocked until the
@@ -60,6 +60,7 @@ struct Px4HilStats {
 // fatal. Called from one thread.
 class Px4HilLink final : public FirmwareLink {
  public:
+  // Listens at once; throws std::runtime_error when the port cannot be bound.
   explicit Px4HilLink(Px4HilConfig config);
   ~Px4HilLink() override;
 
@@ -90,7 +91,7 @@ class Px4HilLink final : public FirmwareLink {
   Px4HilStats px4_;
   sim::MotorOutputs outputs_{};
   sim::UavSensorFrame pending_;  // mag / baro samples waiting for the next IMU frame
-  bool answered_ = false;  // PX4 answered since it (re)connected: lockstep from now on
+  bool answered_ = false;        // PX4 answered since it (re)connected: lockstep from now on
   bool answer_arrived_ = false;
   std::uint64_t last_ground_truth_usec_ = 0;
   std::uint64_t last_step_with_imu_ = 0;
