@@ -5,8 +5,9 @@
 
 namespace cover::fc_bridge {
 
-BridgeClock::BridgeClock(dds::Participant& participant, sim_clock::ClockMode mode)
-    : mode_(mode), clock_(participant, mode) {}
+BridgeClock::BridgeClock(dds::Participant& participant, sim_clock::ClockMode mode,
+                         bool zero_before_first_tick)
+    : mode_(mode), zero_before_first_tick_(zero_before_first_tick), clock_(participant, mode) {}
 
 void BridgeClock::wait(std::chrono::milliseconds timeout) {
   if (mode_ != sim_clock::ClockMode::Lockstep) {
@@ -31,10 +32,14 @@ void BridgeClock::advance_to(std::int64_t stamp_ns) {
 }
 
 std::optional<double> BridgeClock::now_s() const {
-  if (mode_ != sim_clock::ClockMode::Lockstep) return clock_.now_s();
-  const std::int64_t ns = tick_ns_.load();
-  if (ns < 0) return std::nullopt;
-  return clock::ns_to_s(ns);
+  std::optional<double> now;
+  if (mode_ != sim_clock::ClockMode::Lockstep) {
+    now = clock_.now_s();
+  } else if (const std::int64_t ns = tick_ns_.load(); ns >= 0) {
+    now = clock::ns_to_s(ns);
+  }
+  if (!now && zero_before_first_tick_ && mode_ != sim_clock::ClockMode::System) return 0.0;
+  return now;
 }
 
 }  // namespace cover::fc_bridge

@@ -17,12 +17,17 @@ namespace cover::fc_bridge {
 //  system:   the host's clock (the field).
 class BridgeClock {
  public:
-  BridgeClock(dds::Participant& participant, sim_clock::ClockMode mode);
+  // `zero_before_first_tick`: the simulator's time is 0 until its first tick instead of
+  // unknown (a real firmware boots and aligns before the world's first tick, and the
+  // simulator waits for the bridge to report it).
+  BridgeClock(dds::Participant& participant, sim_clock::ClockMode mode,
+              bool zero_before_first_tick = false);
 
   // Waits up to `timeout` (lockstep: for ticks, taking every one that arrived) or for a
   // shutdown request.
   void wait(std::chrono::milliseconds timeout);
-  // nullopt before the simulator's first tick (lockstep, realtime). Thread-safe.
+  // nullopt before the simulator's first tick (lockstep, realtime), unless
+  // zero_before_first_tick. Thread-safe.
   std::optional<double> now_s() const;
   // Lockstep: the agent answers only ticks the simulator has published, so a command's
   // stamp is a tick too, perhaps one this bridge's tick reader has not delivered yet. Time
@@ -35,6 +40,7 @@ class BridgeClock {
   void advance_to(std::int64_t stamp_ns);  // never backwards; from any thread
 
   sim_clock::ClockMode mode_;
+  bool zero_before_first_tick_;
   sim_clock::AgentClock clock_;
   std::atomic<std::int64_t> tick_ns_{-1};
 };

@@ -28,7 +28,7 @@ double monotonic_s() {
 FcBridgeNode::FcBridgeNode(dds::Participant& participant, NodeOptions options,
                            std::unique_ptr<mavlink::Link> link)
     : options_(std::move(options)),
-      clock_(participant, options_.clock),
+      clock_(participant, options_.clock, !options_.step_frames),
       bridge_(options_.bridge),
       state_writer_(participant.make_writer(dds::topics::fc_state(options_.uav_id))),
       reply_writer_(participant.make_writer(dds::topics::fc_reply())),
@@ -87,21 +87,23 @@ void FcBridgeNode::on_command(const msg::UavCommand& command) {
   last_command_tick_s_ = *now;
   const AgentCommand c = from_msg(command);
   Events events;
+  std::optional<FcStatus> status;
   {
     std::unique_lock<std::mutex> lock(mutex_);
     // Lockstep: the frames of the step before are taken first; the tick's own decisions
     // (mode and arm requests, retries, the land supervisor) go out just before its
     // setpoint, from this thread, so the simulated autopilot meets them at the same tick in
     // every run.
-    if (lockstep()) {
-      await_step_frames_locked(lock, *now);
-      write_locked(bridge_.tick(*now));
-    }
+    if (step_frames()) await_step_frames_locked(lock, *now);
+    if (lockstep()) write_locked(bridge_.tick(*now));
     write_locked(bridge_.on_agent_command(c, *now));
-    if (lockstep() && bridge_.setpoint_sent()) steps_.flown(*now);
+    if (step_frames() && bridge_.setpoint_sent()) steps_.flown(*now);
+    // A real firmware in lockstep: the agent's next tick waits for a state of this one.
+    if (lockstep() && !step_frames()) status = bridge_.state(*now);
     take_events_locked(events);
   }
   if (!events.empty()) report(events);
+  if (status) write_state(*status, *now, true);
 }
 
 void FcBridgeNode::await_step_frames_locked(std::unique_lock<std::mutex>& lock, double tick_s) {
@@ -142,12 +144,13 @@ void FcBridgeNode::on_frame(const mavlink::Frame& frame, const mavlink::ParserSt
     // Lockstep: a frame belongs to the step the last setpoint flew (it came after that
     // setpoint, and the next command waits for it), whatever the simulator's clock says by
     // the time this thread runs.
-    const auto now = lockstep() && steps_.flown_s() >= 0.0 ? std::optional<double>(steps_.flown_s())
-                                                           : clock_.now_s();
+    const auto now = step_frames() && steps_.flown_s() >= 0.0
+                         ? std::optional<double>(steps_.flown_s())
+                         : clock_.now_s();
     if (!now) return;
     bridge_.set_parser_stats(stats);
     bridge_.on_frame(frame, *now);
-    if (lockstep() && frame.message_id == mavlink::HighresImu::kId) close_step_locked(frame);
+    if (step_frames() && frame.message_id == mavlink::HighresImu::kId) close_step_locked(frame);
     take_events_locked(events);
   }
   if (!events.empty()) report(events);
@@ -170,7 +173,7 @@ void FcBridgeNode::housekeeping(double now_s) {
     // it has fallen silent (the supervisor must still see that), never racing a setpoint.
     const bool agent_silent = now_s - last_command_tick_s_ > kLockstepSilentTicks_s;
     if (!lockstep() || agent_silent) write_locked(bridge_.tick(now_s));
-    if (!lockstep()) {
+    if (!step_frames()) {
       status = bridge_.state(now_s);
     } else if (steps_.in_s() < 0.0 || agent_silent) {
       // Lockstep: the state goes out with each step's frames (close_step_locked); here only

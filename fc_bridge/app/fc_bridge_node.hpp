@@ -26,6 +26,11 @@ struct NodeOptions {
   std::uint32_t uav_id = 0;
   BridgeConfig bridge;
   sim_clock::ClockMode clock = sim_clock::ClockMode::System;
+  // Lockstep: COVER's simulated autopilot closes each step's frames with a HIGHRES_IMU
+  // stamped with the step, which each command waits for (repeatable runs). A real firmware
+  // (SITL) in a lockstep world has no such contract: the bridge keeps the simulator's ticks
+  // as its time, takes frames as they come, and writes its state after each command.
+  bool step_frames = true;
   mavlink::ParserOptions parser;
 };
 
@@ -65,6 +70,8 @@ class FcBridgeNode {
   void housekeeping(double now_s);
   std::chrono::milliseconds next_wait() const;
   bool lockstep() const { return options_.clock == sim_clock::ClockMode::Lockstep; }
+  // Lockstep with COVER's simulated autopilot: each step's frames, closed by HIGHRES_IMU.
+  bool step_frames() const { return lockstep() && options_.step_frames; }
   void write_locked(const std::vector<mavlink::EncodedFrame>& frames);
   void take_events_locked(Events& events);
   void report(Events& events);

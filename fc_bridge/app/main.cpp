@@ -37,6 +37,7 @@ struct CommandLine {
   std::string clock = "system";
   double hover_thrust = 0.0;
   bool auto_arm = false;
+  bool real_firmware = false;
   std::string signing_key_file;
   cover::dds::DdsCliOptions dds;
 };
@@ -64,6 +65,11 @@ void add_options(CLI::App& app, CommandLine& cli) {
                  "normalised thrust that hovers, the estimator's start (overrides the params)");
   app.add_flag("--auto-arm", cli.auto_arm,
                "SIMULATION ONLY: request offboard and arm without an operator");
+  app.add_flag("--real-firmware", cli.real_firmware,
+               "the autopilot is a real firmware (SITL) on cover-sim's physics (cover-sim "
+               "--firmware): the simulator's time is 0 until its first tick (the firmware "
+               "aligns before it), and in lockstep no wait for the HIGHRES_IMU that closes each "
+               "step of COVER's simulated autopilot");
   app.add_option("--signing-key-file", cli.signing_key_file,
                  "MAVLink v2 signing: 64 hex digits; frames written are signed, unsigned or "
                  "wrongly signed frames from the autopilot are refused");
@@ -74,6 +80,7 @@ cover::fc_bridge::NodeOptions node_options(const CommandLine& cli, const CLI::Ap
   cover::fc_bridge::NodeOptions options;
   options.uav_id = static_cast<std::uint32_t>(cli.uav_id);
   options.clock = *cover::sim_clock::parse_clock_mode(cli.clock);
+  options.step_frames = !cli.real_firmware;
   options.bridge.autopilot = *cover::fc_bridge::parse_autopilot(cli.autopilot);
   options.bridge.params = cover::fc_bridge::FcBridgeParams::load_file(cli.params_file);
   if (app.count("--hover-thrust") > 0) options.bridge.params.hover_thrust = cli.hover_thrust;

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "cover/firmware_link/px4_hil_link.hpp"
+
 namespace cover::firmware_link {
 
 std::optional<FirmwareKind> parse_firmware_kind(const std::string& text) {
@@ -27,9 +29,13 @@ std::string firmware_uav_file_name(FirmwareKind kind) {
 }
 
 std::unique_ptr<FirmwareLink> make_link(FirmwareKind kind, int uav, int port_base, Pacing pacing) {
-  (void)uav;
-  (void)port_base;
-  (void)pacing;
+  const int port = firmware_port(kind, port_base, uav);
+  if (kind == FirmwareKind::Px4) {
+    Px4HilConfig config;
+    config.port = static_cast<std::uint16_t>(port);
+    config.pacing = pacing;
+    return std::make_unique<Px4HilLink>(config);
+  }
   throw std::runtime_error(std::string("no ") + firmware_name(kind) +
                            " physics link in this build");
 }
