@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -74,6 +75,19 @@ SitlProcess SitlProcess::start_px4(const FirmwareBuild& build, InstanceSlot slot
 
 SitlProcess SitlProcess::start_arducopter(const FirmwareBuild& build, InstanceSlot slot,
                                           const fs::path& workdir, const FirmwareParams& params) {
+  return start_arducopter_model(build, std::move(slot), workdir, params, "quad");
+}
+
+SitlProcess SitlProcess::start_arducopter_json(const FirmwareBuild& build, InstanceSlot slot,
+                                               const fs::path& workdir,
+                                               const FirmwareParams& params) {
+  return start_arducopter_model(build, std::move(slot), workdir, params, "JSON:127.0.0.1");
+}
+
+SitlProcess SitlProcess::start_arducopter_model(const FirmwareBuild& build, InstanceSlot slot,
+                                                const fs::path& workdir,
+                                                const FirmwareParams& params,
+                                                const std::string& model) {
   fs::create_directories(workdir);
   const fs::path ours = workdir / "cover.parm";
   {
@@ -91,7 +105,7 @@ SitlProcess SitlProcess::start_arducopter(const FirmwareBuild& build, InstanceSl
                                 workdir.string(),
                                 build.binary.string(),
                                 "--model",
-                                "quad",
+                                model,
                                 "--speedup",
                                 "1",
                                 "-I",
@@ -109,6 +123,29 @@ SitlProcess SitlProcess::start_arducopter(const FirmwareBuild& build, InstanceSl
                                 "udpclient:127.0.0.1:" + std::to_string(companion_port(n))};
   auto child = std::make_unique<process::ChildProcess>(argv, spawn_options(console));
   return SitlProcess(Firmware::ArduCopter, std::move(slot), console, std::move(child));
+}
+
+FirmwareParams read_parm_file(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  FirmwareParams params;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    for (char& c : line) {
+      if (c == ',' || c == '\t') c = ' ';
+    }
+    std::istringstream fields(line);
+    std::string name, value, extra;
+    if (!(fields >> name)) continue;
+    if (!(fields >> value) || (fields >> extra)) {
+      throw std::runtime_error(path.string() + ":" + std::to_string(number) +
+                               ": expected NAME VALUE");
+    }
+    params.emplace_back(name, value);
+  }
+  return params;
 }
 
 SitlProcess::~SitlProcess() {
