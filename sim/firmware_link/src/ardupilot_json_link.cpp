@@ -24,6 +24,8 @@ bool worth_logging(std::uint64_t count) {
   return count <= 5 || count % 1000 == 0;
 }
 
+constexpr std::uint64_t kRateCheckFrames = 5000;
+
 std::chrono::milliseconds until(Clock::time_point deadline) {
   const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
   return std::max(left, std::chrono::milliseconds(0));
@@ -78,12 +80,14 @@ sim::MotorOutputs ArduPilotJsonLink::exchange(const PlantSample& sample) {
     held_.reset();
     send_answer();
     ++stats_.frames_sent;
-    if (stats_.frames_sent == 1 && sample.dt_s > 0.0 &&
-        std::lround(1.0 / sample.dt_s) != ardupilot_.frame_rate_hz) {
+    // SITL starts at its default 1200 Hz and settles on SIM_RATE_HZ within its first
+    // seconds: judged after 5 s of frames.
+    const long physics_hz = sample.dt_s > 0.0 ? std::lround(1.0 / sample.dt_s) : 0;
+    if (stats_.frames_sent == kRateCheckFrames && ardupilot_.frame_rate_hz != physics_hz) {
       std::fprintf(options_.log,
-                   "ardupilot-json: the firmware runs %u Hz frames, the physics %.0f Hz steps: "
+                   "ardupilot-json: the firmware runs %u Hz frames, the physics %ld Hz steps: "
                    "set SIM_RATE_HZ to the physics rate\n",
-                   ardupilot_.frame_rate_hz, 1.0 / sample.dt_s);
+                   ardupilot_.frame_rate_hz, physics_hz);
     }
   }
   const auto timeout =
