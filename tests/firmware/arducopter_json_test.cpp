@@ -190,19 +190,23 @@ class ArduCopterJson : public ::testing::Test {
   FirmwareLookup lookup_;
 };
 
-TEST_F(ArduCopterJson, BootsArmsAndHoversOnCoverPhysicsInLockstep) {
+// Boots the firmware on the physics, arms it in GUIDED_NOGPS, hovers 25 s (firmware time)
+// and checks the exchange and the hover. Realtime: the firmware paces itself to the wall
+// clock (no "no_time_sync"), and the physics steps as its packets come, stepping on without
+// one after the link's realtime timeout.
+void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
   InstanceSlot slot = InstanceSlot::claim(Firmware::ArduCopter, 4, 9);
   const int n = slot.instance();
   fl::ArduPilotJsonLinkOptions options;
   options.port = fl::ardupilot_json_port(n);
   options.log = stdout;
+  options.pacing = pacing;
   fl::ArduPilotJsonLink link(options);
   CompanionLink companion(companion_port(n));
   const auto params = read_parm_file(COVER_CONFIG_DIR "/firmware/arducopter_json.parm");
   const auto workdir = cover::test::scratch_dir() / "arducopter_json";
   const auto boot = std::chrono::steady_clock::now();
-  SitlProcess sitl =
-      SitlProcess::start_arducopter_json(*lookup_.build, std::move(slot), workdir, params);
+  SitlProcess sitl = SitlProcess::start_arducopter_json(build, std::move(slot), workdir, params);
   std::printf("ArduCopter JSON instance %d in %s, physics on UDP %d\n", n, workdir.c_str(),
               link.port());
   PhysicsLoop physics(link, companion, static_cast<std::uint8_t>(sitl.system_id()));
@@ -294,8 +298,18 @@ TEST_F(ArduCopterJson, BootsArmsAndHoversOnCoverPhysicsInLockstep) {
   EXPECT_TRUE(armed && (heartbeat->base_mode & mav::mav_mode_flag::kSafetyArmed) != 0)
       << "disarmed during the hover";
   EXPECT_EQ(heartbeat->custom_mode, static_cast<std::uint32_t>(kGuidedNoGps));
-  // Lockstep: one answer per servo packet, ArduPilot's frame_count +1 per answer.
-  EXPECT_EQ(stats.answers_missed, 0u);
+  // One answer per servo packet, ArduPilot's frame_count +1 per answer. Lockstep: no step
+  // without its packet. Realtime: the firmware keeps the wall clock, and a step without its
+  // packet is rare.
+  const double realtime_factor = fw_s / physics.wall_s();
+  if (pacing == fl::Pacing::Lockstep) {
+    EXPECT_EQ(stats.answers_missed, 0u);
+    EXPECT_GT(realtime_factor, 1.0);
+  } else {
+    EXPECT_LT(stats.answers_missed, stats.frames_sent / 100) << "more than 1 % of the steps";
+    EXPECT_GT(realtime_factor, 0.8);
+    EXPECT_LT(realtime_factor, 1.1);
+  }
   EXPECT_EQ(ap.restarts, 0u);
   EXPECT_EQ(ap.frames_skipped, 0u);
   EXPECT_EQ(stats.frames_rejected, 0u);
@@ -306,6 +320,14 @@ TEST_F(ArduCopterJson, BootsArmsAndHoversOnCoverPhysicsInLockstep) {
   EXPECT_LT(alt_err_max, 0.3);
   EXPECT_LT(vz_max, 0.3);
   EXPECT_LT(tilt_max, 10.0 * M_PI / 180.0);
+}
+
+TEST_F(ArduCopterJson, BootsArmsAndHoversOnCoverPhysicsInLockstep) {
+  boot_arm_and_hover(*lookup_.build, fl::Pacing::Lockstep);
+}
+
+TEST_F(ArduCopterJson, BootsArmsAndHoversOnCoverPhysicsInRealtime) {
+  boot_arm_and_hover(*lookup_.build, fl::Pacing::Realtime);
 }
 
 }  // namespace

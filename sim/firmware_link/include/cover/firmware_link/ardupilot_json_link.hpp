@@ -28,9 +28,10 @@ struct ArduPilotJsonLinkOptions {
   int port = 9002;                    // ardupilot_json_port(u)
   Pacing pacing = Pacing::Lockstep;
   // How long exchange() waits for the next servo packet: the firmware's turn in lockstep
-  // (bounded so that a dead firmware is reported), a few ms in realtime.
+  // (bounded so that a dead firmware is reported); in realtime, where the firmware paces
+  // itself to the wall clock (a frame a ms), a few frames' time, then the physics steps on.
   std::chrono::milliseconds lockstep_timeout{2000};
-  std::chrono::milliseconds realtime_timeout{4};
+  std::chrono::milliseconds realtime_timeout{10};
   // A repeated frame_count is ArduPilot saying it got no answer (it re-sends after ~1 s);
   // it is answered again unless a newer frame follows within this (a repeat that was
   // queued before our answer reached the firmware).
