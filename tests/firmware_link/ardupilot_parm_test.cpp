@@ -51,6 +51,7 @@ TEST(ArduCopterJsonParm, MatchesThePlant) {
   EXPECT_EQ(p.at("MOT_PWM_MAX"), 2000);
   // ArduCopter's throttle is linear in thrust: hover = m g / (4 T_max).
   EXPECT_NEAR(p.at("MOT_THST_HOVER"), uav.plant.mass_kg * 9.81 / (4.0 * motor.max_thrust_n), 0.001);
+  EXPECT_EQ(p.at("MOT_BAT_VOLT_MAX"), 0);  // no battery in the plant: no compensation
   // One SITL frame per physics step.
   EXPECT_EQ(p.at("SIM_RATE_HZ"), 1000);
   EXPECT_NO_THROW(sim::FirmwareUavParams::load_file(
