@@ -1,9 +1,11 @@
 // Real ArduCopter (SITL, COVER_ARDUPILOT_SITL) flown on COVER's physics: its JSON backend
 // served by firmware_link's ArduPilotJsonLink, driven by a World with the motor-level UAV
-// (config/sim/firmware_uav_arducopter.yaml) on a still deck, in lockstep. The EKF
-// initialises on what the link sends, it arms in GUIDED_NOGPS, and a body-rate + thrust
-// stream (SET_ATTITUDE_TARGET on its companion link, sent on the physics clock) lifts the
-// plant off and holds a hover. Skips without the firmware; fails with COVER_REQUIRE_FIRMWARE=1.
+// (config/sim/firmware_uav_arducopter.yaml) on a still deck, in lockstep and in realtime.
+// The EKF initialises on what the link sends, it arms in GUIDED_NOGPS, and a body-rate +
+// thrust stream (SET_ATTITUDE_TARGET on its companion link, sent on the physics clock) lifts
+// the plant off and holds a hover; in lockstep the simulator stalls once for 1.5 s, and
+// ArduPilot's re-sent packet must not cost a step. Skips without the firmware; fails with
+// COVER_REQUIRE_FIRMWARE=1.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -114,6 +116,12 @@ class PhysicsLoop {
   double firmware_time_s() const { return firmware_time_s_; }
   double start_altitude_m() const { return start_altitude_m_; }
   void hover() { hover_ = true; }
+  // The simulator stalls once for `stall` before answering the frame after firmware time
+  // `at_s` (a fault injected: ArduPilot re-sends its packet after ~1 s without an answer).
+  void stall_at(double at_s, std::chrono::milliseconds stall) {
+    stall_ = stall;
+    stall_at_s_ = at_s;
+  }
   std::vector<Sample> trace() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return trace_;
@@ -135,6 +143,10 @@ class PhysicsLoop {
       if (++step % 10 == 0) {
         companion_.send(setpoint(uav));
         record(uav);
+      }
+      if (stall_at_s_ >= 0.0 && firmware_time_s_ >= stall_at_s_) {
+        stall_at_s_ = -1.0;
+        std::this_thread::sleep_for(stall_);  // the fault under test, not a synchronisation
       }
       outputs = link_.exchange(fl::plant_sample(world_.motor_uav(), uav));
     }
@@ -172,6 +184,8 @@ class PhysicsLoop {
   std::atomic<bool> stop_{false};
   std::atomic<bool> connected_{false};
   std::atomic<bool> hover_{false};
+  std::atomic<double> stall_at_s_{-1.0};
+  std::chrono::milliseconds stall_{0};
   std::atomic<double> firmware_time_s_{0.0};
   std::atomic<double> wall_s_{0.0};
   mutable std::mutex mutex_;
@@ -242,8 +256,10 @@ void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - boot).count();
   if (!armed) report_texts();
   ASSERT_TRUE(armed) << "the firmware never accepted arming in GUIDED_NOGPS";
-  physics.hover();
   const double t_arm = physics.firmware_time_s();
+  const bool lockstep = pacing == fl::Pacing::Lockstep;
+  if (lockstep) physics.stall_at(t_arm + 10.0, 1500ms);
+  physics.hover();
   ASSERT_TRUE(cover::test::wait_until([&] { return physics.firmware_time_s() >= t_arm + 25.0; },
                                       180s, 10ms));
   const auto heartbeat = monitor->heartbeat();
@@ -302,7 +318,7 @@ void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
   // without its packet. Realtime: the firmware keeps the wall clock, and a step without its
   // packet is rare.
   const double realtime_factor = fw_s / physics.wall_s();
-  if (pacing == fl::Pacing::Lockstep) {
+  if (lockstep) {
     EXPECT_EQ(stats.answers_missed, 0u);
     EXPECT_GT(realtime_factor, 1.0);
   } else {
@@ -318,6 +334,10 @@ void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
   // A fresh firmware counts from frame 0: its last frame_count is the number of answers.
   EXPECT_EQ(ap.last_frame_count, stats.frames_sent);
   EXPECT_EQ(ap.repeats_answered, 0u);
+  if (lockstep) {
+    // The stall: ArduPilot re-sent the frame it waited for; the answer overtook the repeat.
+    EXPECT_GE(ap.repeats_dropped, 1u);
+  }
   // It lifted off and holds the hover.
   EXPECT_GT(climb, 1.0);
   // The thrust that hovers is the firmware's MOT_THST_HOVER (no battery compensation): the

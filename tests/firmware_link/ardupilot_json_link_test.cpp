@@ -203,6 +203,24 @@ TEST_F(ArduPilotJsonLinkTest, RealtimeHoldsTheOutputsAndAnswersOnlyWhatCame) {
   EXPECT_EQ(link.stats().answers_missed, 3u);
 }
 
+TEST_F(ArduPilotJsonLinkTest, RealtimeAnswersARepeatBeforeItsWaitEnds) {
+  auto o = options();
+  o.pacing = Pacing::Realtime;
+  o.realtime_timeout = 20ms;  // shorter than the repeat grace (50 ms)
+  ArduPilotJsonLink link(o);
+  FirmwarePeer firmware(port_);
+  firmware.send_frame(0, 1000);
+  ASSERT_TRUE(link.wait_for_firmware(1000ms));
+  link.exchange(sample_at(1));
+  ASSERT_TRUE(firmware.answer(100ms));
+  firmware.send_frame(0, 1000);  // the answer "was lost"
+  link.exchange(sample_at(2));
+  const auto again = firmware.answer(100ms);
+  ASSERT_TRUE(again);
+  EXPECT_NE(again->find("\"timestamp\":0.001"), std::string::npos) << *again;
+  EXPECT_EQ(link.ardupilot_stats().repeats_answered, 1u);
+}
+
 TEST_F(ArduPilotJsonLinkTest, APortInUseIsRefused) {
   ArduPilotJsonLink link(options());
   EXPECT_THROW(ArduPilotJsonLink second(options()), std::system_error);

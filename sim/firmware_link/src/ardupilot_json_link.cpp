@@ -108,8 +108,10 @@ bool ArduPilotJsonLink::await_next(std::chrono::milliseconds timeout) {
     if (repeat_due) wait = std::min(wait, until(*repeat_due));
     const auto received = receive(wait);
     if (!received) {
-      if (repeat_due && Clock::now() >= *repeat_due) {
-        // No newer frame: the firmware is still waiting for this one's answer.
+      const auto now = Clock::now();
+      // No newer frame within the grace (or the wait is over, as a realtime wait soon is):
+      // the firmware is still waiting for this one's answer.
+      if (repeat_due && (now >= *repeat_due || now >= deadline)) {
         answer_to_ = *repeat_from;
         send_answer();
         ++ardupilot_.repeats_answered;
@@ -119,9 +121,8 @@ bool ArduPilotJsonLink::await_next(std::chrono::milliseconds timeout) {
                        static_cast<unsigned long long>(ardupilot_.repeats_answered));
         }
         repeat_due.reset();
-        continue;
       }
-      if (Clock::now() >= deadline) return false;
+      if (now >= deadline) return false;
       continue;
     }
     const bool repeat = !last_answer_.empty() && !held_ &&
