@@ -193,6 +193,64 @@ class PhysicsLoop {
   std::thread thread_;
 };
 
+// Ready = the firmware accepts the arm command in GUIDED_NOGPS (its pre-arm checks, the EKF
+// among them): the firmware time it armed at, or nullopt when it never did.
+std::optional<double> arm_in_guided_nogps(FirmwareMonitor& monitor, const PhysicsLoop& physics) {
+  const auto deadline = std::chrono::steady_clock::now() + cover::test::scaled(120s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    const double t = physics.firmware_time_s();
+    // The mode each time: a mode set while the firmware initialises is replaced by its
+    // initial mode once it is ready.
+    const auto mode = monitor.set_mode(kGuidedNoGps);
+    const auto arm = monitor.command(mav::mav_cmd::kComponentArmDisarm, {1, 0, 0, 0, 0, 0, 0},
+                                     cover::test::scaled(5s));
+    if (mode == mav::mav_result::kAccepted && arm == mav::mav_result::kAccepted) {
+      return physics.firmware_time_s();
+    }
+    // Refused: asked again one firmware second later (a condition on its clock).
+    cover::test::wait_until([&] { return physics.firmware_time_s() >= t + 1.0; }, 10s, 1ms);
+  }
+  return std::nullopt;
+}
+
+struct HoverQuality {
+  double climb_m = 0.0;  // the highest point after arming, above the deck
+  // Over the last 10 s of the 25 s after arming (firmware time):
+  double altitude_error_max_m = 0.0;
+  double altitude_error_rms_m = 0.0;
+  double vz_max_m_s = 0.0;
+  double tilt_max_rad = 0.0;
+  int samples = 0;
+};
+
+HoverQuality hover_quality(const std::vector<Sample>& trace, double t_arm) {
+  HoverQuality q;
+  double error_sq = 0.0;
+  for (const auto& s : trace) {
+    if (s.t_s < t_arm) continue;
+    q.climb_m = std::max(q.climb_m, s.altitude_m);
+    if (s.t_s < t_arm + 15.0) continue;
+    const double e = s.altitude_m - kClimbM;
+    q.altitude_error_max_m = std::max(q.altitude_error_max_m, std::abs(e));
+    error_sq += e * e;
+    q.vz_max_m_s = std::max(q.vz_max_m_s, std::abs(s.vz_m_s));
+    q.tilt_max_rad = std::max(q.tilt_max_rad, s.tilt_rad);
+    ++q.samples;
+  }
+  if (q.samples > 0) q.altitude_error_rms_m = std::sqrt(error_sq / q.samples);
+  return q;
+}
+
+// One line per firmware second from 1 s before arming: the climb and the hover.
+void print_trace(const std::vector<Sample>& trace, double t_arm) {
+  for (const auto& s : trace) {
+    if (s.t_s >= t_arm - 1.0 && std::fmod(s.t_s, 1.0) < 0.005) {
+      std::printf("  t %6.2f s  altitude %6.3f m  vz %6.3f m/s  tilt %5.2f deg\n", s.t_s - t_arm,
+                  s.altitude_m, s.vz_m_s, s.tilt_rad * 180.0 / M_PI);
+    }
+  }
+}
+
 class ArduCopterJson : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -233,25 +291,8 @@ void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
       << "no servo packet from the firmware on UDP " << link.port();
   ASSERT_TRUE(cover::test::wait_until([&] { return monitor->connected(); }, 30s));
 
-  // Ready = the firmware accepts the arm command (its pre-arm checks, the EKF among them).
-  std::optional<std::uint8_t> arm;
-  double ready_fw_s = 0.0;
-  bool armed = false;
-  const auto arm_deadline = std::chrono::steady_clock::now() + cover::test::scaled(120s);
-  while (!armed && std::chrono::steady_clock::now() < arm_deadline) {
-    const double t = physics.firmware_time_s();
-    // The mode each time: a mode set while the firmware initialises is replaced by its
-    // initial mode once it is ready.
-    const auto mode = monitor->set_mode(kGuidedNoGps);
-    arm = monitor->command(mav::mav_cmd::kComponentArmDisarm, {1, 0, 0, 0, 0, 0, 0},
-                           cover::test::scaled(5s));
-    armed = mode == mav::mav_result::kAccepted && arm == mav::mav_result::kAccepted;
-    ready_fw_s = physics.firmware_time_s();
-    // Refused: asked again one firmware second later (a condition on its clock).
-    if (!armed) {
-      cover::test::wait_until([&] { return physics.firmware_time_s() >= t + 1.0; }, 10s, 1ms);
-    }
-  }
+  const auto ready_fw_s = arm_in_guided_nogps(*monitor, physics);
+  const bool armed = ready_fw_s.has_value();
   const double ready_wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - boot).count();
   if (!armed) report_texts();
@@ -267,28 +308,10 @@ void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
   sitl.stop();
   report_texts();
 
-  // Hover quality over the last 10 s (firmware time).
   const auto trace = physics.trace();
-  double climb = 0.0, alt_err_max = 0.0, alt_err_sq = 0.0, vz_max = 0.0, tilt_max = 0.0;
-  int in_window = 0;
-  for (const auto& s : trace) {
-    if (s.t_s < t_arm) continue;
-    climb = std::max(climb, s.altitude_m);
-    if (s.t_s < t_arm + 15.0) continue;
-    const double e = s.altitude_m - kClimbM;
-    alt_err_max = std::max(alt_err_max, std::abs(e));
-    alt_err_sq += e * e;
-    vz_max = std::max(vz_max, std::abs(s.vz_m_s));
-    tilt_max = std::max(tilt_max, s.tilt_rad);
-    ++in_window;
-  }
-  ASSERT_GT(in_window, 0);
-  for (const auto& s : trace) {
-    if (s.t_s >= t_arm - 1.0 && std::fmod(s.t_s, 1.0) < 0.005) {
-      std::printf("  t %6.2f s  altitude %6.3f m  vz %6.3f m/s  tilt %5.2f deg\n", s.t_s - t_arm,
-                  s.altitude_m, s.vz_m_s, s.tilt_rad * 180.0 / M_PI);
-    }
-  }
+  print_trace(trace, t_arm);
+  const HoverQuality hover = hover_quality(trace, t_arm);
+  ASSERT_GT(hover.samples, 0);
   const double fw_s = physics.firmware_time_s();
   const auto stats = link.stats();
   const auto ap = link.ardupilot_stats();
@@ -299,7 +322,7 @@ void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
       "%llu, restarts %llu, skipped %llu, rejected %llu, frame rate %u Hz\n"
       "hover (last 10 s): altitude error max %.3f m rms %.3f m, |vz| max %.3f m/s, tilt max "
       "%.2f deg; climbed to %.2f m\n",
-      ready_wall_s, ready_fw_s, fw_s, physics.wall_s(), stats.frames_sent / physics.wall_s(),
+      ready_wall_s, *ready_fw_s, fw_s, physics.wall_s(), stats.frames_sent / physics.wall_s(),
       fw_s / physics.wall_s(), static_cast<unsigned long long>(stats.frames_sent),
       static_cast<unsigned long long>(stats.answers),
       static_cast<unsigned long long>(stats.answers_missed),
@@ -307,8 +330,9 @@ void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
       static_cast<unsigned long long>(ap.repeats_dropped),
       static_cast<unsigned long long>(ap.restarts),
       static_cast<unsigned long long>(ap.frames_skipped),
-      static_cast<unsigned long long>(stats.frames_rejected), ap.frame_rate_hz, alt_err_max,
-      std::sqrt(alt_err_sq / in_window), vz_max, tilt_max * 180.0 / M_PI, climb);
+      static_cast<unsigned long long>(stats.frames_rejected), ap.frame_rate_hz,
+      hover.altitude_error_max_m, hover.altitude_error_rms_m, hover.vz_max_m_s,
+      hover.tilt_max_rad * 180.0 / M_PI, hover.climb_m);
 
   ASSERT_TRUE(heartbeat);
   EXPECT_TRUE(armed && (heartbeat->base_mode & mav::mav_mode_flag::kSafetyArmed) != 0)
@@ -339,12 +363,12 @@ void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
     EXPECT_GE(ap.repeats_dropped, 1u);
   }
   // It lifted off and holds the hover.
-  EXPECT_GT(climb, 1.0);
+  EXPECT_GT(hover.climb_m, 1.0);
   // The thrust that hovers is the firmware's MOT_THST_HOVER (no battery compensation): the
   // altitude hold's P term needs next to no offset (0.112 m with copter.parm's compensation).
-  EXPECT_LT(alt_err_max, 0.05);
-  EXPECT_LT(vz_max, 0.3);
-  EXPECT_LT(tilt_max, 2.0 * M_PI / 180.0);
+  EXPECT_LT(hover.altitude_error_max_m, 0.05);
+  EXPECT_LT(hover.vz_max_m_s, 0.3);
+  EXPECT_LT(hover.tilt_max_rad, 2.0 * M_PI / 180.0);
 }
 
 TEST_F(ArduCopterJson, BootsArmsAndHoversOnCoverPhysicsInLockstep) {
