@@ -97,7 +97,7 @@ fw::SitlProcess start(const CommandLine& cli, fw::Firmware firmware, const fw::F
                    : fw::SitlProcess::start_px4_hil(build, std::move(slot), workdir, params);
   }
   return builtin ? fw::SitlProcess::start_arducopter(build, std::move(slot), workdir, params)
-                 : throw std::runtime_error("ArduCopter on COVER's physics: not in this build");
+                 : fw::SitlProcess::start_arducopter_json(build, std::move(slot), workdir, params);
 }
 
 int run(const CommandLine& cli) {

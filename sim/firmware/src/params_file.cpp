@@ -14,6 +14,9 @@ FirmwareParams read_params_file(const std::filesystem::path& path) {
   for (int number = 1; std::getline(in, line); ++number) {
     const auto hash = line.find('#');
     if (hash != std::string::npos) line.resize(hash);
+    for (char& c : line) {
+      if (c == ',' || c == '\t') c = ' ';  // ArduPilot's .parm also writes NAME,VALUE
+    }
     std::istringstream words(line);
     std::string name;
     std::string value;

@@ -18,7 +18,8 @@ std::vector<PortUse> ports_of(Firmware firmware, int instance) {
           {true, arducopter_gcs_port(instance)},
           {true, 5762 + base},    // SERIAL1's default, were it not UDP
           {true, 5763 + base},    // SERIAL2
-          {false, 5501 + base}};  // RC input
+          {false, 5501 + base},   // RC input
+          {false, 9002 + base}};  // the JSON backend's physics (ArduPilotJsonLink binds it)
 }
 
 }  // namespace cover::firmware

@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -99,6 +100,19 @@ SitlProcess SitlProcess::start_px4_hil(const FirmwareBuild& build, InstanceSlot 
 
 SitlProcess SitlProcess::start_arducopter(const FirmwareBuild& build, InstanceSlot slot,
                                           const fs::path& workdir, const FirmwareParams& params) {
+  return start_arducopter_model(build, std::move(slot), workdir, params, "quad");
+}
+
+SitlProcess SitlProcess::start_arducopter_json(const FirmwareBuild& build, InstanceSlot slot,
+                                               const fs::path& workdir,
+                                               const FirmwareParams& params) {
+  return start_arducopter_model(build, std::move(slot), workdir, params, "JSON:127.0.0.1");
+}
+
+SitlProcess SitlProcess::start_arducopter_model(const FirmwareBuild& build, InstanceSlot slot,
+                                                const fs::path& workdir,
+                                                const FirmwareParams& params,
+                                                const std::string& model) {
   fs::create_directories(workdir);
   const fs::path ours = workdir / "cover.parm";
   {
@@ -116,7 +130,7 @@ SitlProcess SitlProcess::start_arducopter(const FirmwareBuild& build, InstanceSl
                                 workdir.string(),
                                 build.binary.string(),
                                 "--model",
-                                "quad",
+                                model,
                                 "--speedup",
                                 "1",
                                 "-I",

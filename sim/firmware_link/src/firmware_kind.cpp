@@ -1,7 +1,7 @@
 #include "cover/firmware_link/firmware_kind.hpp"
 
-#include <stdexcept>
 
+#include "cover/firmware_link/ardupilot_json_link.hpp"
 #include "cover/firmware_link/px4_hil_link.hpp"
 
 namespace cover::firmware_link {
@@ -36,8 +36,10 @@ std::unique_ptr<FirmwareLink> make_link(FirmwareKind kind, int uav, int port_bas
     config.pacing = pacing;
     return std::make_unique<Px4HilLink>(config);
   }
-  throw std::runtime_error(std::string("no ") + firmware_name(kind) +
-                           " physics link in this build");
+  ArduPilotJsonLinkOptions options;
+  options.port = port;
+  options.pacing = pacing;
+  return std::make_unique<ArduPilotJsonLink>(options);
 }
 
 }  // namespace cover::firmware_link

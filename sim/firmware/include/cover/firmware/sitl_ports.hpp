@@ -34,7 +34,8 @@ struct PortUse {
 };
 
 // Every port instance N of `firmware` binds, and the companion port (which the test's own
-// relay binds): all must be free before it starts.
+// relay binds) and, for ArduCopter, its JSON physics port 9002 + 10 N (which
+// ArduPilotJsonLink binds): all must be free before it starts.
 std::vector<PortUse> ports_of(Firmware firmware, int instance);
 
 }  // namespace cover::firmware

@@ -49,6 +49,14 @@ class SitlProcess {
                                       const std::filesystem::path& workdir,
                                       const FirmwareParams& params);
 
+  // ArduCopter flown by an external physics engine over SITL's JSON backend, in WORKDIR:
+  //   arducopter --model JSON:127.0.0.1 ... (the rest as start_arducopter)
+  // Each frame it sends its servo packet to UDP 127.0.0.1:<9002 + 10 N> and blocks until the
+  // engine there (firmware_link's ArduPilotJsonLink) answers; bind that port first.
+  static SitlProcess start_arducopter_json(const FirmwareBuild& build, InstanceSlot slot,
+                                           const std::filesystem::path& workdir,
+                                           const FirmwareParams& params);
+
   SitlProcess(SitlProcess&&) noexcept = default;
   SitlProcess& operator=(SitlProcess&&) = delete;
   ~SitlProcess();
@@ -68,6 +76,9 @@ class SitlProcess {
   SitlProcess(Firmware firmware, InstanceSlot slot, std::filesystem::path console_log,
               std::unique_ptr<process::ChildProcess> child);
   void remove_px4_tmp_files() const;
+  static SitlProcess start_arducopter_model(const FirmwareBuild& build, InstanceSlot slot,
+                                            const std::filesystem::path& workdir,
+                                            const FirmwareParams& params, const std::string& model);
 
   Firmware firmware_;
   InstanceSlot slot_;
@@ -75,5 +86,6 @@ class SitlProcess {
   std::unique_ptr<process::ChildProcess> child_;
   std::optional<int> exit_code_;
 };
+
 
 }  // namespace cover::firmware

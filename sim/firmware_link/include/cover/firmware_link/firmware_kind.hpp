@@ -22,8 +22,8 @@ int firmware_port(FirmwareKind kind, int port_base, int uav);
 // The motor-level UAV file that matches the firmware's airframe (in config/sim/).
 std::string firmware_uav_file_name(FirmwareKind kind);
 
-// The link for UAV `uav` (bound at construction; throws std::runtime_error when its port
-// cannot be bound).
+// The link for UAV `uav` (bound at construction; throws std::runtime_error or
+// std::system_error when its port cannot be bound).
 std::unique_ptr<FirmwareLink> make_link(FirmwareKind kind, int uav, int port_base, Pacing pacing);
 
 }  // namespace cover::firmware_link
