@@ -1,4 +1,5 @@
-// No thread of the UAV loop touches the heap in steady flight, a replan included: the
+// No thread of the UAV loop touches the heap in steady flight, a replan and SAMPC's
+// preparation after each command (the real-time-iteration split) included: the
 // control thread never plans (the PlanWorker's thread does), and the worker plans into
 // results sized once. Counts what the thread stepping the loop allocates and, apart, what
 // every other thread (the worker) allocates (cover/test/malloc_counter.hpp: Eigen's
@@ -37,6 +38,8 @@ TEST(PlanOffThread, NoThreadAllocatesThroughASteadyReplan) {
   int counted_steps = 0;
   int counted_plans = 0;
   long allocations = 0;
+  int sampc_steps = 0;
+  int prepared_ahead = 0;  // steps whose SAMPC ran the feedback phase only
   bool counting_worker = false;
   const long worker_before = other_thread_allocations();
   // The first stage's steps warm up (first solves, first plan); every later step counts,
@@ -57,6 +60,10 @@ TEST(PlanOffThread, NoThreadAllocatesThroughASteadyReplan) {
       allocations += counted_allocations() - before;
       ++counted_steps;
       if (out.status.planned && counting_worker) ++counted_plans;
+      if (out.status.solve_us > 0.0) {
+        ++sampc_steps;
+        if (out.status.feedback_us < out.status.solve_us) ++prepared_ahead;
+      }
     }
     world.advance(plant.command(), 0.01);
   }
@@ -64,6 +71,9 @@ TEST(PlanOffThread, NoThreadAllocatesThroughASteadyReplan) {
   EXPECT_GE(counted_plans, 2) << "the count must include replans";
   EXPECT_GT(counted_steps, 300);
   EXPECT_EQ(allocations, 0) << "control thread, over " << counted_steps << " steps";
+  // The count covers the split loop: nearly every step prepared after the previous command
+  // (the rest: a new stage's coast, an adopted plan, a frame switch prepare inline).
+  EXPECT_GT(prepared_ahead, 0.95 * sampc_steps) << prepared_ahead << " of " << sampc_steps;
   EXPECT_EQ(other_thread_allocations() - worker_before, 0)
       << "worker thread, over " << counted_plans << " plans";
 }

@@ -41,11 +41,24 @@ TEST(SampcAllocation, TheControlLoopDoesNotAllocate) {
     const SampcOutput out = mpc.feedback(in);
     errors += is_error(out.status) ? 1 : 0;
   }
+  // The flying loop's real-time iteration: prepare on the state predicted from the last
+  // command, then the feedback on the measurement (MissionController::prepare_next_step).
+  int prepared_ahead = 0;
+  for (int i = 0; i < 20; ++i) {
+    SampcInput predicted = in;
+    predicted.uav_state = mpc.predicted_state(params.control_period_s);
+    mpc.prepare(predicted);
+    prepared_ahead += mpc.prepared() ? 1 : 0;
+    in.uav_state(0) -= 0.01;
+    const SampcOutput out = mpc.feedback(in);
+    errors += is_error(out.status) ? 1 : 0;
+  }
   mpc.reset();
   mpc.solve(in);  // cold start after a reset, too
   cover::test::count_this_thread(false);
   EXPECT_EQ(cover::test::counted_allocations() - before, 0);
   EXPECT_EQ(errors, 0);
+  EXPECT_EQ(prepared_ahead, 20);
 }
 
 }  // namespace

@@ -8,7 +8,10 @@
 //            simulator's and the UAV agent's vendors, paced at 100 Hz, out on the relative state's
 //            QoS and back on the command's (the two hops of the path with no work at either end),
 //            and the latency as a multiple of it;
-//  lockstep: Scenarios 2 and 4 in lockstep, simulated seconds per wall second.
+//  lockstep: Scenarios 2 and 4 in lockstep, simulated seconds per wall second, on Fast DDS
+//            (UGV agents on Cyclone) and Scenario 2 on Cyclone DDS alone;
+//  and in every run the UAV agent's measurement -> command (its control trace: inputs taken
+//  to command out, median and p99 over the steps SAMPC flew).
 #include <unistd.h>
 
 #include <chrono>
@@ -187,22 +190,35 @@ int run(const std::vector<std::string>& args) {
            {"samples", samples},
            {"floor", floor},
            {"p50_over_floor", cover::bench::figure_json(ratio(p50, floor, "p50_ms"))},
-           {"p99_over_floor", cover::bench::figure_json(ratio(p99, floor, "p99_ms"))}});
+           {"p99_over_floor", cover::bench::figure_json(ratio(p99, floor, "p99_ms"))},
+           {"command_median_us", cover::bench::figure_json(number(r, "command_median_us"))},
+           {"command_p99_us", cover::bench::figure_json(number(r, "command_p99_us"))}});
     }
   }
-  for (const char* scenario : {"scenario2", "scenario4"}) {
-    std::vector<std::string> flags = {"--dds", "ugv*=cyclone"};
+  struct LockstepRun {
+    const char* scenario;
+    const char* dds;  // the launch's --dds
+    const char* mix;  // as the table names it
+  };
+  for (const LockstepRun& run :
+       {LockstepRun{"scenario2", "ugv*=cyclone", "fastdds, UGV agents cyclone"},
+        LockstepRun{"scenario4", "ugv*=cyclone", "fastdds, UGV agents cyclone"},
+        LockstepRun{"scenario2", "*=cyclone", "cyclone"}}) {
+    std::vector<std::string> flags = {"--dds", run.dds};
     flags.insert(flags.end(), method_flags.begin(), method_flags.end());
-    const nlohmann::json r = cover::bench::run_launch(scenario, flags, domain++, "e2e");
+    const nlohmann::json r = cover::bench::run_launch(run.scenario, flags, domain++, "e2e");
     const double speed = number(r, "speed_factor");
     if (!(speed > 0.0)) {
-      missing.add(std::string("lockstep ") + scenario + ": the run reported no speed factor (" +
-                  outcome(r) + ")");
+      missing.add(std::string("lockstep ") + run.scenario + " (" + run.mix +
+                  "): the run reported no speed factor (" + outcome(r) + ")");
     }
     out["lockstep"].push_back(
-        {{"scenario", scenario},
+        {{"scenario", run.scenario},
+         {"mix", run.mix},
          {"success", r.is_object() && r.value("success", false)},
-         {"speed_factor", cover::bench::figure_json(speed > 0.0 ? speed : NAN)}});
+         {"speed_factor", cover::bench::figure_json(speed > 0.0 ? speed : NAN)},
+         {"command_median_us", cover::bench::figure_json(number(r, "command_median_us"))},
+         {"command_p99_us", cover::bench::figure_json(number(r, "command_p99_us"))}});
   }
   if (json) {
     std::cout << out.dump(2) << "\n";
@@ -214,6 +230,9 @@ int run(const std::vector<std::string>& args) {
                   l["mix"].get<std::string>().c_str(), l["secure"].get<bool>() ? "secure" : "plain",
                   text(l["p50_ms"], "%.3f ms").c_str(), text(l["p99_ms"], "%.3f ms").c_str(),
                   l["samples"].get<int>(), l["success"].get<bool>() ? "" : "  MISSION FAILED");
+      std::printf("  %-15s measurement -> command p50 %s  p99 %s\n", "",
+                  text(l["command_median_us"], "%.1f us").c_str(),
+                  text(l["command_p99_us"], "%.1f us").c_str());
       if (l["floor"].is_object()) {
         const auto& f = l["floor"];
         std::printf("  %-15s floor p50 %.3f ms  p99 %.3f ms  (%d round trips)  -> %s / %s\n", "",
@@ -222,11 +241,14 @@ int run(const std::vector<std::string>& args) {
                     text(l["p99_over_floor"], "%.2fx").c_str());
       }
     }
-    std::printf("lockstep (UGV agents on Cyclone, the rest on Fast DDS)\n");
+    std::printf("lockstep\n");
     for (const auto& l : out["lockstep"]) {
-      std::printf("  %-10s %s, %s real time\n", l["scenario"].get<std::string>().c_str(),
+      std::printf("  %-10s %-28s %s, %s real time; measurement -> command p50 %s  p99 %s\n",
+                  l["scenario"].get<std::string>().c_str(), l["mix"].get<std::string>().c_str(),
                   l["success"].get<bool>() ? "success" : "FAILED",
-                  text(l["speed_factor"], "%.1fx").c_str());
+                  text(l["speed_factor"], "%.1fx").c_str(),
+                  text(l["command_median_us"], "%.1f us").c_str(),
+                  text(l["command_p99_us"], "%.1f us").c_str());
     }
   }
   return missing.exit_code("e2e");

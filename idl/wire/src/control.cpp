@@ -50,6 +50,7 @@ msg::ControlTrace to_trace(const mission::ControllerStatus& status, std::uint32_
   t.planned = status.planned;
   t.plan_time_ms = status.plan_ms;
   t.reference_position_m = to_msg(status.reference_position_m);
+  t.command_time_us = status.command_us;
   return t;
 }
 
@@ -65,6 +66,7 @@ mission::ControllerStatus from_msg(const msg::ControlTrace& t) {
   status.planned = t.planned;
   status.plan_ms = t.plan_time_ms;
   status.reference_position_m = to_eigen(t.reference_position_m);
+  status.command_us = t.command_time_us;
   return status;
 }
 

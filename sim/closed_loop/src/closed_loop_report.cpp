@@ -38,6 +38,8 @@ nlohmann::json summary_json(const ClosedLoopResult& r) {
           {"mpc_p99_us", number_or_null(r.mpc_p99_us)},
           {"mpc_cpu_median_us", number_or_null(r.mpc_cpu_median_us)},
           {"mpc_cpu_p99_us", number_or_null(r.mpc_cpu_p99_us)},
+          {"command_median_us", number_or_null(r.command_median_us)},
+          {"command_p99_us", number_or_null(r.command_p99_us)},
           {"plan_median_ms", number_or_null(r.plan_median_ms)},
           {"plan_max_ms", number_or_null(r.plan_max_ms)},
           {"step_median_us", number_or_null(r.step_median_us)},
@@ -97,6 +99,8 @@ std::string readable_summary(const ClosedLoopResult& r) {
       figure("%.0f us", r.mpc_median_us).c_str(), figure("%.0f us", r.mpc_p99_us).c_str(),
       figure("%.0f us", r.mpc_cpu_median_us).c_str(), figure("%.0f us", r.mpc_cpu_p99_us).c_str(),
       figure("%.1f ms", r.plan_median_ms).c_str());
+  add("  measurement->cmd  median %s, p99 %s (wall: inputs taken to command out)\n",
+      figure("%.1f us", r.command_median_us).c_str(), figure("%.1f us", r.command_p99_us).c_str());
   if (std::isfinite(r.step_median_us)) {
     add("  control step      median %.0f us, p99 %.0f us, max %.0f us (wall, whole step); "
         "longest wait for a plan %s\n",

@@ -23,6 +23,7 @@ RunRecorder::RunRecorder(const Scenario& scenario, const mission::Task& task,
   result_.ugv_paths.resize(scenario.world.ugvs.size());
   mpc_us_.reserve(static_cast<std::size_t>(scenario.max_duration_s * options.control_rate_hz) + 1);
   mpc_cpu_us_.reserve(mpc_us_.capacity());
+  command_us_.reserve(mpc_us_.capacity());
 }
 
 void RunRecorder::record(const mission::ControllerStatus& status,
@@ -31,6 +32,8 @@ void RunRecorder::record(const mission::ControllerStatus& status,
   track_transitions(status, command, ws);
   record_tracking(status, world);
   if (status.solve_us > 0.0) mpc_us_.push_back(status.solve_us);
+  // Measurement -> command of the steps SAMPC flew (0: a host that does not measure it).
+  if (status.solve_us > 0.0 && status.command_us > 0.0) command_us_.push_back(status.command_us);
   // 0 when the step's CPU time was not measured (a UAV agent's trace does not carry it).
   if (status.solve_cpu_us > 0.0) mpc_cpu_us_.push_back(status.solve_cpu_us);
   if (status.planned) plan_ms_.push_back(status.plan_ms);
@@ -253,6 +256,8 @@ ClosedLoopResult RunRecorder::finish(const World& world,
   result_.mpc_p99_us = percentile(mpc_us_, 0.99);
   result_.mpc_cpu_median_us = percentile(mpc_cpu_us_, 0.5);
   result_.mpc_cpu_p99_us = percentile(mpc_cpu_us_, 0.99);
+  result_.command_median_us = percentile(command_us_, 0.5);
+  result_.command_p99_us = percentile(command_us_, 0.99);
   result_.plan_median_ms = percentile(plan_ms_, 0.5);
   result_.plan_max_ms = percentile(plan_ms_, 1.0);
   return result_;

@@ -1,6 +1,7 @@
 #include "cover/uav/uav_loop.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <utility>
 
 #include "cover/config/config_error.hpp"
@@ -76,12 +77,19 @@ const mission::ControllerOutput& UavLoop::step(double now_s, UavInputs& inputs,
   step.uav_id = uav_id_;
   step.stamp_s = now_s;
   if (controller_) {
+    // Measurement -> command: from taking the inputs to the command handed to the output.
+    const auto measured = std::chrono::steady_clock::now();
     feed_inputs(inputs);
     controller_->step(now_s);
+    controller_->set_command_time_us(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - measured)
+            .count());
     step.measurement_stamp_s = state_stamps_s_[controller_->stage_machine().reference_ugv()];
   }
   step.output = &this->output();
   output.write(step);
+  // The command is out: SAMPC prepares the next step before its measurement arrives.
+  if (controller_) controller_->prepare_next_step();
   return *step.output;
 }
 

@@ -105,6 +105,7 @@ bool MissionController::emergency_step(int reference, double now_s) {
   if (ladder_.resumed()) {
     // The inputs are back: the stage goes on from where the hover left the UAV; a task that
     // had ended holds that point instead (an abort then holds and lands again).
+    ++reference_epoch_;
     sampc_.reset_frame();
     observer_.reset();
     if (holding_) {
@@ -138,10 +139,14 @@ bool MissionController::emergency_step(int reference, double now_s) {
 }
 
 const ControllerOutput& MissionController::step(double now_s) {
+  // A host that did not call prepare_next_step still gets the last step's bookkeeping.
+  if (sampc_stepped_) finish_sampc_step();
   output_.command.release_payload = false;
   output_.status.planned = false;
   output_.status.solve_us = 0.0;
   output_.status.solve_cpu_us = 0.0;
+  output_.status.feedback_us = 0.0;
+  output_.status.command_us = 0.0;
   if (not_flying_step(now_s)) return output_;
 
   // 1. Inputs of the current reference frame: without them, the failsafe ladder.
@@ -213,6 +218,7 @@ bool MissionController::not_flying_step(double now_s) {
 
 // The previous plan's states mean nothing in the new frame; its body-frame inputs still do.
 void MissionController::switch_frame(int reference) {
+  ++reference_epoch_;
   sampc_.reset_frame();
   // Frames are level (planar UGVs): the vertical estimate (mass) carries over, the
   // horizontal one (drag in this frame's motion) does not.
@@ -252,6 +258,7 @@ void MissionController::yield_to_autopilot(double now_s) {
 void MissionController::take_back(double now_s) {
   if (!yielded_) return;
   yielded_ = false;
+  ++reference_epoch_;
   sampc_.reset_frame();
   observer_.reset();
   observer_time_s_ = -1.0;
@@ -265,6 +272,7 @@ void MissionController::use_process_method(std::size_t process_index) {
 
 void MissionController::hold_current_point(double now_s) {
   // Hold where the task ended, in the current frame, with the tracking weights.
+  ++reference_epoch_;
   holding_ = true;
   plan_pending_ = false;
   plan_request_id_ = 0;  // a plan still in flight is never adopted
@@ -286,6 +294,7 @@ void MissionController::run_abort_action(const RelativeMeasurement& state, doubl
     trajectory_.assign(&piece, 1);
     stage_start_s_ = now_s;
     descending_ = true;
+    ++reference_epoch_;
     return;
   }
   if (!descending_) return;
@@ -329,6 +338,7 @@ void MissionController::request_plan(double now_s) {
   if (!coast_on_request_) return;
   // A retry keeps flying the failed plan (a finite hold of its start); a new stage coasts.
   coast_on_request_ = false;
+  ++reference_epoch_;
   const RelativeMeasurement& state = inputs_[machine_.reference_ugv()].state;
   coasting_ = true;
   coast_position_m_ = state.position_m;
@@ -352,6 +362,7 @@ void MissionController::adopt_plan(double now_s) {
   // Even a failed plan returns a finite trajectory (hold the start): fly it meanwhile. The
   // swap hands the previous trajectory's storage to the worker (nothing freed here).
   std::swap(trajectory_, adopted_.trajectory);
+  ++reference_epoch_;
   stage_start_s_ = plan_request_s_;
   coasting_ = false;
   plan_pending_ = !planner::is_usable(adopted_.status);
@@ -418,12 +429,14 @@ bool MissionController::flies_radial_approach() const {
          sampc_.params().mode != sampc::Mode::ConiMpc;
 }
 
-void MissionController::fill_approach(const UgvInputs& inputs, double stage_time_s) {
+void MissionController::fill_approach(const Eigen::Vector3d& position_m,
+                                      const Eigen::Vector3d& velocity_m_s,
+                                      const Eigen::Vector3d& ugv_angular_velocity_rad_s,
+                                      double stage_time_s) {
   const TransitionProcess& process = machine_.task().processes[machine_.decision().process_index];
-  const Eigen::Vector3d& p = inputs.state.position_m;
+  const Eigen::Vector3d& p = position_m;
   // The UAV's velocity relative to the UGV's translation (eq. 23's v + Omega x p).
-  const Eigen::Vector3d relative =
-      inputs.state.velocity_m_s + inputs.imu.motion.angular_velocity_rad_s.cross(p);
+  const Eigen::Vector3d relative = velocity_m_s + ugv_angular_velocity_rad_s.cross(p);
   const double radius = p.head<2>().norm();
   const double closing = radius > 1e-9 ? -relative.head<2>().dot(p.head<2>()) / radius : 0.0;
   RadialApproachLimits limits;
@@ -436,18 +449,16 @@ void MissionController::fill_approach(const UgvInputs& inputs, double stage_time
                        sampc_input_.reference);
 }
 
-void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s) {
+void MissionController::fill_sampc_input(const UgvInputs& inputs, const model::UavState& uav_state,
+                                         double now_s) {
   const double t_s = now_s - stage_start_s_;
-  // Holding after a failure tracks a point: the x-y-z-ref weights of the final stage.
-  sampc_input_.stage = holding_ ? Stage::Final : machine_.decision().stage;
-  sampc_input_.uav_state.segment<3>(model::idx::kPosition) = inputs.state.position_m;
-  sampc_input_.uav_state.segment<3>(model::idx::kVelocity) = inputs.state.velocity_m_s;
-  const Eigen::Quaterniond q = inputs.state.attitude.normalized();
-  sampc_input_.uav_state.segment<4>(model::idx::kQuaternion) << q.w(), q.x(), q.y(), q.z();
+  sampc_input_.uav_state = uav_state;
   fill_reference(t_s, sampc_input_.reference);
-  if (flies_radial_approach()) fill_approach(inputs, t_s);
-  output_.status.reference_position_m = sampc_input_.reference.position_m[0];
-  integrate_disturbance(inputs.state.position_m, sampc_input_.reference.position_m[0]);
+  if (flies_radial_approach()) {
+    fill_approach(uav_state.segment<3>(model::idx::kPosition),
+                  uav_state.segment<3>(model::idx::kVelocity),
+                  inputs.imu.motion.angular_velocity_rad_s, t_s);
+  }
   sampc_input_.ugv = inputs.imu.motion;
   sampc_input_.ugv.forward_acceleration_m_s2 = inputs.imu.motion.specific_force_m_s2.x();
   sampc_input_.speed_limit_m_s =
@@ -455,19 +466,82 @@ void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s
   const Eigen::Vector3d disturbance = disturbance_m_s2_ + observer_.estimate_m_s2();
   sampc_input_.ugv.specific_force_m_s2 -= disturbance;
   output_.status.disturbance_m_s2 = disturbance;
+}
+
+// SAMPC's waiting preparation was made for this step: its time, under the same reference
+// (a new plan, coast, hold or frame since makes it another problem).
+bool MissionController::preparation_is_for(double now_s) const {
+  return sampc_.prepared() && prepared_epoch_ == reference_epoch_ && prepared_for_s_ >= 0.0 &&
+         std::abs(now_s - prepared_for_s_) < 0.5 * params_.control_period_s;
+}
+
+void MissionController::command_from_sampc(const UgvInputs& inputs, double now_s) {
+  // Holding after a failure tracks a point: the x-y-z-ref weights of the final stage.
+  sampc_input_.stage = holding_ ? Stage::Final : machine_.decision().stage;
+  model::UavState measured = sampc_input_.uav_state;
+  measured.segment<3>(model::idx::kPosition) = inputs.state.position_m;
+  measured.segment<3>(model::idx::kVelocity) = inputs.state.velocity_m_s;
+  const Eigen::Quaterniond q = inputs.state.attitude.normalized();
+  measured.segment<4>(model::idx::kQuaternion) << q.w(), q.x(), q.y(), q.z();
 
   const double cpu_before_us = thread_cpu_us();
-  const sampc::SampcOutput out = sampc_.solve(sampc_input_);
+  const bool prepared = preparation_is_for(now_s);
+  prepared_for_s_ = -1.0;
+  // Prepared: the reference and UGV motion are the preparation's (for this very time); only
+  // the measurement is new. Else the whole input from the measurement, and the whole solve.
+  if (prepared) {
+    sampc_input_.uav_state = measured;
+  } else {
+    fill_sampc_input(inputs, measured, now_s);
+  }
+  const sampc::SampcOutput out =
+      prepared ? sampc_.feedback(sampc_input_) : sampc_.solve(sampc_input_);
   output_.status.solve_cpu_us = thread_cpu_us() - cpu_before_us;
   output_.status.solve_status = out.status;
   output_.status.solve_us = out.prepare_us + out.feedback_us;
+  output_.status.feedback_us = prepared ? out.feedback_us : out.prepare_us + out.feedback_us;
+  output_.status.reference_position_m = sampc_input_.reference.position_m[0];
   output_.command.thrust_m_s2 = out.command(model::input_idx::kThrust);
   output_.command.body_rate_rad_s = out.command.tail<3>();
   output_.command.armed = true;
   output_.status.failsafe = sampc::is_error(out.status) ? Failsafe::SolverError : Failsafe::None;
-  update_observer(out.command, now_s);
+  sampc_stepped_ = true;
+  sampc_step_s_ = now_s;
+  sampc_inputs_ = inputs;
+  sampc_command_ = out.command;
+}
+
+void MissionController::prepare_next_step() {
+  if (!sampc_stepped_) return;
+  const double cpu_before_us = thread_cpu_us();
+  finish_sampc_step();
+  // After a solver error SAMPC starts afresh from the next measurement.
+  if (sampc::is_error(output_.status.solve_status)) return;
+  const double next_s = sampc_step_s_ + params_.control_period_s;
+  const UgvInputs& inputs = inputs_[machine_.reference_ugv()];
+  fill_sampc_input(inputs, sampc_.predicted_state(params_.control_period_s), next_s);
+  sampc_.prepare(sampc_input_);
+  prepared_for_s_ = next_s;
+  prepared_epoch_ = reference_epoch_;
+  output_.status.solve_cpu_us += thread_cpu_us() - cpu_before_us;
+}
+
+// What the step learns from its measurement once its command is out: the tracking
+// integral and the observer (both feed the next preparation's UGV motion), and the
+// failsafe ladder's memory of the last good flight.
+void MissionController::finish_sampc_step() {
+  sampc_stepped_ = false;
+  const UgvInputs& inputs = sampc_inputs_;
+  integrate_disturbance(inputs.state.position_m, sampc_input_.reference.position_m[0]);
+  // The observer compares consecutive steps' model predictions: the model of this step is
+  // its measurement with this step's UGV motion.
+  sampc_input_.ugv = inputs.imu.motion;
+  sampc_input_.ugv.forward_acceleration_m_s2 = inputs.imu.motion.specific_force_m_s2.x();
+  sampc_input_.ugv.specific_force_m_s2 -= disturbance_m_s2_ + observer_.estimate_m_s2();
+  update_observer(sampc_command_, sampc_step_s_);
   // What SAMPC treats as the hover thrust (a - d along z): the emergency hover's thrust.
-  ladder_.remember(inputs.state, sampc_input_.ugv.specific_force_m_s2.z(), output_.command, now_s);
+  ladder_.remember(inputs.state, sampc_input_.ugv.specific_force_m_s2.z(), output_.command,
+                   sampc_step_s_);
 }
 
 void MissionController::update_observer(const model::Input& applied, double now_s) {

@@ -382,6 +382,15 @@ void Sampc::set_mode(Mode mode) {
   ws.prepared = false;  // the waiting factorisation was built with the other method's cost
 }
 
+bool Sampc::prepared() const {
+  return ws_->prepared;
+}
+
+model::UavState Sampc::predicted_state(double dt_s) const {
+  const Workspace& ws = *ws_;
+  return normalised(model::uav_rk4_step(ws.x[0], ws.last_command, ws.ugv[0], dt_s));
+}
+
 const SampcParams& Sampc::params() const {
   return ws_->params;
 }

@@ -22,7 +22,13 @@ struct ControllerStatus {
   sampc::SolveStatus solve_status = sampc::SolveStatus::Ok;
   double solve_us = 0.0;      // SAMPC time of this step (wall clock)
   double solve_cpu_us = 0.0;  // the same in this thread's CPU time (preemption excluded)
-  bool planned = false;       // a stage reference was adopted this step (planned off-thread)
+  // SAMPC's feedback phase of this step (part of solve_us; the rest, the preparation, ran
+  // after the previous command when this step's was prepared ahead).
+  double feedback_us = 0.0;
+  // Wall time from the step taking its measurements to its command: what a measurement
+  // waits for its command (the feedback phase and the loop around it; 0: not measured).
+  double command_us = 0.0;
+  bool planned = false;  // a stage reference was adopted this step (planned off-thread)
   planner::PlanStatus plan_status = planner::PlanStatus::Ok;  // of the last plan
   double plan_ms = 0.0;                                       // of the last plan (worker)
   // Of the last plan: how long this thread waited for it at its adoption step (lockstep; 0

@@ -56,6 +56,7 @@ class RunRecorder {
   ClosedLoopResult result_;
   std::vector<double> mpc_us_;
   std::vector<double> mpc_cpu_us_;
+  std::vector<double> command_us_;
   std::vector<double> plan_ms_;
   Eigen::Vector3d abs_error_sum_ = Eigen::Vector3d::Zero();
   double done_time_s_ = -1.0;

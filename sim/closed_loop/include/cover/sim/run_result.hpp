@@ -95,6 +95,11 @@ struct ClosedLoopResult {
   // other processes (which dominates the wall-clock p99 on a loaded machine).
   double mpc_cpu_median_us = std::nan("");
   double mpc_cpu_p99_us = std::nan("");
+  // Measurement -> command of the steps SAMPC flew (wall, ControllerStatus::command_us): the
+  // feedback phase and the loop around it when the step was prepared ahead (in process and
+  // from the UAV agent's trace alike).
+  double command_median_us = std::nan("");
+  double command_p99_us = std::nan("");
   double plan_median_ms = std::nan("");
   double plan_max_ms = std::nan("");
   // Wall time of each whole control step (UavLoop::step: inputs, stage machine, SAMPC,

@@ -40,6 +40,9 @@ class UavLoop {
   void yield_to_autopilot(double now_s);
   void take_back(double now_s);
 
+  // One control step: the inputs, the controller's step, the command to `output`, then
+  // (the command out) SAMPC's preparation of the next step, so that a measurement waits for
+  // the feedback phase only (MissionController::prepare_next_step).
   const mission::ControllerOutput& step(double now_s, UavInputs& inputs, CommandOutput& output);
 
   bool has_task() const { return controller_.has_value(); }

@@ -48,8 +48,22 @@ class MissionController {
   void set_relative_state(int ugv, const RelativeMeasurement& measurement);
   void set_ugv_imu(int ugv, const UgvImuMeasurement& measurement);
 
-  // One control step at time `now_s` (same clock as the measurement stamps).
+  // One control step at time `now_s` (same clock as the measurement stamps): the command
+  // from the measurement. With a preparation waiting for this step (prepare_next_step) SAMPC
+  // runs its feedback phase only; else (the first step, a new reference, a frame switch, a
+  // step out of time) it prepares here too.
   const ControllerOutput& step(double now_s);
+
+  // After the step's command is out: the step's bookkeeping on its measurement (tracking
+  // integral, observer, failsafe memory), then SAMPC's preparation for the next step (at
+  // now_s + control period) on the state predicted from this measurement and command, so
+  // that the next step's measurement -> command is the feedback phase (real-time
+  // iteration). A no-op after a step that flew no SAMPC command. Allocation-free.
+  void prepare_next_step();
+
+  // The wall time from the step taking its measurements to its command (the host measures
+  // it around feeding the inputs and step()): reported in the status of this step.
+  void set_command_time_us(double us) { output_.status.command_us = us; }
 
   // Ends the task on the operator's request: the next steps hold the point where the UAV
   // is, in its current reference frame, then MissionParams::abort_action. False when the
@@ -107,7 +121,13 @@ class MissionController {
   void fill_reference(double t_s, sampc::HorizonReference& reference) const;
   void command_from_sampc(const UgvInputs& inputs, double now_s);
   bool flies_radial_approach() const;
-  void fill_approach(const UgvInputs& inputs, double stage_time_s);
+  void fill_approach(const Eigen::Vector3d& position_m, const Eigen::Vector3d& velocity_m_s,
+                     const Eigen::Vector3d& ugv_angular_velocity_rad_s, double stage_time_s);
+  // SAMPC's input for time now_s from the UAV state `uav_state` (measured or predicted):
+  // stage, reference, UGV motion with the disturbance estimate taken off.
+  void fill_sampc_input(const UgvInputs& inputs, const model::UavState& uav_state, double now_s);
+  bool preparation_is_for(double now_s) const;
+  void finish_sampc_step();
   void integrate_disturbance(const Eigen::Vector3d& position_m, const Eigen::Vector3d& reference_m);
   void update_observer(const model::Input& applied, double now_s);
   void use_process_method(std::size_t process_index);
@@ -157,6 +177,15 @@ class MissionController {
   double observer_time_s_ = -1.0;  // time of its last update, < 0: none
   FailsafeLadder ladder_;
   sampc::SampcInput sampc_input_;
+  // The reference's source (plan, coast, hold, descent, frame) changes bump the epoch: a
+  // preparation made under another epoch, or for another time, is not this step's.
+  std::uint64_t reference_epoch_ = 0;
+  std::uint64_t prepared_epoch_ = 0;
+  double prepared_for_s_ = -1.0;  // the step time the waiting preparation is for, < 0: none
+  bool sampc_stepped_ = false;    // this step's command is SAMPC's: prepare_next_step works
+  double sampc_step_s_ = 0.0;     // that step's time
+  model::Input sampc_command_ = model::hover_input();  // and its command
+  UgvInputs sampc_inputs_;                             // and its reference frame's inputs
   ControllerOutput output_;
   // Last: its thread starts once everything it may be handed exists, and it is joined first.
   PlanWorker plan_worker_;

@@ -61,6 +61,14 @@ class Sampc {
   // the next prepare builds that method's cost. Allocation-free, for the control loop.
   void set_mode(Mode mode);
 
+  // A factorisation waits for its feedback (prepare() ran, and no reset, frame switch or
+  // mode switch since): feedback() then runs the forward pass only.
+  bool prepared() const;
+  // The state expected `dt_s` after the last feedback's measurement: the plan's node 0
+  // flown for dt_s on the command handed out (RK4 at the UGV motion of that feedback). What
+  // the RTI preparation linearises at before the next measurement arrives.
+  model::UavState predicted_state(double dt_s) const;
+
   const SampcParams& params() const;
   // The cost (references, weights) of the last preparation: for logging and tests.
   const HorizonCost& horizon_cost() const;
