@@ -156,7 +156,10 @@ std::string Station::answer(const ApiRequest& request, bool& ok, std::string& fi
     if (!reply)
       return "no answer: no flight-controller bridge for this UAV, or its autopilot is silent";
     ok = reply->result == msg::FcCommandResult::FC_RESULT_ACCEPTED;
-    return lower_suffix(msg::to_string(reply->result)) + ": " + reply->message;
+    const char* result = ok                                                         ? "accepted"
+                         : reply->result == msg::FcCommandResult::FC_RESULT_REFUSED ? "refused"
+                                                                                    : "no answer";
+    return std::string(result) + ": " + reply->message;
   }
   cli::ManagerClient manager(participant_, timeout);
   msg::ManagerRequest r;
@@ -279,6 +282,15 @@ Json Station::state_json() {
   state["type"] = "state";
   state["sent_ms"] = static_cast<double>(clock::system_ns()) / 1e6;
   state["fleet"] = cli::fleet_json(listener_.rows());
+  // The page shows each row's scalar fields; the bridge's parameter and stream lists (most
+  // of a row's bytes) are `cover fc check`'s, not sent ten times a second.
+  for (auto& row : state["fleet"]) {
+    auto& last = row["last"];
+    if (!last.is_object()) continue;
+    for (auto it = last.begin(); it != last.end();) {
+      it = it->is_structured() ? last.erase(it) : std::next(it);
+    }
+  }
   {
     std::lock_guard<std::mutex> lock(tasks_mutex_);
     state["tasks"] = tasks_;

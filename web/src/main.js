@@ -86,15 +86,21 @@ function renderTasks(tasks, fleet, note) {
   $("#manager-note").textContent = note ? `(${note})` : "";
   const status = {};
   for (const r of fleet) if (r.kind === "uav-agent" && r.last) status[r.last.task_id] = r.last;
-  const body = $("#tasks tbody");
-  body.innerHTML = [...tasks].reverse().map((t) => {
+  const html = [...tasks].reverse().map((t) => {
     const s = status[t.task_id];
     const progress = s ? `${short(s.stage)} ${s.process_index + 1}/${s.process_count}, ${s.distance_to_stage_point_m.toFixed(2)} m to go, solver ${(s.solve_time_us / 1000).toFixed(1)} ms, failsafe ${short(s.failsafe)}` : "";
     const live = ["queued", "dispatched", "running"].includes(t.state);
     return `<tr data-task="${esc(t.task_id)}" data-state="${t.state}"><td>${esc(t.task_id)}</td><td>${t.uav_id}</td><td class="state">${t.state}</td>` +
       `<td>${esc(progress)}</td><td>${esc(t.reason)}</td><td>${live ? `<button class="abort" data-task="${esc(t.task_id)}">Abort</button>` : ""}</td></tr>`;
   }).join("");
+  // Only when it changed: a row (and its Abort button) stays the same element under the
+  // operator's pointer while the task waits.
+  if (html !== lastTasksHtml) {
+    $("#tasks tbody").innerHTML = html;
+    lastTasksHtml = html;
+  }
 }
+let lastTasksHtml = "";
 
 $("#tasks").addEventListener("click", async (e) => {
   const id = e.target.dataset?.task;
@@ -185,6 +191,7 @@ const plots = [
   [makePlot("#plot-thrust", "thrust", "m/s²"), "thrust"],
   [makePlot("#plot-solve", "solve time", "ms"), "solve"],
 ];
+let lastPlotMs = 0;
 function updatePlots(live) {
   const u = live?.["0"];
   if (!u) return;
@@ -193,13 +200,16 @@ function updatePlots(live) {
   plotData.thrust.push(u.thrust_m_s2 ?? null);
   plotData.solve.push(u.solve_time_us !== undefined ? u.solve_time_us / 1000 : null);
   if (plotData.t.length > kPlotSamples) for (const k in plotData) plotData[k].shift();
+  // Redrawn at 5 Hz: the samples keep the station's rate.
+  if (performance.now() - lastPlotMs < 200) return;
+  lastPlotMs = performance.now();
   for (const [plot, key] of plots) plot.setData([plotData.t, plotData[key]]);
 }
 
 // 3D view in a chosen UGV's frame G_k (x forward, z up): the grid, UGV k's deck at the
 // origin, each UAV where its relative state puts it, its reference path when planned in G_k.
 const canvas = $("#view3d");
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0x0d1117);
 const camera = new THREE.PerspectiveCamera(50, canvas.width / canvas.height, 0.05, 200);
@@ -218,7 +228,7 @@ scene.add(deck);
 const uavs = {};
 const paths = {};
 let frame = 0;
-$("#frame").onchange = (e) => { frame = Number(e.target.value); };
+$("#frame").onchange = (e) => { frame = Number(e.target.value); draw(); };
 
 function updateScene(live, fleet) {
   const ugvIds = fleet.filter((r) => r.kind === "ugv-agent" && r.id !== null).map((r) => r.id);
@@ -242,11 +252,23 @@ function updateScene(live, fleet) {
       scene.add(paths[u]);
     }
   }
+  draw();
 }
 
-function animate() {
-  renderer.render(scene, camera);
-  requestAnimationFrame(animate);
+// Drawn when the state changes (the station's rate), not every animation frame: the page
+// must leave the ground station's computer to the fleet.
+// At most 5 frames a second: software WebGL (SwiftShader, no GPU) takes ~0.1 s a frame.
+const kDrawPeriodMs = 200;
+let drawPending = false;
+let lastDrawMs = 0;
+function draw() {
+  if (drawPending) return;
+  drawPending = true;
+  setTimeout(() => requestAnimationFrame(() => {
+    drawPending = false;
+    lastDrawMs = performance.now();
+    renderer.render(scene, camera);
+  }), Math.max(0, lastDrawMs + kDrawPeriodMs - performance.now()));
 }
-animate();
+draw();
 connect();
