@@ -60,7 +60,7 @@ ORDER = [
     ["sim/fc", "sim/firmware", "sim/firmware_link", "sim/mocap", "sim"],
     ["sim/closed_loop"],
     # Processes and tools.
-    ["foxglove/params", "foxglove/core"],
+    ["foxglove/params", "foxglove/core", "ground_station/core"],
     ["tools/cover-launch", "tools/cover", "tools"],
     [
         "uav_agent/app",
@@ -70,6 +70,7 @@ ORDER = [
         "mocap/app",
         "task_manager/app",
         "foxglove/app",
+        "ground_station/app",
     ],
     # Tests read everything.
     ["tests"],

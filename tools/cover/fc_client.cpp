@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <random>
 
 #include "cover/clock/clock.hpp"
@@ -41,10 +42,12 @@ std::optional<msg::FcReply> FcClient::call(std::uint32_t uav_id, msg::FcCommandK
     return std::nullopt;
   }
   static const std::uint64_t salt = std::random_device{}();
+  // Distinct per call: the ground station sends many commands from one process.
+  static std::atomic<std::uint64_t> counter{0};
   msg::FcRequest request;
   request.submitter = ManagerClient::submitter();
-  request.request_id =
-      request.submitter + "/" + std::to_string(getpid()) + "/fc/" + std::to_string(salt % 100000);
+  request.request_id = request.submitter + "/" + std::to_string(getpid()) + "/fc/" +
+                       std::to_string(salt % 100000) + "/" + std::to_string(++counter);
   request.uav_id = uav_id;
   request.kind = kind;
   request.stamp_ns = clock::system_ns();

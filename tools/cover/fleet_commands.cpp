@@ -20,6 +20,7 @@
 #include "cover/dds/topics.hpp"
 #include "cover/dds/vendor.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "fleet_listener.hpp"
 #include "fleet_view.hpp"
 #include "manager_client.hpp"
 
@@ -41,121 +42,7 @@ constexpr double kEndpointMatching_s = 0.5;
 // exchange, 1 Hz).
 constexpr double kDescribeWait_s = 2.0;
 
-FleetKind kind_of(const msg::UavStatus&) {
-  return FleetKind::UavAgent;
-}
-FleetKind kind_of(const msg::FcState&) {
-  return FleetKind::FcBridge;
-}
-FleetKind kind_of(const msg::UgvStatus&) {
-  return FleetKind::UgvAgent;
-}
-FleetKind kind_of(const msg::SimClock&) {
-  return FleetKind::Sim;
-}
-
 }  // namespace
-
-// Every reader `cover fleet` holds, feeding one FleetView. The readers are the last
-// members: their callbacks use the view.
-class FleetListener {
- public:
-  FleetListener(dds::Participant& participant, const recording::FleetSize& size, double listen_s)
-      : participant_(participant), view_(listen_s), naming_grace_ns_(clock::s_to_ns(listen_s)) {
-    recording::for_each_fleet_topic_of<msg::UavStatus>(size, [&](const auto& t) { listen(t); });
-    recording::for_each_fleet_topic_of<msg::FcState>(size, [&](const auto& t) { listen(t); });
-    recording::for_each_fleet_topic_of<msg::UgvStatus>(size, [&](const auto& t) { listen(t); });
-    listen(dds::topics::sim_clock());
-    // The clock exchange names its askers and answerers ("host/process").
-    peers_requests_ = participant.make_reader(
-        dds::topics::time_request(),
-        [this](const msg::TimeSyncRequest& r) { heard_peers({r.requester}); });
-    peers_replies_ =
-        participant.make_reader(dds::topics::time_reply(), [this](const msg::TimeSyncReply& r) {
-          heard_peers({r.requester, r.responder});
-        });
-    listened_for_.insert(dds::topics::time_request().name());
-    listened_for_.insert(dds::topics::time_reply().name());
-  }
-
-  void heard(const msg::ManagerReply& reply) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    view_.heard(reply, dds::to_json(reply), clock::monotonic_ns());
-  }
-  // Readers that matched a writer are rows from then on, heard or not; the task manager
-  // too once its reply writer matched `manager`'s reader.
-  // The matched counts are read before the view's lock is taken: a vendor holds its
-  // reader's lock while it calls the reader's callback, which takes the view's.
-  void note_discoveries(const ManagerClient& manager) {
-    std::vector<const Matched*> found;
-    for (const Matched& m : matched_) {
-      if (m.writers()) found.push_back(&m);
-    }
-    const bool manager_found = manager.manager_discovered();
-    const std::int64_t now_ns = clock::monotonic_ns();
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const Matched* m : found) view_.discovered(m->kind, m->id, now_ns);
-    if (manager_found) view_.discovered(FleetKind::TaskManager, {}, now_ns);
-  }
-  // Every process heard is described (FleetView::settled).
-  bool settled() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return view_.settled(clock::monotonic_ns(), naming_grace_ns_);
-  }
-  std::vector<FleetRow> rows() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return view_.rows(clock::monotonic_ns());
-  }
-  // The topic patterns listened to, for the message when nothing was heard.
-  std::string listened_for() const {
-    std::string text;
-    for (const std::string& t : listened_for_) text += (text.empty() ? "" : ", ") + t;
-    return text;
-  }
-
- private:
-  // A reader of one status topic: its kind and id (the simulator's clock has none), and
-  // whether a writer matched it.
-  struct Matched {
-    FleetKind kind;
-    std::optional<std::uint32_t> id;
-    std::function<bool()> writers;
-  };
-
-  // The readers of one type are made in id order (for_each_fleet_topic_of).
-  template <typename T>
-  void listen(const dds::Topic<T>& topic) {
-    const dds::TopicInfo* info = dds::find_topic(topic.name());
-    listened_for_.insert(info ? info->pattern : topic.name());
-    auto& readers = std::get<std::vector<dds::Reader<T>>>(readers_);
-    const auto id = static_cast<std::uint32_t>(readers.size());
-    readers.push_back(participant_.make_reader(topic, [this](const T& sample) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      view_.heard(sample, dds::to_json(sample), clock::monotonic_ns());
-    }));
-    const FleetKind kind = kind_of(T{});
-    matched_.push_back({kind, kind == FleetKind::Sim ? std::nullopt : std::optional(id),
-                        [&readers, id] { return readers[id].matched_writers() > 0; }});
-  }
-  void heard_peers(std::initializer_list<std::string> names) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const std::string& name : names) {
-      if (!name.empty()) view_.heard_peer(name, clock::monotonic_ns());
-    }
-  }
-
-  dds::Participant& participant_;
-  mutable std::mutex mutex_;
-  FleetView view_;
-  std::int64_t naming_grace_ns_;
-  std::set<std::string> listened_for_;
-  std::vector<Matched> matched_;
-  std::tuple<std::vector<dds::Reader<msg::UavStatus>>, std::vector<dds::Reader<msg::FcState>>,
-             std::vector<dds::Reader<msg::UgvStatus>>, std::vector<dds::Reader<msg::SimClock>>>
-      readers_;
-  dds::Reader<msg::TimeSyncRequest> peers_requests_;
-  dds::Reader<msg::TimeSyncReply> peers_replies_;
-};
 
 namespace {
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include <atomic>
 #include <cstdlib>
 #include <random>
 
@@ -52,8 +53,11 @@ std::string ManagerClient::submitter() {
 
 std::string ManagerClient::next_request_id() {
   static const std::uint64_t salt = std::random_device{}();
+  // One count for the process: two clients in one process (cover-ground-station's query
+  // and command lines) must not give two requests the same id and take each other's replies.
+  static std::atomic<std::uint64_t> counter{0};
   return submitter() + "/" + std::to_string(getpid()) + "/" + std::to_string(salt % 100000) + "/" +
-         std::to_string(++counter_);
+         std::to_string(++counter);
 }
 
 void ManagerClient::address(msg::ManagerRequest& request) {

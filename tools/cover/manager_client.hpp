@@ -67,7 +67,6 @@ class ManagerClient {
   dds::Participant& participant_;
   std::chrono::milliseconds timeout_;
   std::chrono::milliseconds decision_timeout_;
-  std::uint64_t counter_ = 0;
   std::mutex mutex_;
   std::condition_variable arrived_;
   std::string awaited_id_;

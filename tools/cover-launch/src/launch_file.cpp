@@ -242,6 +242,7 @@ LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& con
   launch.optional("security", file.security);
   launch.optional("record", file.record);
   launch.optional("foxglove", file.foxglove);
+  launch.optional("ground_station", file.ground_station);
   YAML::Node processes;
   launch.require("processes", processes);
   launch.reject_unknown_keys();

@@ -7,6 +7,7 @@
 #include "cover/config/state_dir.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/security_options.hpp"
+#include "cover/launch/ground_station_view.hpp"
 #include "cover/launch/live_view.hpp"
 #include "cover/launch/placeholders.hpp"
 #include "cover/launch/recording.hpp"
@@ -97,6 +98,7 @@ LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options) {
   }
   apply_variables(file, options.variables);
   if (file.foxglove || options.foxglove) add_live_view(file);
+  if (file.ground_station || options.ground_station) add_ground_station(file);
   if (file.record || options.record) add_recorder(file, recorder_executable());
   apply_dds_overrides(file.processes, options.dds_overrides);
 

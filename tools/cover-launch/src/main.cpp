@@ -90,6 +90,7 @@ struct Flags {
   bool json = false;
   bool record = false;
   bool foxglove = false;
+  bool ground_station = false;
 };
 
 void add_flags(CLI::App& app, Flags& flags) {
@@ -114,6 +115,9 @@ void add_flags(CLI::App& app, Flags& flags) {
   app.add_flag("--foxglove", flags.foxglove,
                "Serve the run live to Foxglove on ws://HOST:8765 (as foxglove: true; "
                "docs/recording.md)");
+  app.add_flag("--ground-station", flags.ground_station,
+               "Serve the operator's page on http://127.0.0.1:8080 (as ground_station: true; its "
+               "address with the token in <run_dir>/ground_station.log)");
   app.add_flag("--json", flags.json,
                "Print result.json plus processes, run_dir and exit_code as one JSON object");
 }
@@ -148,6 +152,7 @@ LaunchOptions make_options(const Flags& flags, const LaunchFile& file) {
   options.security_directory = flags.security;
   options.record = flags.record;
   options.foxglove = flags.foxglove;
+  options.ground_station = flags.ground_station;
   options.launcher_pid = getpid();
   return options;
 }

@@ -60,6 +60,8 @@ struct LaunchFile {
   bool record = false;
   // Serves the run live to Foxglove (cover-foxglove-bridge, live_view.hpp): `foxglove:`.
   bool foxglove = false;
+  // Serves the operator's page (cover-ground-station, ground_station_view.hpp): `ground_station:`.
+  bool ground_station = false;
   std::string directory;  // the launch file's folder, for relative executable paths
 
   // Throws ConfigError naming the offending process, key or argument.

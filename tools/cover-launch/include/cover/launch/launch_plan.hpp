@@ -23,6 +23,7 @@ struct LaunchOptions {
   std::string security_directory;
   bool record = false;    // --record: as the file's `record: true`
   bool foxglove = false;  // --foxglove: as the file's `foxglove: true`
+  bool ground_station = false;  // --ground-station: as the file's `ground_station: true`
   pid_t launcher_pid = 0;
 };
 

@@ -1,0 +1,102 @@
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
+#include "cover/ground_station/api.hpp"
+#include "cover/ground_station/web_server.hpp"
+#include "cover/process/child_process.hpp"
+#include "cover/recording/fleet_topics.hpp"
+#include "fleet_listener.hpp"
+
+namespace cover::ground_station {
+
+struct StationOptions {
+  WebServerOptions web;
+  recording::FleetSize fleet;
+  double state_rate_hz = 10.0;  // the page's fleet, task and live-plot rows
+  double manager_query_period_s = 0.5;
+  double command_timeout_s = 5.0;        // a task manager's or an autopilot's answer
+  std::vector<std::string> record_argv;  // `cover record` and its DDS flags (-o is added)
+  std::string record_dir = ".";
+};
+
+// The adapter between the page's API and the fleet: the fleet as `cover fleet` hears it,
+// the task manager's tasks, each UAV's live plot values and 3D poses, into one state
+// message broadcast at state_rate_hz; the page's requests into the task manager's and the
+// bridges' requests on a worker thread, each answered with what they answered.
+class Station {
+ public:
+  Station(dds::Participant& participant, StationOptions options);
+  ~Station();
+  Station(const Station&) = delete;
+  Station& operator=(const Station&) = delete;
+
+  std::uint16_t port() const { return server_->port(); }
+  WebServerStats web_stats() const { return server_->stats(); }
+  // Serves until SIGINT/SIGTERM.
+  void run();
+
+ private:
+  struct Job {
+    std::uint64_t client = 0;
+    ApiRequest request;
+  };
+  // The latest live values of one UAV, for the plots and the 3D view.
+  struct Live {
+    std::optional<msg::UavCommand> command;
+    std::optional<msg::ControlTrace> trace;
+    std::optional<msg::ReferenceTrajectory> reference;
+    std::map<std::uint32_t, msg::RelativeState> relative;  // by UGV
+  };
+
+  void on_message(std::uint64_t client, bool has_token, const std::string& text);
+  void work();
+  void query_manager();
+  std::string answer(const ApiRequest& request, bool& ok, std::string& field);
+  std::string record(bool start, bool& ok);
+  nlohmann::json state_json();
+  nlohmann::json live_json();
+
+  dds::Participant& participant_;
+  StationOptions options_;
+  cli::FleetListener listener_;
+
+  std::mutex live_mutex_;
+  std::map<std::uint32_t, Live> live_;
+  std::vector<dds::Reader<msg::UavCommand>> command_readers_;
+  std::vector<dds::Reader<msg::ControlTrace>> trace_readers_;
+  std::vector<dds::Reader<msg::ReferenceTrajectory>> reference_readers_;
+  std::vector<dds::Reader<msg::RelativeState>> relative_readers_;
+
+  std::mutex tasks_mutex_;
+  nlohmann::json tasks_ = nlohmann::json::array();
+  std::string manager_note_ = "asking the task manager";
+
+  std::mutex record_mutex_;
+  std::unique_ptr<process::ChildProcess> recorder_;
+  std::string record_file_;
+
+  std::mutex jobs_mutex_;
+  std::condition_variable jobs_cv_;
+  std::deque<Job> jobs_;
+  std::atomic<bool> stopping_{false};
+
+  std::unique_ptr<WebServer> server_;  // after the state its handlers use
+  std::thread worker_;
+  std::thread manager_thread_;
+};
+
+}  // namespace cover::ground_station

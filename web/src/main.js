@@ -1,0 +1,274 @@
+// cover-ground-station's page: one WebSocket to the station (its API: ground_station/core
+// api.hpp), state rows at the station's rate, requests answered one by one.
+import * as THREE from "three";
+import uPlot from "uplot";
+
+const $ = (s) => document.querySelector(s);
+const token = new URLSearchParams(location.search).get("token") ?? "";
+const stats = { states: 0, latencies_ms: [], fleet_updates: 0, first_state_ms: 0 };
+window.__gs = stats; // read by the browser tests and cover-bench ground-station
+
+let ws;
+let nextId = 1;
+const pending = new Map();
+let lastState = null;
+
+function connect() {
+  const q = token ? `?token=${encodeURIComponent(token)}` : "";
+  ws = new WebSocket(`ws://${location.host}/ws${q}`);
+  ws.onopen = () => { $("#conn").textContent = "connected"; $("#conn").className = "ok"; };
+  ws.onclose = () => {
+    $("#conn").textContent = "disconnected: reconnecting"; $("#conn").className = "bad";
+    setTimeout(connect, 1000);
+  };
+  ws.onmessage = (e) => {
+    const m = JSON.parse(e.data);
+    if (m.type === "state") onState(m);
+    else if (m.type === "reply" && pending.has(m.id)) { pending.get(m.id)(m); pending.delete(m.id); }
+  };
+  $("#rights").textContent = token ? "commands allowed (token)" : "read only: open the address with its token to command";
+}
+
+function request(body) {
+  const id = `r${nextId++}`;
+  return new Promise((resolve) => {
+    pending.set(id, resolve);
+    ws.send(JSON.stringify({ ...body, id }));
+  });
+}
+
+// Two steps: the action names itself, the operator confirms, then the answer shows.
+function confirmThen(text) {
+  return new Promise((resolve) => {
+    $("#confirm-text").textContent = text;
+    $("#confirm").hidden = false;
+    const done = (yes) => { $("#confirm").hidden = true; resolve(yes); };
+    $("#confirm-yes").onclick = () => done(true);
+    $("#confirm-no").onclick = () => done(false);
+  });
+}
+
+const short = (s) => (typeof s === "string" ? s.replace(/^[A-Z]+_(?:[A-Z]+_)?/, "").toLowerCase() : s);
+
+function onState(m) {
+  stats.states++;
+  stats.latencies_ms.push(Date.now() - m.sent_ms);
+  if (stats.latencies_ms.length > 2000) stats.latencies_ms.shift();
+  if (!stats.first_state_ms) stats.first_state_ms = Date.now();
+  lastState = m;
+  renderFleet(m.fleet);
+  renderTasks(m.tasks, m.fleet, m.manager);
+  renderFc(m.fleet);
+  renderRecorder(m.recorder);
+  updatePlots(m.live);
+  updateScene(m.live, m.fleet);
+}
+
+function renderFleet(rows) {
+  const body = $("#fleet tbody");
+  const html = rows.map((r) => {
+    const offset = r.last && r.last.max_clock_offset_ms !== undefined ? `${r.last.max_clock_offset_ms.toFixed(1)} ms` : "-";
+    const lost = r.stale ? (r.age_s > 10 * r.stale_after_s ? "LOST " : "STALE ") : "";
+    return `<tr class="${r.stale ? "stale" : ""}" data-kind="${r.kind}" data-id="${r.id ?? ""}">` +
+      `<td>${r.kind}</td><td>${r.id ?? "-"}</td><td>${r.processes.join(", ")}</td>` +
+      `<td>${lost}${r.age_s.toFixed(2)} s</td><td>${esc(r.state)}</td><td>${esc(r.failsafe)}</td>` +
+      `<td>${esc(r.task)}</td><td>${esc(r.autopilot)}</td><td>${offset}</td></tr>`;
+  }).join("");
+  body.innerHTML = html;
+  stats.fleet_updates++;
+}
+
+function esc(s) {
+  return String(s ?? "").replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" }[c]));
+}
+
+function renderTasks(tasks, fleet, note) {
+  $("#manager-note").textContent = note ? `(${note})` : "";
+  const status = {};
+  for (const r of fleet) if (r.kind === "uav-agent" && r.last) status[r.last.task_id] = r.last;
+  const html = [...tasks].reverse().map((t) => {
+    const s = status[t.task_id];
+    const progress = s ? `${short(s.stage)} ${s.process_index + 1}/${s.process_count}, ${s.distance_to_stage_point_m.toFixed(2)} m to go, solver ${(s.solve_time_us / 1000).toFixed(1)} ms, failsafe ${short(s.failsafe)}` : "";
+    const live = ["queued", "dispatched", "running"].includes(t.state);
+    return `<tr data-task="${esc(t.task_id)}" data-state="${t.state}"><td>${esc(t.task_id)}</td><td>${t.uav_id}</td><td class="state">${t.state}</td>` +
+      `<td>${esc(progress)}</td><td>${esc(t.reason)}</td><td>${live ? `<button class="abort" data-task="${esc(t.task_id)}">Abort</button>` : ""}</td></tr>`;
+  }).join("");
+  // Only when it changed: a row (and its Abort button) stays the same element under the
+  // operator's pointer while the task waits.
+  if (html !== lastTasksHtml) {
+    $("#tasks tbody").innerHTML = html;
+    lastTasksHtml = html;
+  }
+}
+let lastTasksHtml = "";
+
+$("#tasks").addEventListener("click", async (e) => {
+  const id = e.target.dataset?.task;
+  if (!e.target.classList.contains("abort") || !id) return;
+  if (!(await confirmThen(`Abort task ${id}? The UAV holds, then lands.`))) return;
+  const reply = await request({ op: "abort", task_id: id, reason: "operator (ground station page)" });
+  $("#task-answer").textContent = `abort ${id}: ${reply.message}`;
+});
+
+const point = (s) => s.split(",").map((x) => Number(x.trim()));
+$("#task-form").addEventListener("submit", async (e) => {
+  e.preventDefault();
+  const f = new FormData(e.target);
+  document.querySelectorAll("#task-form .field-error").forEach((el) => { el.textContent = ""; });
+  const task = {
+    task_id: f.get("task_id"),
+    uav_id: Number(f.get("uav_id")),
+    processes: [{
+      from_ugv: Number(f.get("from_ugv")), to_ugv: Number(f.get("to_ugv")),
+      initial_point_m: point(f.get("initial_point_m")), transition_point_m: point(f.get("transition_point_m")),
+      final_point_m: point(f.get("final_point_m")), final_action: f.get("final_action"),
+      vmax_m_s: Number(f.get("vmax_m_s")), amax_m_s2: Number(f.get("amax_m_s2")),
+    }],
+  };
+  const reply = await request({ op: "submit", task });
+  $("#task-answer").textContent = `${reply.ok ? "accepted" : "refused"}: ${reply.message}`;
+  if (!reply.ok) {
+    const el = document.querySelector(`#task-form .field-error[data-field="${reply.field}"]`) ?? $("#task-error");
+    el.textContent = reply.message;
+  }
+});
+
+const fcAnswers = {};
+function renderFc(fleet) {
+  const bridges = fleet.filter((r) => r.kind === "fc-bridge" && r.id !== null);
+  const root = $("#fc");
+  for (const r of bridges) {
+    let box = root.querySelector(`.fc-uav[data-uav="${r.id}"]`);
+    if (!box) {
+      box = document.createElement("div");
+      box.className = "fc-uav";
+      box.dataset.uav = r.id;
+      box.innerHTML = `<div class="fc-status"></div>` +
+        ["arm", "offboard", "land", "disarm"].map((c) => `<button class="fc-cmd" data-cmd="${c}">${c}</button>`).join(" ") +
+        ` <span class="fc-answer"></span>`;
+      root.appendChild(box);
+    }
+    const s = r.last ?? {};
+    const battery = s.battery_remaining >= 0 ? `${Math.round(100 * s.battery_remaining)} %` : "?";
+    box.querySelector(".fc-status").textContent =
+      `UAV ${r.id}: link ${s.link_ok ? "ok" : "LOST"}, ${short(s.autopilot)}, mode ${s.mode_name ?? "?"}, ` +
+      `${s.armed ? "ARMED" : "disarmed"}, battery ${battery}, hover thrust ${(s.hover_thrust ?? 0).toFixed(3)}, ` +
+      `parameters ${s.flight_blocker ? "BLOCKED: " + s.flight_blocker : "ok"}`;
+  }
+}
+
+$("#fc").addEventListener("click", async (e) => {
+  if (!e.target.classList.contains("fc-cmd")) return;
+  const box = e.target.closest(".fc-uav");
+  const uav = Number(box.dataset.uav);
+  const cmd = e.target.dataset.cmd;
+  if (!(await confirmThen(`${cmd.toUpperCase()} UAV ${uav}? The autopilot decides and answers.`))) return;
+  const answer = box.querySelector(".fc-answer");
+  answer.textContent = `${cmd}: waiting for the autopilot`;
+  const reply = await request({ op: "fc", uav_id: uav, command: cmd });
+  answer.textContent = `${cmd}: ${reply.message}`;
+  answer.className = `fc-answer ${reply.ok ? "accepted" : "refused"}`;
+  fcAnswers[uav] = reply;
+});
+
+function renderRecorder(r) {
+  if (!r) return;
+  $("#rec-status").textContent = r.running ? `recording ${r.file}, ${(r.bytes / 1e6).toFixed(2)} MB` :
+    r.file ? `stopped: ${r.file}, ${(r.bytes / 1e6).toFixed(2)} MB` : "not recording";
+}
+$("#rec-start").onclick = async () => { $("#rec-status").textContent = (await request({ op: "record", action: "start" })).message; };
+$("#rec-stop").onclick = async () => { $("#rec-status").textContent = (await request({ op: "record", action: "stop" })).message; };
+
+// Live plots: the last 60 s of UAV 0's tracking error, thrust and solve time.
+const kPlotSamples = 600;
+const plotData = { t: [], tracking: [], thrust: [], solve: [] };
+function makePlot(el, label, unit, key) {
+  return new uPlot({ width: 420, height: 120, legend: { show: true }, scales: { x: { time: true } },
+    series: [{}, { label: `${label} (${unit})`, stroke: "#1f77b4" }] }, [[], []], $(el));
+}
+const plots = [
+  [makePlot("#plot-tracking", "tracking error", "m"), "tracking"],
+  [makePlot("#plot-thrust", "thrust", "m/s²"), "thrust"],
+  [makePlot("#plot-solve", "solve time", "ms"), "solve"],
+];
+let lastPlotMs = 0;
+function updatePlots(live) {
+  const u = live?.["0"];
+  if (!u) return;
+  plotData.t.push(Date.now() / 1000);
+  plotData.tracking.push(u.tracking_error_m ?? null);
+  plotData.thrust.push(u.thrust_m_s2 ?? null);
+  plotData.solve.push(u.solve_time_us !== undefined ? u.solve_time_us / 1000 : null);
+  if (plotData.t.length > kPlotSamples) for (const k in plotData) plotData[k].shift();
+  // Redrawn at 5 Hz: the samples keep the station's rate.
+  if (performance.now() - lastPlotMs < 200) return;
+  lastPlotMs = performance.now();
+  for (const [plot, key] of plots) plot.setData([plotData.t, plotData[key]]);
+}
+
+// 3D view in a chosen UGV's frame G_k (x forward, z up): the grid, UGV k's deck at the
+// origin, each UAV where its relative state puts it, its reference path when planned in G_k.
+const canvas = $("#view3d");
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0x0d1117);
+const camera = new THREE.PerspectiveCamera(50, canvas.width / canvas.height, 0.05, 200);
+camera.up.set(0, 0, 1);
+camera.position.set(-4, -5, 3.5);
+camera.lookAt(0, 0, 0.5);
+const grid = new THREE.GridHelper(20, 40, 0x3d4a57, 0x26303a);
+grid.rotation.x = Math.PI / 2;
+scene.add(grid, new THREE.AxesHelper(1), new THREE.AmbientLight(0xffffff, 0.6));
+const sun = new THREE.DirectionalLight(0xffffff, 0.9);
+sun.position.set(3, -2, 6);
+scene.add(sun);
+const deck = new THREE.Mesh(new THREE.BoxGeometry(1.0, 0.8, 0.1), new THREE.MeshLambertMaterial({ color: 0x2e7d32 }));
+deck.position.z = -0.05;
+scene.add(deck);
+const uavs = {};
+const paths = {};
+let frame = 0;
+$("#frame").onchange = (e) => { frame = Number(e.target.value); draw(); };
+
+function updateScene(live, fleet) {
+  const ugvIds = fleet.filter((r) => r.kind === "ugv-agent" && r.id !== null).map((r) => r.id);
+  const select = $("#frame");
+  if (select.options.length !== ugvIds.length) {
+    select.innerHTML = ugvIds.map((k) => `<option value="${k}">frame of UGV ${k}</option>`).join("");
+    select.value = String(frame);
+  }
+  for (const [u, l] of Object.entries(live ?? {})) {
+    if (!uavs[u]) {
+      uavs[u] = new THREE.Mesh(new THREE.SphereGeometry(0.15, 16, 12), new THREE.MeshLambertMaterial({ color: 0xffa726 }));
+      scene.add(uavs[u]);
+    }
+    const p = l.relative?.[String(frame)];
+    uavs[u].visible = !!p;
+    if (p) uavs[u].position.set(p[0], p[1], p[2]);
+    if (paths[u]) { scene.remove(paths[u]); paths[u].geometry.dispose(); delete paths[u]; }
+    if (l.reference && l.reference.ugv === frame) {
+      const g = new THREE.BufferGeometry().setFromPoints(l.reference.points.map((q) => new THREE.Vector3(q[0], q[1], q[2])));
+      paths[u] = new THREE.Line(g, new THREE.LineBasicMaterial({ color: 0x58a6ff }));
+      scene.add(paths[u]);
+    }
+  }
+  draw();
+}
+
+// Drawn when the state changes (the station's rate), not every animation frame: the page
+// must leave the ground station's computer to the fleet.
+// At most 5 frames a second: software WebGL (SwiftShader, no GPU) takes ~0.1 s a frame.
+const kDrawPeriodMs = 200;
+let drawPending = false;
+let lastDrawMs = 0;
+function draw() {
+  if (drawPending) return;
+  drawPending = true;
+  setTimeout(() => requestAnimationFrame(() => {
+    drawPending = false;
+    lastDrawMs = performance.now();
+    renderer.render(scene, camera);
+  }), Math.max(0, lastDrawMs + kDrawPeriodMs - performance.now()));
+}
+draw();
+connect();
