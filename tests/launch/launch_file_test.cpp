@@ -345,8 +345,9 @@ TEST(LaunchFile, ShippedFlightControllerLaunchesLoad) {
     }
   }
   EXPECT_NE(field.variables.at("autopilot_url").find("serial://"), std::string::npos);
-  for (const char* name : {"scenario2_px4.yaml", "scenario2_ardupilot.yaml",
-                           "scenario2_px4_sitl.yaml", "scenario2_ardupilot_sitl.yaml"}) {
+  for (const char* name :
+       {"scenario2_px4.yaml", "scenario2_ardupilot.yaml", "scenario2_px4_sitl.yaml",
+        "scenario2_ardupilot_sitl.yaml", "two_uavs_px4_sitl.yaml"}) {
     const LaunchFile simulated = LaunchFile::load_file(dir + name);
     EXPECT_EQ(simulated.kind, LaunchKind::Mission) << name;
     bool bridge_auto_arms = false;
