@@ -118,6 +118,7 @@ void Fleet::step_firmware_uav(Uav& uav) {
   const World& world = *uav.world;
   uav.outputs =
       uav.firmware->exchange(firmware_link::plant_sample(world.motor_uav(), world.state().uav));
+  uav.firmware_was_armed = uav.firmware_was_armed || uav.firmware->stats().armed;
 }
 
 void Fleet::settle_firmware() {
@@ -164,7 +165,10 @@ void Fleet::fill_shared() {
 OffboardState Fleet::offboard_view(const Uav& uav) {
   if (uav.autopilot) return uav.autopilot_view;
   if (uav.firmware) {
-    return uav.firmware->stats().armed ? OffboardState::Offboard : OffboardState::WaitingForAgent;
+    if (uav.firmware->stats().armed) {
+      return uav.firmware_landing ? OffboardState::LossDescent : OffboardState::Offboard;
+    }
+    return uav.firmware_was_armed ? OffboardState::LossDisarmed : OffboardState::WaitingForAgent;
   }
   return uav.failsafe.state();
 }

@@ -76,6 +76,9 @@ class Fleet {
   // Real firmware: one control period of the firmware alone on a still deck (its clock
   // runs, the world's stands: World::settle_uav), while it boots and aligns.
   void settle_firmware();
+  // What UAV `uav`'s bridge last said of its firmware's mode: in its own land mode or not
+  // (the segment's OffboardState for it: LossDescent while it lands).
+  void note_firmware_landing(int uav, bool landing) { uavs_[uav].firmware_landing = landing; }
   // The firmware's time of UAV `uav` (its steps since it booted), s.
   double firmware_time_s(int uav) const { return uavs_[uav].world->motor_uav().firmware_time_s(); }
   // Advances every world one control period (each holding its applied command).
@@ -102,6 +105,8 @@ class Fleet {
     std::unique_ptr<fc::SimulatedAutopilot> autopilot;      // with FleetAutopilots::profile
     std::unique_ptr<firmware_link::FirmwareLink> firmware;  // with FleetFirmware
     MotorOutputs outputs{};                                 // the firmware's, held
+    bool firmware_landing = false;                          // its bridge says: land mode
+    bool firmware_was_armed = false;
     // The autopilot's state as the segment shows it, taken at its last step (the autopilot
     // itself changes on its link's thread; advance() must not read it).
     OffboardState autopilot_view = OffboardState::WaitingForAgent;

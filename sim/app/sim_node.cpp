@@ -290,6 +290,7 @@ void SimNode::apply_commands(bool lockstep) {
       std::lock_guard<std::mutex> lock(mutex_);
       const Mailbox& box = mailboxes_[u];
       if (box.trace) status = wire::from_msg(*box.trace);
+      if (fleet_.has_firmware()) fleet_.note_firmware_landing(u, box.firmware_landing);
       if (box.command) {
         command = wire::from_msg(*box.command);
         age_s = lockstep ? 0.0 : static_cast<double>(now_ns - box.command_received_ns) * 1e-9;

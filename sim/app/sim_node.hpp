@@ -98,7 +98,7 @@ class SimNode {
     std::size_t events_logged = 0;
     // Real firmware: as its bridge reports it (cover/uav/<u>/fc).
     bool estimator_ok = false;
-    bool firmware_armed = false;
+    bool firmware_landing = false;  // in its own land mode
   };
 
   bool wait_for_agents();

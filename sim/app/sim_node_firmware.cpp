@@ -83,7 +83,7 @@ void SimNode::on_fc_state(int u, const msg::FcState& state) {
   std::lock_guard<std::mutex> lock(mutex_);
   Mailbox& box = mailboxes_[u];
   box.estimator_ok = state.estimator_reported && state.estimator_ok;
-  box.firmware_armed = state.armed;
+  box.firmware_landing = state.mode == msg::FcMode::FC_MODE_LAND;
 }
 
 }  // namespace cover::sim

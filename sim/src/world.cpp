@@ -125,6 +125,8 @@ void World::step(const MotorOutputs& outputs) {
   settling_ = false;
   motor_uav_->command(outputs);
   motor_uav_->step(state_.uav, state_.uav_contact, surfaces(), extra_mass_kg());
+  // What the plant holds, in the rate model's terms: the rotors' thrust per unit mass.
+  state_.last_command.thrust_m_s2 = state_.uav.thrust_n / (motor_uav_->mass_kg() + extra_mass_kg());
   update_payload();
   update_sensors();
 }

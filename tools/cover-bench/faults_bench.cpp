@@ -214,11 +214,30 @@ std::string scenario_with_sensor_faults(const std::string& fault, const std::str
   return path;
 }
 
+// --firmware: the faults that mean the same with a real firmware in the loop (the others
+// inject into COVER's simulated autopilot or the simulator itself).
+const std::vector<std::string> kFirmwareFaults = {"uav_agent_kill", "ugv_agent_kill",
+                                                  "relative_state_gap", "bridge_kill"};
+
+// A real firmware (PX4 / ArduCopter SITL) flying the run: its instance, ports and files.
+struct FirmwareRun {
+  std::string name;  // "px4" / "ardupilot"
+  int instance = 1;
+  bool px4() const { return name == "px4"; }
+  int physics_port() const { return px4() ? 4560 + instance : 9002 + 10 * instance; }
+  int mavlink_port() const { return 14540 + instance; }
+  std::string params_file() const {
+    return cover::config::default_config_dir() +
+           (px4() ? "/firmware/px4_hil.params" : "/firmware/arducopter_json.parm");
+  }
+};
+
 class FaultRun {
  public:
   FaultRun(const std::string& fault, const std::string& mix, std::uint64_t seed, int domain,
-           const std::string& dir)
+           const std::string& dir, const std::optional<FirmwareRun>& firmware = std::nullopt)
       : claim_(cover::dds::DomainClaim::claim(domain, std::chrono::minutes(10))),
+        firmware_(firmware),
         fault_(fault),
         domain_(domain),
         dir_(dir),
@@ -231,7 +250,7 @@ class FaultRun {
     // Scenario 2 flies for ~10 s: from the climb (2 s) to the final stage's approach (8 s).
     // Through the bridge it starts ~2 s later (setpoints stream 1 s before OFFBOARD, then
     // the arming): the same stretch of flight.
-    const double start_s = through_bridge(fault) ? 4.0 : 2.0;
+    const double start_s = through_bridge(fault) || firmware_ ? 4.0 : 2.0;
     if (!whole_run) {
       row_.fault_time_s = std::uniform_real_distribution<double>(start_s, start_s + 6.0)(random);
     }
@@ -253,8 +272,17 @@ class FaultRun {
       sim.insert(sim.end(), {"--relative-gap", std::to_string(row_.fault_time_s),
                              std::to_string(kGapDuration_s)});
     }
-    const std::string fc_port = std::to_string(bridge_port(domain));
-    if (through_bridge(fault)) {
+    const std::string fc_port =
+        std::to_string(firmware_ ? firmware_->mavlink_port() : bridge_port(domain));
+    if (firmware_) {
+      sim.insert(sim.end(), {"--firmware", firmware_->name, "--firmware-port-base",
+                             std::to_string(firmware_->physics_port())});
+      firmware_process_ =
+          spawn({(kBinDir / "cover-firmware").string(), firmware_->name, "--instance",
+                 std::to_string(firmware_->instance), "--workdir", dir_ + "/" + run_id_ + "_sitl",
+                 "--params", firmware_->params_file()},
+                v.sim, "firmware");
+    } else if (through_bridge(fault)) {
       sim.insert(sim.end(), {"--fc", "px4", "--fc-peer-port-base", fc_port, "--fc-bind-port-base",
                              std::to_string(bridge_port(domain) + 1)});
     }
@@ -277,18 +305,27 @@ class FaultRun {
                                  "2",
                                  "--task",
                                  cover::config::default_config_dir() + "/tasks/scenario2.yaml"};
-    if (through_bridge(fault)) {
+    if (through_bridge(fault) || firmware_) {
       uav.push_back("--fc-bridge");
-      bridge_ =
-          spawn({(kBinDir / "cover-fc-bridge").string(), "--id", "0", "--autopilot", "px4", "--url",
-                 "udpin://127.0.0.1:" + fc_port, "--clock", "realtime", "--auto-arm"},
-                v.uav, "bridge");
+      std::vector<std::string> bridge{(kBinDir / "cover-fc-bridge").string(),
+                                      "--id",
+                                      "0",
+                                      "--autopilot",
+                                      firmware_ ? firmware_->name : "px4",
+                                      "--url",
+                                      "udpin://127.0.0.1:" + fc_port,
+                                      "--clock",
+                                      "realtime",
+                                      "--auto-arm"};
+      if (firmware_) bridge.push_back("--real-firmware");
+      bridge_ = spawn(bridge, v.uav, "bridge");
     }
     uav_ = spawn(uav, v.uav, "uav");
   }
   ~FaultRun() {
     world_.reset();
-    for (auto* child : {uav_.get(), bridge_.get(), ugvs_[0].get(), ugvs_[1].get(), sim_.get()}) {
+    for (auto* child : {uav_.get(), bridge_.get(), ugvs_[0].get(), ugvs_[1].get(), sim_.get(),
+                        firmware_process_.get()}) {
       if (child) child->terminate(10s, SIGINT);
     }
   }
@@ -417,13 +454,22 @@ class FaultRun {
     // Nobody will end the task: the agent is gone, or it failed the task (its autopilot
     // link lost, its bridge gone) and the autopilot lands on its own.
     const bool agent_gone = fault_ == "uav_agent_kill" || through_bridge(fault_);
+    // A firmware stops its motors itself (PX4 2 s after landing, ArduCopter on its delay):
+    // its rotors then spin down, their thrust never exactly 0.
+    const auto disarmed_now = [&](const cover::sim::SharedUav& uav) {
+      if (firmware_) {
+        return uav.offboard == OffboardState::LossDisarmed ||
+               uav.offboard == OffboardState::WaitingForAgent;
+      }
+      return agent_gone ? uav.offboard == OffboardState::LossDisarmed
+                        : uav.command.thrust_m_s2 == 0.0;
+    };
     // Until the run is over (the simulator exits when the task has ended), or the UAV rests
     // disarmed when nobody will end the task.
     watch(
         [&](const SharedWorld& w) {
           const auto& uav = w.uavs[0];
-          const bool disarmed = agent_gone ? uav.offboard == OffboardState::LossDisarmed
-                                           : uav.command.thrust_m_s2 == 0.0;
+          const bool disarmed = disarmed_now(uav);
           return uav.contact.resting && disarmed && landing_.touchdown_speed_m_s >= 0.0 &&
                  (agent_gone || row_.fault == "ugv_agent_kill");
         },
@@ -473,6 +519,7 @@ class FaultRun {
   // First: the domain is this run's until every process of it has stopped (a test or
   // another benchmark publishing there once ended a run with its own UAV 0's samples).
   cover::dds::DomainClaim claim_;
+  std::optional<FirmwareRun> firmware_;  // --firmware: the real firmware flies the UAV
   std::string fault_;
   int domain_;
   std::string dir_;
@@ -482,7 +529,8 @@ class FaultRun {
   std::unique_ptr<ChildProcess> sim_;
   std::vector<std::unique_ptr<ChildProcess>> ugvs_;
   std::unique_ptr<ChildProcess> uav_;
-  std::unique_ptr<ChildProcess> bridge_;  // the flight-controller faults only
+  std::unique_ptr<ChildProcess> bridge_;            // the flight-controller faults, or --firmware
+  std::unique_ptr<ChildProcess> firmware_process_;  // --firmware: cover-firmware
   std::optional<cover::shm::SeqlockReader<SharedWorld>> world_;
   std::unique_ptr<SharedWorld> last_ = std::make_unique<SharedWorld>();
   std::optional<int> sim_exit_;
@@ -572,7 +620,25 @@ int run(const std::vector<std::string>& args) {
   app.add_option("--wifi-domain", wifi.first_domain, "wifi_loss: first DDS domain (10 in turn)")
       ->check(CLI::Range(0, 222))
       ->capture_default_str();
+  std::string firmware;
+  app.add_option("--firmware", firmware,
+                 "px4 | ardupilot: the real firmware (SITL, COVER_PX4_SITL / COVER_ARDUPILOT_SITL) "
+                 "flies the UAV on cover-sim's physics, through cover-fc-bridge; faults "
+                 "uav_agent_kill, ugv_agent_kill, relative_state_gap, bridge_kill")
+      ->check(CLI::IsMember({"px4", "ardupilot"}));
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
+  if (!firmware.empty()) {
+    if (app.count("--fault") == 0) faults = kFirmwareFaults;
+    for (const std::string& fault : faults) {
+      if (std::find(kFirmwareFaults.begin(), kFirmwareFaults.end(), fault) ==
+          kFirmwareFaults.end()) {
+        std::cerr << "cover-bench faults: --firmware: " << fault
+                  << " injects into COVER's simulated autopilot or simulator; with a real "
+                     "firmware: uav_agent_kill, ugv_agent_kill, relative_state_gap, bridge_kill\n";
+        return 2;
+      }
+    }
+  }
   const std::string dir =
       (std::filesystem::temp_directory_path() / ("cover_faults_" + std::to_string(getpid())))
           .string();
@@ -598,7 +664,9 @@ int run(const std::vector<std::string>& args) {
     }
     for (int i = 0; i < count; ++i, ++index) {
       const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
-      FaultRun one(fault, mix_of_seed(mix, seed), seed, domain + index % 30, dir);
+      std::optional<FirmwareRun> sitl;
+      if (!firmware.empty()) sitl = FirmwareRun{firmware, 1 + index % 5};
+      FaultRun one(fault, mix_of_seed(mix, seed), seed, domain + index % 30, dir, sitl);
       rows.push_back(one.run());
       if (!json) print_progress(rows.back());
     }
