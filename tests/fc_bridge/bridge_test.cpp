@@ -280,6 +280,29 @@ TEST(Bridge, ArmedFromTheAcceptedArmBeforeTheNextHeartbeat) {
   EXPECT_FALSE(rig.bridge.state(rig.t).armed);
 }
 
+// The same for the mode: OFFBOARD / GUIDED_NOGPS accepted is the mode at once, an older
+// HEARTBEAT within the hold does not undo it, a later one does.
+TEST(Bridge, ModeFromTheAcceptedSetModeBeforeTheNextHeartbeat) {
+  for (const AutopilotKind kind : {AutopilotKind::Px4, AutopilotKind::ArduPilot}) {
+    Rig rig(kind);
+    rig.heartbeats = false;
+    rig.heartbeat();
+    rig.run(1.1);  // the stream the request needs
+    ASSERT_NE(rig.bridge.state(rig.t).mode, FcMode::Offboard);
+    const std::uint32_t before = rig.custom_mode;
+    rig.take(rig.bridge.on_operator_request(OperatorCommand::Offboard, "offboard", rig.t));
+    ASSERT_EQ(rig.custom_mode, rig.offboard_mode()) << to_string(kind);
+    EXPECT_EQ(rig.bridge.state(rig.t).mode, FcMode::Offboard) << to_string(kind);
+    rig.custom_mode = before;  // sent before the change, read after the ACK
+    rig.run(0.2);
+    rig.heartbeat();
+    EXPECT_EQ(rig.bridge.state(rig.t).mode, FcMode::Offboard) << to_string(kind);
+    rig.run(AutopilotSession::kAckedArmingHold_s);
+    rig.heartbeat();  // the autopilot did not stay in it: its word counts again
+    EXPECT_NE(rig.bridge.state(rig.t).mode, FcMode::Offboard) << to_string(kind);
+  }
+}
+
 TEST(Bridge, AutoArmStreamsThenOffboardThenArms) {
   for (const AutopilotKind kind : {AutopilotKind::Px4, AutopilotKind::ArduPilot}) {
     Rig rig(kind, true);

@@ -81,6 +81,10 @@ void AutopilotSession::on_heartbeat(const mavlink::Frame& frame, double now_s) {
     armed_ = armed;
     acked_armed_.reset();
   }
+  const bool mode_older_than_ack =
+      acked_mode_ && hb.custom_mode != *acked_mode_ && now_s - acked_mode_s_ <= kAckedArmingHold_s;
+  if (mode_older_than_ack) return;
+  acked_mode_.reset();
   const bool changed = mode_name_ == "unknown" || hb.custom_mode != custom_mode_ ||
                        (hb.base_mode & mav::mav_mode_flag::kCustomModeEnabled) !=
                            (base_mode_ & mav::mav_mode_flag::kCustomModeEnabled);
@@ -96,6 +100,17 @@ void AutopilotSession::on_arming_accepted(bool armed, double now_s) {
   armed_ = armed;
   acked_armed_ = armed;
   acked_armed_s_ = now_s;
+}
+
+void AutopilotSession::on_mode_accepted(std::uint8_t base_mode, std::uint32_t custom_mode,
+                                        double now_s) {
+  base_mode_ =
+      static_cast<std::uint8_t>((base_mode_ & mav::mav_mode_flag::kSafetyArmed) | base_mode);
+  custom_mode_ = custom_mode;
+  mode_ = profile_.decode_mode(base_mode_, custom_mode_);
+  mode_name_ = profile_.mode_name(base_mode_, custom_mode_);
+  acked_mode_ = custom_mode;
+  acked_mode_s_ = now_s;
 }
 
 void AutopilotSession::on_sys_status(const mavlink::Frame& frame) {

@@ -468,6 +468,16 @@ void Bridge::finish(const InFlight& flight, const CommandResult& result, double 
       flight.spec.command == mav::mav_cmd::kComponentArmDisarm) {
     session_.on_arming_accepted(flight.spec.param[0] > 0.5F, now_s);
   }
+  if (result.outcome == CommandOutcome::Accepted &&
+      flight.spec.command == mav::mav_cmd::kDoSetMode) {
+    const auto main = static_cast<std::uint8_t>(flight.spec.param[1]);
+    const auto sub = static_cast<std::uint8_t>(flight.spec.param[2]);
+    session_.on_mode_accepted(static_cast<std::uint8_t>(flight.spec.param[0]),
+                              profile_.kind() == AutopilotKind::Px4
+                                  ? mav::px4_mode::custom_mode(main, sub)
+                                  : std::uint32_t{main},
+                              now_s);
+  }
   switch (flight.origin) {
     case Origin::Operator:
       if (result.outcome == CommandOutcome::Refused) {

@@ -51,6 +51,9 @@ class AutopilotSession {
   // within kAckedArmingHold_s of the answer was sent before the change took effect (PX4
   // publishes its vehicle_status after the ACK) and does not undo it; a later one does.
   void on_arming_accepted(bool armed, double now_s);
+  // The same for an accepted DO_SET_MODE (`base_mode` and `custom_mode` as a HEARTBEAT would
+  // carry them): the mode asked for, held against older HEARTBEATs as the arming is.
+  void on_mode_accepted(std::uint8_t base_mode, std::uint32_t custom_mode, double now_s);
   static constexpr double kAckedArmingHold_s = 0.5;
 
  private:
@@ -70,6 +73,8 @@ class AutopilotSession {
   bool armed_ = false;
   std::optional<bool> acked_armed_;  // an accepted arm / disarm no HEARTBEAT has shown yet
   double acked_armed_s_ = 0.0;
+  std::optional<std::uint32_t> acked_mode_;  // an accepted DO_SET_MODE no HEARTBEAT has shown
+  double acked_mode_s_ = 0.0;
   FcMode mode_ = FcMode::Unknown;
   std::string mode_name_ = "unknown";
   std::uint8_t base_mode_ = 0;
