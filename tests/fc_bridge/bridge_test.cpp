@@ -239,7 +239,7 @@ TEST(Bridge, NeverArmsWithoutAnOperatorOrAutoArm) {
 // Both firmwares arm before they ACK: the accepted answer is the new state, a second before
 // the 1 Hz HEARTBEAT would show it (a task waiting for it starts that much sooner). A
 // HEARTBEAT sent before the arming took effect and read after the ACK does not undo it; one
-// still saying disarmed past AutopilotSession::kAckedArmingHold_s does.
+// still saying disarmed past AutopilotSession::kAckedStateHold_s does.
 TEST(Bridge, ArmedFromTheAcceptedArmBeforeTheNextHeartbeat) {
   Rig rig;
   rig.heartbeats = false;  // only the HEARTBEATs this test sends
@@ -267,7 +267,7 @@ TEST(Bridge, ArmedFromTheAcceptedArmBeforeTheNextHeartbeat) {
   rig.take(rig.bridge.on_operator_request(OperatorCommand::Arm, "arm again", rig.t));
   ASSERT_TRUE(rig.bridge.state(rig.t).armed);
   rig.armed = false;
-  rig.run(AutopilotSession::kAckedArmingHold_s + 0.05);
+  rig.run(AutopilotSession::kAckedStateHold_s + 0.05);
   rig.heartbeat();
   EXPECT_FALSE(rig.bridge.state(rig.t).armed);
 
@@ -297,7 +297,7 @@ TEST(Bridge, ModeFromTheAcceptedSetModeBeforeTheNextHeartbeat) {
     rig.run(0.2);
     rig.heartbeat();
     EXPECT_EQ(rig.bridge.state(rig.t).mode, FcMode::Offboard) << to_string(kind);
-    rig.run(AutopilotSession::kAckedArmingHold_s);
+    rig.run(AutopilotSession::kAckedStateHold_s);
     rig.heartbeat();  // the autopilot did not stay in it: its word counts again
     EXPECT_NE(rig.bridge.state(rig.t).mode, FcMode::Offboard) << to_string(kind);
   }

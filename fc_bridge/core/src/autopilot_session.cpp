@@ -76,13 +76,13 @@ void AutopilotSession::on_heartbeat(const mavlink::Frame& frame, double now_s) {
   reported_autopilot_ = hb.autopilot;
   const bool armed = (hb.base_mode & mav::mav_mode_flag::kSafetyArmed) != 0;
   const bool older_than_ack =
-      acked_armed_ && armed != *acked_armed_ && now_s - acked_armed_s_ <= kAckedArmingHold_s;
+      acked_armed_ && armed != *acked_armed_ && now_s - acked_armed_s_ <= kAckedStateHold_s;
   if (!older_than_ack) {
     armed_ = armed;
     acked_armed_.reset();
   }
   const bool mode_older_than_ack =
-      acked_mode_ && hb.custom_mode != *acked_mode_ && now_s - acked_mode_s_ <= kAckedArmingHold_s;
+      acked_mode_ && hb.custom_mode != *acked_mode_ && now_s - acked_mode_s_ <= kAckedStateHold_s;
   if (mode_older_than_ack) return;
   acked_mode_.reset();
   const bool changed = mode_name_ == "unknown" || hb.custom_mode != custom_mode_ ||

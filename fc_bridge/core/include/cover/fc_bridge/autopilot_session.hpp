@@ -48,13 +48,13 @@ class AutopilotSession {
   // The autopilot accepted our COMPONENT_ARM_DISARM at `now_s`. PX4 and ArduPilot change
   // their arming state before they answer, so the answer is the new state, up to a HEARTBEAT
   // period (1 s) before a HEARTBEAT shows it. A HEARTBEAT that still shows the old state
-  // within kAckedArmingHold_s of the answer was sent before the change took effect (PX4
+  // within kAckedStateHold_s of the answer was sent before the change took effect (PX4
   // publishes its vehicle_status after the ACK) and does not undo it; a later one does.
   void on_arming_accepted(bool armed, double now_s);
   // The same for an accepted DO_SET_MODE (`base_mode` and `custom_mode` as a HEARTBEAT would
   // carry them): the mode asked for, held against older HEARTBEATs as the arming is.
   void on_mode_accepted(std::uint8_t base_mode, std::uint32_t custom_mode, double now_s);
-  static constexpr double kAckedArmingHold_s = 0.5;
+  static constexpr double kAckedStateHold_s = 0.5;
 
  private:
   bool learn(const mavlink::Frame& frame);
