@@ -236,6 +236,73 @@ TEST(Bridge, NeverArmsWithoutAnOperatorOrAutoArm) {
   EXPECT_EQ(rig.bridge.replies()[0].outcome, CommandOutcome::Accepted);
 }
 
+// Both firmwares arm before they ACK: the accepted answer is the new state, a second before
+// the 1 Hz HEARTBEAT would show it (a task waiting for it starts that much sooner). A
+// HEARTBEAT sent before the arming took effect and read after the ACK does not undo it; one
+// still saying disarmed past AutopilotSession::kAckedStateHold_s does.
+TEST(Bridge, ArmedFromTheAcceptedArmBeforeTheNextHeartbeat) {
+  Rig rig;
+  rig.heartbeats = false;  // only the HEARTBEATs this test sends
+  rig.heartbeat();
+  rig.run(0.5);
+  ASSERT_FALSE(rig.bridge.state(rig.t).armed);
+  rig.take(rig.bridge.on_operator_request(OperatorCommand::Arm, "arm", rig.t));
+  ASSERT_TRUE(rig.armed);  // the autopilot armed and answered
+  EXPECT_TRUE(rig.bridge.state(rig.t).armed);
+  rig.armed = false;  // a HEARTBEAT from before the arming, read after the ACK
+  rig.run(0.2);
+  rig.heartbeat();
+  EXPECT_TRUE(rig.bridge.state(rig.t).armed);
+  rig.armed = true;
+  rig.run(0.2);
+  rig.heartbeat();
+  EXPECT_TRUE(rig.bridge.state(rig.t).armed);
+  // Once a HEARTBEAT has shown the arming, it is the autopilot's word again at once.
+  rig.armed = false;
+  rig.run(0.01);
+  rig.heartbeat();
+  EXPECT_FALSE(rig.bridge.state(rig.t).armed);
+
+  // An arming the autopilot undid: the disarmed HEARTBEAT past the hold counts.
+  rig.take(rig.bridge.on_operator_request(OperatorCommand::Arm, "arm again", rig.t));
+  ASSERT_TRUE(rig.bridge.state(rig.t).armed);
+  rig.armed = false;
+  rig.run(AutopilotSession::kAckedStateHold_s + 0.05);
+  rig.heartbeat();
+  EXPECT_FALSE(rig.bridge.state(rig.t).armed);
+
+  // A refused arm changes nothing.
+  rig.obey = false;
+  rig.take(rig.bridge.on_operator_request(OperatorCommand::Arm, "refused", rig.t));
+  rig.bridge.on_frame(rig.autopilot.ack(mav::mav_cmd::kComponentArmDisarm,
+                                        mav::mav_result::kTemporarilyRejected, 7, 191),
+                      rig.t);
+  EXPECT_FALSE(rig.bridge.state(rig.t).armed);
+}
+
+// The same for the mode: OFFBOARD / GUIDED_NOGPS accepted is the mode at once, an older
+// HEARTBEAT within the hold does not undo it, a later one does.
+TEST(Bridge, ModeFromTheAcceptedSetModeBeforeTheNextHeartbeat) {
+  for (const AutopilotKind kind : {AutopilotKind::Px4, AutopilotKind::ArduPilot}) {
+    Rig rig(kind);
+    rig.heartbeats = false;
+    rig.heartbeat();
+    rig.run(1.1);  // the stream the request needs
+    ASSERT_NE(rig.bridge.state(rig.t).mode, FcMode::Offboard);
+    const std::uint32_t before = rig.custom_mode;
+    rig.take(rig.bridge.on_operator_request(OperatorCommand::Offboard, "offboard", rig.t));
+    ASSERT_EQ(rig.custom_mode, rig.offboard_mode()) << to_string(kind);
+    EXPECT_EQ(rig.bridge.state(rig.t).mode, FcMode::Offboard) << to_string(kind);
+    rig.custom_mode = before;  // sent before the change, read after the ACK
+    rig.run(0.2);
+    rig.heartbeat();
+    EXPECT_EQ(rig.bridge.state(rig.t).mode, FcMode::Offboard) << to_string(kind);
+    rig.run(AutopilotSession::kAckedStateHold_s);
+    rig.heartbeat();  // the autopilot did not stay in it: its word counts again
+    EXPECT_NE(rig.bridge.state(rig.t).mode, FcMode::Offboard) << to_string(kind);
+  }
+}
+
 TEST(Bridge, AutoArmStreamsThenOffboardThenArms) {
   for (const AutopilotKind kind : {AutopilotKind::Px4, AutopilotKind::ArduPilot}) {
     Rig rig(kind, true);

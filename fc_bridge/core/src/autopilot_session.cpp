@@ -74,7 +74,17 @@ void AutopilotSession::on_heartbeat(const mavlink::Frame& frame, double now_s) {
   if (hb.autopilot == mav::mav_autopilot::kInvalid) return;
   last_heartbeat_s_ = now_s;
   reported_autopilot_ = hb.autopilot;
-  armed_ = (hb.base_mode & mav::mav_mode_flag::kSafetyArmed) != 0;
+  const bool armed = (hb.base_mode & mav::mav_mode_flag::kSafetyArmed) != 0;
+  const bool older_than_ack =
+      acked_armed_ && armed != *acked_armed_ && now_s - acked_armed_s_ <= kAckedStateHold_s;
+  if (!older_than_ack) {
+    armed_ = armed;
+    acked_armed_.reset();
+  }
+  const bool mode_older_than_ack =
+      acked_mode_ && hb.custom_mode != *acked_mode_ && now_s - acked_mode_s_ <= kAckedStateHold_s;
+  if (mode_older_than_ack) return;
+  acked_mode_.reset();
   const bool changed = mode_name_ == "unknown" || hb.custom_mode != custom_mode_ ||
                        (hb.base_mode & mav::mav_mode_flag::kCustomModeEnabled) !=
                            (base_mode_ & mav::mav_mode_flag::kCustomModeEnabled);
@@ -84,6 +94,23 @@ void AutopilotSession::on_heartbeat(const mavlink::Frame& frame, double now_s) {
     mode_ = profile_.decode_mode(hb.base_mode, hb.custom_mode);
     mode_name_ = profile_.mode_name(hb.base_mode, hb.custom_mode);
   }
+}
+
+void AutopilotSession::on_arming_accepted(bool armed, double now_s) {
+  armed_ = armed;
+  acked_armed_ = armed;
+  acked_armed_s_ = now_s;
+}
+
+void AutopilotSession::on_mode_accepted(std::uint8_t base_mode, std::uint32_t custom_mode,
+                                        double now_s) {
+  base_mode_ =
+      static_cast<std::uint8_t>((base_mode_ & mav::mav_mode_flag::kSafetyArmed) | base_mode);
+  custom_mode_ = custom_mode;
+  mode_ = profile_.decode_mode(base_mode_, custom_mode_);
+  mode_name_ = profile_.mode_name(base_mode_, custom_mode_);
+  acked_mode_ = custom_mode;
+  acked_mode_s_ = now_s;
 }
 
 void AutopilotSession::on_sys_status(const mavlink::Frame& frame) {

@@ -438,7 +438,7 @@ bool Bridge::send_command(const CommandSpec& spec, Origin origin, std::string wh
   note(origin == Origin::Failsafe ? Notice::Level::Error : Notice::Level::Info,
        what + " requested (" + command_name(spec.command) + ")" +
            (request_id.empty() ? "" : " for request '" + request_id + "'"));
-  in_flight_.push_back({token, origin, request_id, std::move(what)});
+  in_flight_.push_back({token, origin, request_id, std::move(what), spec});
   out_.push_back(encoder_.encode(*message));
   return true;
 }
@@ -462,6 +462,22 @@ void Bridge::finish(const InFlight& flight, const CommandResult& result, double 
       flight.what + ": " + to_string(result.outcome) + " (" + result.message + ")";
   note(result.outcome == CommandOutcome::Accepted ? Notice::Level::Info : Notice::Level::Warning,
        text);
+  // Armed (or disarmed) from the answer, not a HEARTBEAT up to a second later: a task waiting
+  // for the arming starts up to a second sooner.
+  if (result.outcome == CommandOutcome::Accepted &&
+      flight.spec.command == mav::mav_cmd::kComponentArmDisarm) {
+    session_.on_arming_accepted(flight.spec.param[0] > 0.5F, now_s);
+  }
+  if (result.outcome == CommandOutcome::Accepted &&
+      flight.spec.command == mav::mav_cmd::kDoSetMode) {
+    const auto main = static_cast<std::uint8_t>(flight.spec.param[1]);
+    const auto sub = static_cast<std::uint8_t>(flight.spec.param[2]);
+    session_.on_mode_accepted(static_cast<std::uint8_t>(flight.spec.param[0]),
+                              profile_.kind() == AutopilotKind::Px4
+                                  ? mav::px4_mode::custom_mode(main, sub)
+                                  : std::uint32_t{main},
+                              now_s);
+  }
   switch (flight.origin) {
     case Origin::Operator:
       if (result.outcome == CommandOutcome::Refused) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "cover/fc_bridge/autopilot_profile.hpp"
@@ -44,6 +45,16 @@ class AutopilotSession {
   std::uint64_t status_text_count() const { return status_text_count_; }
   // A text the autopilot sent another way than STATUSTEXT (PX4's EVENTs), kept as its last.
   void report_text(std::string text, std::uint8_t severity);
+  // The autopilot accepted our COMPONENT_ARM_DISARM at `now_s`. PX4 and ArduPilot change
+  // their arming state before they answer, so the answer is the new state, up to a HEARTBEAT
+  // period (1 s) before a HEARTBEAT shows it. A HEARTBEAT that still shows the old state
+  // within kAckedStateHold_s of the answer was sent before the change took effect (PX4
+  // publishes its vehicle_status after the ACK) and does not undo it; a later one does.
+  void on_arming_accepted(bool armed, double now_s);
+  // The same for an accepted DO_SET_MODE (`base_mode` and `custom_mode` as a HEARTBEAT would
+  // carry them): the mode asked for, held against older HEARTBEATs as the arming is.
+  void on_mode_accepted(std::uint8_t base_mode, std::uint32_t custom_mode, double now_s);
+  static constexpr double kAckedStateHold_s = 0.5;
 
  private:
   bool learn(const mavlink::Frame& frame);
@@ -60,6 +71,10 @@ class AutopilotSession {
   std::uint8_t reported_autopilot_ = 0;
   double last_heartbeat_s_ = -1.0;
   bool armed_ = false;
+  std::optional<bool> acked_armed_;  // an accepted arm / disarm no HEARTBEAT has shown yet
+  double acked_armed_s_ = 0.0;
+  std::optional<std::uint32_t> acked_mode_;  // an accepted DO_SET_MODE no HEARTBEAT has shown
+  double acked_mode_s_ = 0.0;
   FcMode mode_ = FcMode::Unknown;
   std::string mode_name_ = "unknown";
   std::uint8_t base_mode_ = 0;

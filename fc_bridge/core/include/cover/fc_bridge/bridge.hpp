@@ -119,6 +119,7 @@ class Bridge {
     Origin origin = Origin::Operator;
     std::string request_id;
     std::string what;  // "OFFBOARD", "arm"...
+    CommandSpec spec;
   };
 
   double advance(double now_s);  // time never goes back inside the bridge
