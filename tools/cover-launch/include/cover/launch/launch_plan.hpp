@@ -23,6 +23,9 @@ struct LaunchOptions {
   std::string security_directory;
   bool record = false;    // --record: as the file's `record: true`
   bool foxglove = false;  // --foxglove: as the file's `foxglove: true`
+  // --dds-profile / $COVER_DDS_PROFILE: the config/dds.yaml profile every process uses; one
+  // naming a discovery_server adds the server (discovery_server.hpp). Empty: none.
+  std::string dds_profile;
   pid_t launcher_pid = 0;
 };
 
