@@ -154,6 +154,13 @@ int run(const std::vector<std::string>& args) {
       ->capture_default_str();
   app.add_flag("--json", as_json);
   if (const int code = cover::bench::parse_args(app, args); code >= 0) return code;
+  for (const int count : counts) {
+    if (count < 2 || count > 64) {
+      std::cerr << "cover-bench discovery: --processes " << count
+                << ": 2..64 (a process needs another to match)\n";
+      return 2;
+    }
+  }
   const std::string self = "/proc/self/exe";
   char path[4096];
   const ssize_t length = readlink(self.c_str(), path, sizeof(path) - 1);
