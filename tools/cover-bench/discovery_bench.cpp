@@ -99,8 +99,9 @@ Cell measure(const std::string& self, const std::string& profile, int count) {
     cover::process::SpawnOptions spawn;
     spawn.capture_stdout = true;
     server = std::make_unique<cover::process::ChildProcess>(
-        std::vector<std::string>{"fast-discovery-server", "-i", "0", "-l", address.address, "-p",
-                                 std::to_string(address.port)},
+        // env looks the server up on $PATH and execs it: the pid stays the server's.
+        std::vector<std::string>{"/usr/bin/env", "fast-discovery-server", "-i", "0", "-l",
+                                 address.address, "-p", std::to_string(address.port)},
         spawn);
     const auto line = server->read_line(10s);  // "### Server is running ###"
     if (!line || line->find("running") == std::string::npos) {
@@ -145,8 +146,11 @@ int run(const std::vector<std::string>& args) {
   std::vector<std::string> profiles{"simple", "unicast", "server"};
   int repeats = 3;
   bool as_json = false;
-  app.add_option("--processes", counts, "fleet sizes (processes)")->capture_default_str();
+  app.add_option("--processes", counts, "fleet sizes (processes)")
+      ->delimiter(',')
+      ->capture_default_str();
   app.add_option("--profiles", profiles, "simple | unicast | server")
+      ->delimiter(',')
       ->check(CLI::IsMember({"simple", "unicast", "server"}))
       ->capture_default_str();
   app.add_option("--repeats", repeats, "runs per cell (the median is reported)")

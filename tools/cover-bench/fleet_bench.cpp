@@ -189,7 +189,9 @@ int run(const std::vector<std::string>& args) {
   std::string dds = "fastdds";
   std::string svg_file;
   bool as_json = false;
-  app.add_option("--uavs", sizes, "fleet sizes (UAVs; UGVs = max(UAVs, 2))")->capture_default_str();
+  app.add_option("--uavs", sizes, "fleet sizes (UAVs; UGVs = max(UAVs, 2))")
+      ->delimiter(',')
+      ->capture_default_str();
   app.add_option("--clock", clock)
       ->check(CLI::IsMember({"lockstep", "realtime"}))
       ->capture_default_str();
