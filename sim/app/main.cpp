@@ -34,6 +34,8 @@ constexpr const char* kExitCodes =
     "2 usage or configuration error; 3 DDS, shared memory or a MAVLink port could not start;\n"
     "4 lockstep stalled or a UAV agent never connected (the log names it); 130 interrupted.";
 
+constexpr int kSimReceiveBufferBytes = 4 << 20;
+
 struct CommandLine {
   std::string scenario = "scenario2";
   std::string clock = "lockstep";
@@ -43,6 +45,8 @@ struct CommandLine {
   std::string plot_file;
   std::string summary_file;
   bool standing = false;
+  int uavs = 0;  // 0: the scenario's
+  int ugvs = 0;
   std::vector<double> relative_gap;  // start_s, duration_s
   std::string params_file = cover::config::default_config_dir() + "/sim/sim_process.yaml";
   // Flight controllers and UGV IMUs over MAVLink.
@@ -288,6 +292,8 @@ void add_options(CLI::App& app, CommandLine& cli) {
       ->check(CLI::IsMember({"lockstep", "realtime"}))
       ->capture_default_str();
   app.add_option("--seed", cli.seed, "world seed (default: the scenario's)");
+  app.add_option("--uavs", cli.uavs, "fly UAVs 0..N-1 of the scenario (default: all)");
+  app.add_option("--ugvs", cli.ugvs, "run UGVs 0..M-1 of the scenario (default: all)");
   app.add_option("--run-id", cli.run_id, "names the shared-memory segment with the DDS domain")
       ->capture_default_str();
   app.add_option("--result", cli.result_file, "write the run's result JSON here at exit");
@@ -375,6 +381,10 @@ cover::sim::Fleet make_fleet(const CommandLine& cli, const cover::sim::Scenario&
 int run(const CLI::App& app, const CommandLine& cli) {
   cover::sim::Scenario scenario = cover::sim::Scenario::load_file(scenario_file(cli.scenario));
   if (app.count("--seed") > 0) scenario.world.seed = cli.seed;
+  if (cli.uavs > 0 || cli.ugvs > 0) {
+    scenario.keep_fleet(cli.uavs > 0 ? cli.uavs : scenario.uav_count(),
+                        cli.ugvs > 0 ? cli.ugvs : static_cast<int>(scenario.world.ugvs.size()));
+  }
   const auto params = cover::sim::SimProcessParams::load_file(cli.params_file);
   const auto mission = cover::mission::MissionParams::load_file(
       cover::config::default_config_dir() + "/mission.yaml");
@@ -386,7 +396,11 @@ int run(const CLI::App& app, const CommandLine& cli) {
   // (docs/flight-controller.md, "Lockstep"): the simulator's contract, not the firmware's.
   if (cli.clock == "lockstep") autopilots.closing = cover::sim::fc::StepClosing::HighresImu;
   cover::sim::Fleet fleet = make_fleet(cli, scenario, params, mission, autopilots);
-  const cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-sim");
+  cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-sim");
+  // Every UAV agent's command and trace arrive on this one socket, and a lockstep tick's
+  // answers all at once: sixteen agents overflowed the OS default 208 KiB (commands lost
+  // until the lockstep stalled).
+  if (dds.receive_buffer_bytes == 0) dds.receive_buffer_bytes = kSimReceiveBufferBytes;
   const cover::sim::SimRunOptions options = run_options(cli, fleet, autopilots);
   const std::string segment_name = cover::shm::segment_name(dds.domain_id, cli.run_id);
   // Declared first, removed last: see SimNode.

@@ -54,8 +54,12 @@ int main(int argc, char** argv) {
                    "SQLite database (created if missing; WAL, synchronous FULL); default "
                    "$XDG_STATE_HOME/cover/tasks.db, else ~/.local/state/cover/tasks.db");
     app.add_option("--config", config_path, "limits and timeouts")->capture_default_str();
-    app.add_option("--max-uavs", options.max_uavs, "UAV ids 0..N-1 are served")
+    app.add_option("--uavs,--max-uavs", options.max_uavs, "UAV ids 0..N-1 are served")
         ->check(CLI::Range(1, cover::fleet::kMaxUavs))
+        ->capture_default_str();
+    app.add_option("--ugvs,--max-ugvs", options.max_ugvs,
+                   "UGV ids 0..N-1 are heard and may be named in tasks")
+        ->check(CLI::Range(1, cover::fleet::kMaxUgvs))
         ->capture_default_str();
     dds.add_to(app);
   };

@@ -18,8 +18,8 @@
 namespace cover::task_manager {
 
 struct ManagerOptions {
-  int max_uavs = fleet::kMaxUavs;
-  int max_ugvs = fleet::kMaxUgvs;
+  int max_uavs = fleet::kDefaultUavs;
+  int max_ugvs = fleet::kDefaultUgvs;
   double step_period_s = 0.1;  // the dispatcher's pace when no request arrives
 };
 

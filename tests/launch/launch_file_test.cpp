@@ -407,3 +407,106 @@ TEST(LaunchFile, CpuAffinity) {
 
 }  // namespace
 }  // namespace cover::launch
+
+namespace cover::launch {
+namespace {
+
+// `count: N` starts one description N times, {i} and {i+K} replaced in every text.
+TEST(LaunchFile, CountExpandsOneProcessIntoCopies) {
+  const LaunchFile file = parse(R"(
+launch:
+  name: fleet
+  variables: {clock: lockstep}
+  processes:
+    - {name: sim, executable: cover-sim, ends_run: true}
+    - name: "uav{i}"
+      count: 3
+      executable: cover-uav-agent
+      args: [--id, "{i}", --port, "{i+14540}", "--task={config_dir}/uav{i}.yaml", "--clock={clock}",
+             "{{i}}"]
+      env: {NAME: "agent-{i}"}
+      identity: "uav-agent-{i}"
+)");
+  ASSERT_EQ(file.processes.size(), 4u);
+  for (int i = 0; i < 3; ++i) {
+    const ProcessSpec& p = file.processes[static_cast<std::size_t>(i) + 1];
+    const std::string n = std::to_string(i);
+    EXPECT_EQ(p.name, "uav" + n);
+    EXPECT_EQ(p.args, (std::vector<std::string>{"--id", n, "--port", std::to_string(14540 + i),
+                                                "--task={config_dir}/uav" + n + ".yaml",
+                                                "--clock={clock}", "{{i}}"}))
+        << "other placeholders and escaped braces stay for the plan";
+    EXPECT_EQ(p.env.at("NAME"), "agent-" + n);
+    EXPECT_EQ(p.identity, "uav-agent-" + n);
+  }
+}
+
+TEST(LaunchFile, CountErrorsAreNamed) {
+  const auto with = [](const std::string& process) {
+    return "launch: {name: a, processes: [{name: s, executable: x, ends_run: true}, " + process +
+           "]}";
+  };
+  const std::pair<std::string, const char*> bad[] = {
+      {"{name: 'u{i}', executable: x, count: 0}", "count: 0 (valid: 1..256)"},
+      {"{name: 'u{i}', executable: x, count: -2}", "count: -2 (valid: 1..256)"},
+      {"{name: 'u{i}', executable: x, count: 257}", "count: 257 (valid: 1..256)"},
+      {"{name: 'u{i}', executable: x, count: many}", "count: wrong type"},
+      {"{name: u, executable: x, count: 2}", "must contain {i} with count: 2"},
+      {"{name: u, executable: x, args: ['{i}']}",
+       "uses {i}, the copy index, but the process has no count"},
+      {"{name: 'u{i}', executable: x, count: 2, args: ['{i+x}']}", "the offset of {i+K}"},
+      {"{name: 'u{i}', executable: x, count: 2}, {name: u1, executable: x}",
+       "duplicate process name 'u1'"},
+  };
+  for (const auto& [process, reason] : bad) {
+    const std::string error = error_of(with(process));
+    EXPECT_NE(error.find(reason), std::string::npos) << process << ": " << error;
+  }
+}
+
+// `count: "{uavs}"`: the fleet's size is a launch variable, a --var flag's value when given.
+TEST(LaunchFile, CountFromAVariable) {
+  const std::string yaml = R"(
+launch:
+  name: fleet
+  variables: {uavs: "3", bad: "x"}
+  processes:
+    - {name: sim, executable: cover-sim, ends_run: true, args: ["--uavs={uavs}"]}
+    - {name: "uav{i}", executable: cover-uav-agent, count: "{uavs}", args: [--id, "{i}"]}
+)";
+  EXPECT_EQ(parse(yaml).processes.size(), 4u);
+  const LaunchFile eight =
+      LaunchFile::parse(YAML::Load(yaml), "test.yaml", "/launch/dir", {{"uavs", "8"}});
+  ASSERT_EQ(eight.processes.size(), 9u);
+  EXPECT_EQ(eight.processes[8].args, (std::vector<std::string>{"--id", "7"}));
+  const auto error_with = [&](const std::map<std::string, std::string>& overrides) {
+    try {
+      LaunchFile::parse(YAML::Load(yaml), "test.yaml", "/launch/dir", overrides);
+    } catch (const config::ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error_with({{"uavs", "0"}}).find("count: 0 (valid: 1..256)"), std::string::npos);
+  EXPECT_NE(error_with({{"uavs", "sixteen"}}).find("'sixteen' (from {uavs}) is not a whole number"),
+            std::string::npos);
+  std::string other = yaml;
+  other.replace(other.find("count: \"{uavs}\""), 15, "count: \"{nope}\"");
+  EXPECT_NE(error_of(other).find("'{nope}' names no variable"), std::string::npos);
+}
+
+// The shipped fleet: 1 simulator, 16 UGV agents, 16 UAV agents each with its own task file.
+TEST(LaunchFile, ShippedFleet16Loads) {
+  const LaunchFile file =
+      LaunchFile::load_file(std::string(COVER_SOURCE_DIR) + "/config/launch/fleet16.yaml");
+  ASSERT_EQ(file.processes.size(), 33u);
+  EXPECT_EQ(file.processes[1].name, "ugv0");
+  EXPECT_EQ(file.processes[16].name, "ugv15");
+  EXPECT_EQ(file.processes[32].name, "uav15");
+  EXPECT_NE(std::find(file.processes[32].args.begin(), file.processes[32].args.end(),
+                      "{config_dir}/tasks/fleet/uav15.yaml"),
+            file.processes[32].args.end());
+}
+
+}  // namespace
+}  // namespace cover::launch

@@ -383,3 +383,51 @@ TEST(LaunchShm, RemovesOnlyEntriesOfTheRun) {
 
 }  // namespace
 }  // namespace cover::launch
+
+#include "cover/launch/discovery_server.hpp"
+
+namespace cover::launch {
+namespace {
+
+bool has_env(const PlannedProcess& process, const std::string& entry) {
+  return std::find(process.env.begin(), process.env.end(), entry) != process.env.end();
+}
+
+// --dds-profile server (config/dds.yaml): the launch starts the Fast DDS Discovery Server
+// first, on the profile's port plus the domain, and every process is its client.
+TEST(LaunchPlan, ServerProfileStartsTheDiscoveryServerFirst) {
+  LaunchOptions options = testing::options_in("/tmp/run");
+  options.dds_profile = "server";
+  const LaunchPlan plan = make_plan(testing::parse(R"(
+launch:
+  name: fleet
+  processes:
+    - {name: sim, executable: cover-sim, ends_run: true}
+    - {name: "ugv{i}", executable: cover-ugv-agent, count: 2, args: [--id, "{i}"]}
+)"),
+                                    options);
+  ASSERT_EQ(plan.processes.size(), 4u);
+  EXPECT_EQ(plan.processes[0].name, kDiscoveryServerName);
+  EXPECT_EQ(plan.processes[0].executable, "fast-discovery-server");
+  EXPECT_EQ(plan.processes[0].args,
+            (std::vector<std::string>{"-i", "0", "-l", "127.0.0.1", "-p", "11818"}));
+  for (std::size_t i = 1; i < plan.processes.size(); ++i) {
+    EXPECT_TRUE(has_env(plan.processes[i], "COVER_DDS_DISCOVERY_SERVER=127.0.0.1:11818"))
+        << plan.processes[i].name;
+    EXPECT_TRUE(has_env(plan.processes[i], "COVER_DDS_PROFILE=server"));
+  }
+  options.dds_profile = "unicast";  // a profile without a server adds none
+  EXPECT_EQ(make_plan(testing::parse("launch: {name: a, processes: [{name: s, executable: x, "
+                                     "ends_run: true}]}"),
+                      options)
+                .processes.size(),
+            1u);
+  options.dds_profile = "nope";
+  EXPECT_THROW(make_plan(testing::parse("launch: {name: a, processes: [{name: s, executable: x, "
+                                        "ends_run: true}]}"),
+                         options),
+               config::ConfigError);
+}
+
+}  // namespace
+}  // namespace cover::launch

@@ -119,7 +119,10 @@ TEST(CoverBenchRefusal, ArgumentsThatAskForNothingAreUsageErrors) {
                                              {"record", "--duration", "0"},
                                              {"faults", "--count", "0"},
                                              {"wifi", "--seeds", "0"},
-                                             {"table1", "--runs", "0"}}) {
+                                             {"table1", "--runs", "0"},
+                                             {"fleet", "--uavs", "0"},
+                                             {"fleet", "--uavs", "3"},
+                                             {"discovery", "--processes", "1"}}) {
     SCOPED_TRACE(args[0]);
     const BenchRun run = run_bench(args);
     EXPECT_EQ(run.exit_code, kUsage) << run.err;

@@ -28,7 +28,7 @@ struct CommandLine {
   std::string clock = "lockstep";
   std::string config_dir = cover::config::default_config_dir();
   std::string method;
-  int ugv_count = cover::fleet::kMaxUgvs;
+  int ugv_count = cover::fleet::kDefaultUgvs;
   bool fc_bridge = false;
   cover::dds::DdsCliOptions dds;
 };

@@ -20,7 +20,7 @@ namespace cover::uav_agent {
 
 struct AgentOptions {
   std::uint32_t uav_id = 0;
-  int ugv_count = fleet::kMaxUgvs;
+  int ugv_count = fleet::kDefaultUgvs;
   sim_clock::ClockMode clock = sim_clock::ClockMode::Lockstep;
   std::optional<mission::Task> task;  // from --task FILE; otherwise from cover/task/request
   double status_period_s = 0.1;       // cover/uav/<u>/status at 10 Hz

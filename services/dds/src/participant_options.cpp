@@ -23,6 +23,7 @@ void ParticipantOptions::validate() const {
                    std::to_string(security.expiry_warning_days) + " (valid: 0.." +
                    std::to_string(kMaxValidityDays) + " days)");
   }
+  if (!discovery_server.empty()) parse_server_address(discovery_server);
   // Not security.validate(): a file or profile may leave the identity to --identity;
   // check_participant_security checks the complete options before a participant exists.
   for (const auto& peer : peers) {
@@ -33,12 +34,32 @@ void ParticipantOptions::validate() const {
   }
 }
 
+ServerAddress parse_server_address(const std::string& text) {
+  const auto colon = text.rfind(':');
+  const auto bad = [&] {
+    return DdsError("invalid discovery_server '" + text + "' (expected IPv4:port, e.g. " +
+                    "127.0.0.1:11811)");
+  };
+  if (colon == std::string::npos) throw bad();
+  ServerAddress server{text.substr(0, colon), 0};
+  const std::string port = text.substr(colon + 1);
+  in_addr address{};
+  if (inet_pton(AF_INET, server.address.c_str(), &address) != 1 || port.empty() ||
+      port.size() > 5 || port.find_first_not_of("0123456789") != std::string::npos) {
+    throw bad();
+  }
+  server.port = std::stoi(port);
+  if (server.port < 1 || server.port > 65535) throw bad();
+  return server;
+}
+
 namespace {
 
 // The network and security keys, which the top level and every profile share.
 void read_network_keys(config::YamlReader& reader, ParticipantOptions& options) {
   reader.optional("interface", options.interface_name);
   reader.optional("peers", options.peers);
+  reader.optional("discovery_server", options.discovery_server);
   reader.optional("fastdds_shared_memory", options.fastdds_shared_memory);
   reader.optional("announcement_period_s", options.announcement_period_s);
   config::YamlReader security = reader.child("security");
@@ -120,6 +141,10 @@ ParticipantOptions apply_environment(ParticipantOptions options) {
   if (const char* directory = std::getenv(kSecurityEnvironment); directory && *directory) {
     options.security.enabled = true;
     options.security.directory = directory;
+  }
+  // cover-launch names the server it started for this run (its port shifted by the domain).
+  if (const char* server = std::getenv("COVER_DDS_DISCOVERY_SERVER"); server && *server) {
+    options.discovery_server = server;
   }
   if (const char* identity = std::getenv(kIdentityEnvironment); identity && *identity) {
     options.security.identity = identity;

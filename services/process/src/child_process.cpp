@@ -243,6 +243,7 @@ std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {
     if (done == pid_) {
       cpu_s_ = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
                1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+      max_rss_kib_ = static_cast<std::int64_t>(usage.ru_maxrss);
       killed_by_signal_ = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
       exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       return exit_code_;

@@ -81,6 +81,21 @@ void Scenario::validate() const {
   }
 }
 
+void Scenario::keep_fleet(int uavs, int ugvs) {
+  const int scenario_ugvs = static_cast<int>(world.ugvs.size());
+  config::check(uavs >= 1 && uavs <= uav_count(), "--uavs " + std::to_string(uavs),
+                "scenario '" + name + "' has " + std::to_string(uav_count()) + " UAV(s)");
+  config::check(ugvs >= 1 && ugvs <= scenario_ugvs, "--ugvs " + std::to_string(ugvs),
+                "scenario '" + name + "' has " + std::to_string(scenario_ugvs) + " UGV(s)");
+  extra_uavs.resize(static_cast<std::size_t>(uavs - 1));
+  world.ugvs.resize(static_cast<std::size_t>(ugvs));
+  for (int u = 0; u < uavs; ++u) {
+    config::check(world_of(u).uav_initial.start_on_ugv < ugvs, "--ugvs " + std::to_string(ugvs),
+                  "UAV " + std::to_string(u) + " starts on the deck of a UGV left out");
+  }
+  validate();
+}
+
 std::string scenario_path(const std::string& name) {
   return config::default_config_dir() + "/scenarios/" + name + ".yaml";
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -12,6 +13,7 @@
 #include "cover/dds/security_options.hpp"
 #include "cover/launch/dds_override.hpp"
 #include "cover/launch/placeholders.hpp"
+#include "cover/launch/process_count.hpp"
 
 namespace cover::launch {
 namespace {
@@ -56,7 +58,74 @@ void apply_defaults(ProcessSpec& spec, const config::YamlReader& process, Launch
   }
 }
 
-ProcessSpec parse_process(const YAML::Node& node, const std::string& context, LaunchKind kind) {
+// Every text of `spec` that `{i}` may appear in.
+template <typename Visit>
+void visit_texts(ProcessSpec& spec, Visit visit) {
+  visit(spec.name);
+  visit(spec.executable);
+  for (auto& arg : spec.args) visit(arg);
+  for (auto& [key, value] : spec.env) visit(value);
+  visit(spec.netns);
+  visit(spec.identity);
+}
+
+// The copies of a process with `count: N` (one without `count` stays one, and must not use
+// `{i}`: nothing would replace it).
+// `count` is nullopt when the file gives none.
+std::vector<ProcessSpec> expand_count(ProcessSpec spec, std::optional<int> count,
+                                      const std::string& label) {
+  if (!count) {
+    visit_texts(spec, [&](const std::string& text) {
+      config::check(!uses_index(text), label,
+                    "'" + text + "' uses {i}, the copy index, but the process has no count:");
+    });
+    return {spec};
+  }
+  config::check(*count >= 1 && *count <= kMaxProcessCount, label + ".count",
+                std::to_string(*count) + " (valid: 1.." + std::to_string(kMaxProcessCount) + ")");
+  config::check(*count == 1 || uses_index(spec.name), label + ".name",
+                "'" + spec.name + "' must contain {i} with count: " + std::to_string(*count) +
+                    " (each copy needs its own name)");
+  std::vector<ProcessSpec> copies;
+  for (int i = 0; i < *count; ++i) {
+    ProcessSpec copy = spec;
+    try {
+      visit_texts(copy, [&](std::string& text) { text = substitute_index(text, i); });
+    } catch (const std::invalid_argument& e) {
+      throw config::ConfigError(label + ": " + e.what());
+    }
+    copies.push_back(std::move(copy));
+  }
+  return copies;
+}
+
+// `count:` as written: a number, or "{name}" of a launch variable whose value (the file's,
+// or a --var flag's) is one. nullopt when the process has none.
+std::optional<int> read_count(const config::YamlReader& process, const std::string& label,
+                              const std::map<std::string, std::string>& variables) {
+  if (!process.has("count")) return std::nullopt;
+  const YAML::Node node = process.node()["count"];
+  std::string text = node.IsScalar() ? node.Scalar() : "";
+  std::string source;
+  if (text.size() > 2 && text.front() == '{' && text.back() == '}') {
+    const std::string name = text.substr(1, text.size() - 2);
+    const auto variable = variables.find(name);
+    config::check(variable != variables.end(), label + ".count",
+                  "'" + text + "' names no variable of launch.variables");
+    source = " (from {" + name + "})";
+    text = variable->second;
+  }
+  const bool number = !text.empty() && text.size() <= 9 &&
+                      text.find_first_not_of("-0123456789") == std::string::npos &&
+                      text.find('-', 1) == std::string::npos && text != "-";
+  config::check(number, label + ".count",
+                "wrong type or value: '" + text + "'" + source + " is not a whole number");
+  return std::stoi(text);
+}
+
+std::vector<ProcessSpec> parse_process(const YAML::Node& node, const std::string& context,
+                                       LaunchKind kind,
+                                       const std::map<std::string, std::string>& variables) {
   // Errors name the process as well as its index: "launch.processes[2] (ugv1)".
   std::string label = context;
   if (node.IsMap() && node["name"] && node["name"].IsScalar()) {
@@ -78,9 +147,11 @@ ProcessSpec parse_process(const YAML::Node& node, const std::string& context, La
   process.optional("keep_running", spec.keep_running);
   process.optional("realtime_priority", spec.realtime_priority);
   process.optional("cpu_affinity", spec.cpu_affinity);
+  YAML::Node count;
+  process.optional("count", count);
   process.reject_unknown_keys();
   apply_defaults(spec, process, kind);
-  return spec;
+  return expand_count(std::move(spec), read_count(process, label, variables), label);
 }
 
 void validate_arguments(const ProcessSpec& spec, const std::set<std::string>& known) {
@@ -222,7 +293,8 @@ void LaunchFile::validate() const {
 }
 
 LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& context,
-                             const std::string& directory) {
+                             const std::string& directory,
+                             const std::map<std::string, std::string>& overrides) {
   config::YamlReader root(root_node, context);
   config::check(root.has("launch"), context, "missing section 'launch'");
   config::YamlReader launch = root.child("launch");
@@ -248,9 +320,17 @@ LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& con
   launch.reject_unknown_keys();
   config::check(processes.IsSequence(), launch.context() + ".processes",
                 "expected a list of processes");
+  // A count may name a variable: its value as the run will have it.
+  auto variables = file.variables;
+  for (const auto& [key, value] : overrides) {
+    if (variables.count(key) > 0) variables[key] = value;
+  }
   for (std::size_t i = 0; i < processes.size(); ++i) {
-    file.processes.push_back(parse_process(
-        processes[i], launch.context() + ".processes[" + std::to_string(i) + "]", file.kind));
+    for (auto& spec : parse_process(processes[i],
+                                    launch.context() + ".processes[" + std::to_string(i) + "]",
+                                    file.kind, variables)) {
+      file.processes.push_back(std::move(spec));
+    }
   }
   try {
     file.validate();
@@ -260,9 +340,10 @@ LaunchFile LaunchFile::parse(const YAML::Node& root_node, const std::string& con
   return file;
 }
 
-LaunchFile LaunchFile::load_file(const std::string& path) {
+LaunchFile LaunchFile::load_file(const std::string& path,
+                                 const std::map<std::string, std::string>& overrides) {
   const auto directory = std::filesystem::absolute(path).parent_path().string();
-  return parse(config::load_yaml_file(path), path, directory);
+  return parse(config::load_yaml_file(path), path, directory, overrides);
 }
 
 }  // namespace cover::launch

@@ -8,6 +8,7 @@
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/security_options.hpp"
 #include "cover/launch/ground_station_view.hpp"
+#include "cover/launch/discovery_server.hpp"
 #include "cover/launch/live_view.hpp"
 #include "cover/launch/placeholders.hpp"
 #include "cover/launch/recording.hpp"
@@ -101,6 +102,11 @@ LaunchPlan make_plan(LaunchFile file, const LaunchOptions& options) {
   if (file.ground_station || options.ground_station) add_ground_station(file);
   if (file.record || options.record) add_recorder(file, recorder_executable());
   apply_dds_overrides(file.processes, options.dds_overrides);
+  if (!options.dds_profile.empty()) {
+    for (auto& process : file.processes) process.env["COVER_DDS_PROFILE"] = options.dds_profile;
+    const std::string server = discovery_server_for(options.dds_profile, options.domain_id);
+    if (!server.empty()) add_discovery_server(file, server);
+  }
 
   LaunchPlan plan;
   plan.name = file.name;

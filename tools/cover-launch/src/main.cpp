@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 
 #include "cover/config/config_error.hpp"
 #include "cover/config/state_dir.hpp"
+#include "cover/dds/participant_options.hpp"
 #include "cover/dds/security_check.hpp"
 #include "cover/launch/exit_codes.hpp"
 #include "cover/launch/hangup_guard.hpp"
@@ -86,6 +88,7 @@ struct Flags {
   std::string seed;
   std::string run_dir;
   std::string security;
+  std::string dds_profile;
   int domain_id = -1;
   bool json = false;
   bool record = false;
@@ -109,6 +112,9 @@ void add_flags(CLI::App& app, Flags& flags) {
   app.add_option("--security", flags.security,
                  "DDS-Security fleet directory (cover security init): each process runs secure "
                  "with its identity by role (default: the file's launch.security, else plain)");
+  app.add_option("--dds-profile", flags.dds_profile,
+                 "config/dds.yaml profile for every process (default: $COVER_DDS_PROFILE); one "
+                 "with a discovery_server (`server`) starts `fastdds discovery` first");
   app.add_flag("--record", flags.record,
                "Record every catalogued topic into <run_dir>/recording.mcap (as record: true; "
                "docs/recording.md)");
@@ -132,18 +138,25 @@ int domain_from_environment() {
   return static_cast<int>(value);
 }
 
-LaunchOptions make_options(const Flags& flags, const LaunchFile& file) {
-  LaunchOptions options;
-  for (const auto& text : flags.dds) options.dds_overrides.push_back(parse_dds_override(text));
+// The variables the flags set (--var, --clock, --seed).
+std::map<std::string, std::string> flag_variables(const Flags& flags) {
+  std::map<std::string, std::string> variables;
   for (const auto& text : flags.vars) {
     const auto equals = text.find('=');
     if (equals == std::string::npos || equals == 0) {
       throw std::invalid_argument("--var " + text + ": expected KEY=VALUE");
     }
-    options.variables[text.substr(0, equals)] = text.substr(equals + 1);
+    variables[text.substr(0, equals)] = text.substr(equals + 1);
   }
-  if (!flags.clock.empty()) options.variables["clock"] = flags.clock;
-  if (!flags.seed.empty()) options.variables["seed"] = flags.seed;
+  if (!flags.clock.empty()) variables["clock"] = flags.clock;
+  if (!flags.seed.empty()) variables["seed"] = flags.seed;
+  return variables;
+}
+
+LaunchOptions make_options(const Flags& flags, const LaunchFile& file) {
+  LaunchOptions options;
+  for (const auto& text : flags.dds) options.dds_overrides.push_back(parse_dds_override(text));
+  options.variables = flag_variables(flags);
   options.domain_id = flags.domain_id >= 0 ? flags.domain_id : domain_from_environment();
   options.run_dir = !flags.run_dir.empty()
                         ? flags.run_dir
@@ -153,6 +166,8 @@ LaunchOptions make_options(const Flags& flags, const LaunchFile& file) {
   options.record = flags.record;
   options.foxglove = flags.foxglove;
   options.ground_station = flags.ground_station;
+  options.dds_profile = cover::dds::profile_from_environment("");
+  if (!flags.dds_profile.empty()) options.dds_profile = flags.dds_profile;
   options.launcher_pid = getpid();
   return options;
 }
@@ -219,7 +234,7 @@ int run(const LaunchPlan& plan, bool json) {
 int load_and_run(const Flags& flags) {
   LaunchPlan plan;
   try {
-    const LaunchFile file = LaunchFile::load_file(flags.file);
+    const LaunchFile file = LaunchFile::load_file(flags.file, flag_variables(flags));
     plan = make_plan(file, make_options(flags, file));
     check_security(plan);
     prepare_run_dir(plan);

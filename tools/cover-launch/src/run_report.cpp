@@ -36,7 +36,9 @@ nlohmann::json make_report(const LaunchPlan& plan, const RunOutcome& outcome) {
          {"respawns", process.respawns},
          {"realtime_priority", process.realtime_priority},
          {"cpus", process.cpus},
-         {"cpu_s", process.cpu_s ? nlohmann::json(*process.cpu_s) : nlohmann::json(nullptr)}});
+         {"cpu_s", process.cpu_s ? nlohmann::json(*process.cpu_s) : nlohmann::json(nullptr)},
+         {"max_rss_kib",
+          process.max_rss_kib ? nlohmann::json(*process.max_rss_kib) : nlohmann::json(nullptr)}});
   }
   report["processes"] = std::move(processes);
   report["variables"] = plan.variables;

@@ -82,6 +82,7 @@ bool poll_exit(Child& child) {
   if (!child.process->wait(milliseconds(0))) return false;
   child.outcome->exit_code = child.process->exit_code();
   child.outcome->cpu_s = child.process->cpu_s();
+  child.outcome->max_rss_kib = child.process->max_rss_kib();
   return true;
 }
 

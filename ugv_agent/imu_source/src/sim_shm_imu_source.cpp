@@ -1,5 +1,7 @@
 #include "cover/ugv/sim_shm_imu_source.hpp"
 
+#include <cstddef>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -83,16 +85,21 @@ bool SimShmImuSource::take_new_samples(std::vector<ImuSample>& out) {
   // Looking at the sequence costs one load; the copy is only made when it moved.
   const std::uint64_t sequence = reader_.sequence();
   if (sequence == seen_sequence_ || sequence % 2 == 1) return false;
-  if (!reader_.read(world_)) return false;
-  seen_sequence_ = reader_.last_read_sequence();
-
-  if (world_.ugv_count > 0 && ugv_index_ >= world_.ugv_count) {
+  // The world's UGV count is set when the simulator starts: the ring is read only for a
+  // UGV the run has.
+  std::int32_t ugv_count = 0;
+  if (!reader_.read_part(offsetof(SharedWorld, ugv_count), ugv_count)) return false;
+  if (ugv_count > 0 && ugv_index_ >= ugv_count) {
     status_.state = ImuSourceState::Gone;
-    status_.detail = "the simulator runs " + std::to_string(world_.ugv_count) +
+    status_.detail = "the simulator runs " + std::to_string(ugv_count) +
                      " UGV(s): there is no UGV " + std::to_string(ugv_index_);
     return false;
   }
-  const cover::sim::ImuRing& ring = world_.imu[static_cast<std::size_t>(ugv_index_)];
+  const std::size_t offset = offsetof(SharedWorld, imu) +
+                             static_cast<std::size_t>(ugv_index_) * sizeof(cover::sim::ImuRing);
+  if (!reader_.read_part(offset, ring_)) return false;
+  seen_sequence_ = reader_.last_read_sequence();
+  const cover::sim::ImuRing& ring = ring_;
   const std::uint64_t capacity = kImuRingCapacity;
   const std::uint64_t oldest = ring.written > capacity ? ring.written - capacity : 0;
   if (!attached_) {

@@ -14,8 +14,8 @@ namespace cover::recording {
 // The vehicles whose topics a recorder, player or `cover fleet` binds: UAV ids 0..uavs-1,
 // UGV ids 0..ugvs-1.
 struct FleetSize {
-  std::uint32_t uavs = fleet::kMaxUavs;
-  std::uint32_t ugvs = fleet::kMaxUgvs;
+  std::uint32_t uavs = fleet::kDefaultUavs;
+  std::uint32_t ugvs = fleet::kDefaultUgvs;
 };
 
 // True when `topic` matches one of the shell globs (fnmatch; `*` spans '/'), or `globs`

@@ -36,8 +36,8 @@ std::string cyclone_config(const ParticipantOptions& options) {
   xml += "</General><Discovery>";
   if (!options.peers.empty()) {
     xml +=
-        "<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>32</"
-        "MaxAutoParticipantIndex><Peers>";
+        "<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>"
+        "72</MaxAutoParticipantIndex><Peers>";
     for (const auto& peer : options.peers) xml += "<Peer address=\"" + peer + "\"/>";
     xml += "</Peers>";
   }

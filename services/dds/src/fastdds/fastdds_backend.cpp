@@ -82,6 +82,24 @@ void add_security(const SecurityOptions& security, fdds::DomainParticipantQos& q
   properties.emplace_back("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
 }
 
+// Discovery through the server at `server` ("IPv4:port") instead of simple discovery.
+void become_client(const std::string& server, fdds::DomainParticipantQos& qos) {
+  const ServerAddress parsed = parse_server_address(server);
+  eprosima::fastrtps::rtps::RemoteServerAttributes remote;
+  // The GUID prefix `fastdds discovery -i <id>` gives its server.
+  char prefix[48];
+  std::snprintf(prefix, sizeof(prefix), "44.53.%02x.5f.45.50.52.4f.53.49.4d.41",
+                kDiscoveryServerId);
+  remote.ReadguidPrefix(prefix);
+  eprosima::fastrtps::rtps::Locator_t locator;
+  eprosima::fastrtps::rtps::IPLocator::setIPv4(locator, parsed.address);
+  locator.port = static_cast<std::uint32_t>(parsed.port);
+  remote.metatrafficUnicastLocatorList.push_back(locator);
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
+  discovery.m_DiscoveryServers.push_back(remote);
+}
+
 fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
   // Starting from the factory default keeps a user's XML default profile in effect.
   fdds::DomainParticipantQos qos = fdds::PARTICIPANT_QOS_DEFAULT;
@@ -100,7 +118,9 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
       }
       udp->interfaceWhiteList.push_back(address);
     }
-    udp->maxInitialPeersRange = 32;  // more than 4 participants per host
+    // Participants per host a unicast peer address reaches: a fleet of 32 UAVs and 32 UGVs
+    // on one host, its simulator and services (each participant takes the next port pair).
+    udp->maxInitialPeersRange = 72;
     // Unicast to a peer whose address does not resolve (a vehicle switched off, a spare
     // address) fills the socket's send buffer until ARP gives up, ~3 s, and a blocking
     // send would stall every writer of this process that long: drop instead, as a lossy
@@ -125,6 +145,7 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
     eprosima::fastrtps::rtps::IPLocator::setIPv4(locator, peer);
     qos.wire_protocol().builtin.initialPeersList.push_back(locator);
   }
+  if (!options.discovery_server.empty()) become_client(options.discovery_server, qos);
   if (options.security.enabled) add_security(options.security, qos);
   return qos;
 }

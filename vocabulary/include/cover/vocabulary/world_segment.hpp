@@ -12,7 +12,7 @@ namespace cover::sim {
 // ground truth for tests and viewers, and each UGV's raw IMU, which the UGV agents read
 // as they would read their device. Fixed capacity, no pointers: memcpy-able. Bump the
 // layout version whenever a field changes.
-inline constexpr std::uint32_t kWorldSegmentLayoutVersion = 2;
+inline constexpr std::uint32_t kWorldSegmentLayoutVersion = 3;
 using fleet::kMaxUavs;
 // Raw IMU samples kept per UGV: 64 at 200 Hz is 320 ms, far more than a reader lags.
 inline constexpr int kImuRingCapacity = 64;

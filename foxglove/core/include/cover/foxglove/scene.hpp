@@ -12,8 +12,8 @@
 namespace cover::foxglove {
 
 struct SceneOptions {
-  std::uint32_t uavs = fleet::kMaxUavs;
-  std::uint32_t ugvs = fleet::kMaxUgvs;
+  std::uint32_t uavs = fleet::kDefaultUavs;
+  std::uint32_t ugvs = fleet::kDefaultUgvs;
   // A relative state older than this (by its receive time) no longer places a frame.
   double stale_after_s = 0.5;
   double deck_size_m = 1.0;  // the square drawn at each UGV frame's origin

@@ -13,8 +13,8 @@ namespace cover::foxglove {
 struct LiveViewParams {
   std::string address = "0.0.0.0";
   int port = 8765;  // 0: any free port (logged)
-  int uavs = fleet::kMaxUavs;
-  int ugvs = fleet::kMaxUgvs;
+  int uavs = fleet::kDefaultUavs;
+  int ugvs = fleet::kDefaultUgvs;
   // Bytes waiting for one client before its new messages are dropped, KiB (the others are
   // unaffected), and how long a full queue (a client that does not read) is borne.
   int client_queue_kib = 4096;

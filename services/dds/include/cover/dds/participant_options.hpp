@@ -23,6 +23,13 @@ struct ParticipantOptions {
   // Unicast discovery peers (IPv4 addresses), for networks that drop multicast (WiFi).
   // When set, multicast discovery is turned off on both vendors.
   std::vector<std::string> peers;
+  // A Fast DDS Discovery Server, "IPv4:port" (`fastdds discovery -i 0 -l IPv4 -p port`,
+  // started by cover-launch when the profile names one): Fast DDS participants discover
+  // each other through it, as its clients, instead of every participant announcing itself
+  // to every other (simple discovery: N^2 announcements). Empty: simple discovery. Cyclone
+  // DDS participants cannot be its clients and keep `peers` (a Cyclone process then meets
+  // Fast DDS processes only through the server's own announcements: keep one vendor).
+  std::string discovery_server;
   // Fast DDS's shared-memory transport between Fast DDS processes on one host. Off by
   // default: a Fast DDS process that is killed leaves its segments in /dev/shm, and a
   // participant restarted on its port could not receive over it (a task manager killed
@@ -51,6 +58,17 @@ struct ParticipantOptions {
 };
 
 inline constexpr int kMaxDomainId = 232;
+
+// The server id of the Discovery Server that `discovery_server` names: `fastdds discovery
+// -i 0`, whose GUID prefix the clients must know (44.53.<id>.5f.45.50.52.4f.53.49.4d.41).
+inline constexpr int kDiscoveryServerId = 0;
+
+// "IPv4:port" split; throws DdsError naming `text` when it is not one.
+struct ServerAddress {
+  std::string address;
+  int port = 0;
+};
+ServerAddress parse_server_address(const std::string& text);
 
 // $COVER_DDS_PROFILE when set and not empty, else `fallback`.
 std::string profile_from_environment(const std::string& fallback);

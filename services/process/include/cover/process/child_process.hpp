@@ -2,6 +2,7 @@
 
 #include <sys/types.h>
 #include <chrono>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -89,6 +90,8 @@ class ChildProcess {
   // CPU time the child used (user + system, its own threads and its reaped children),
   // seconds, once wait() or terminate() has seen it exit.
   std::optional<double> cpu_s() const { return cpu_s_; }
+  // Its peak resident memory (ru_maxrss), KiB, once wait() or terminate() has seen it exit.
+  std::optional<std::int64_t> max_rss_kib() const { return max_rss_kib_; }
   // Whether the child runs SCHED_FIFO (asked for with SpawnOptions::realtime_priority).
   bool realtime() const;
   // The CPUs the child may run on, ascending (empty when it cannot be read).
@@ -101,6 +104,7 @@ class ChildProcess {
   std::optional<int> exit_code_;
   int killed_by_signal_ = 0;
   std::optional<double> cpu_s_;
+  std::optional<std::int64_t> max_rss_kib_;
 };
 
 }  // namespace cover::process

@@ -49,28 +49,17 @@ class SeqlockReader {
   // A writer that does nothing but write back to back starves readers (every copy
   // overlaps the next write): seqlocks suit a writer that works between writes.
   [[nodiscard]] bool read(T& out, std::int64_t* sim_time_ns = nullptr) {
-    const SegmentHeader& header = segment_.header();
-    int copies = 0;
-    int spins = 0;
-    while (copies < kMaxCopies && spins < kMaxSpins) {
-      const std::uint64_t before = header.sequence.load(std::memory_order_acquire);
-      if (before == 0) return false;
-      if (before % 2 == 1) {
-        ++spins;
-        cpu_relax();
-        continue;
-      }
-      ++copies;
-      std::memcpy(&out, segment_.payload(), sizeof(T));
-      const std::int64_t stamp = header.sim_time_ns.load(std::memory_order_relaxed);
-      std::atomic_thread_fence(std::memory_order_acquire);
-      if (header.sequence.load(std::memory_order_relaxed) == before) {
-        if (sim_time_ns != nullptr) *sim_time_ns = stamp;
-        last_read_sequence_ = before;
-        return true;
-      }
-    }
-    return false;
+    return copy_consistent(&out, 0, sizeof(T), sim_time_ns);
+  }
+
+  // As read(), but copies only the `Part` at byte `offset` of the T (offsetof a member):
+  // a reader that needs one vehicle's slice of a fleet's world copies that slice, not the
+  // whole world on every read (a UGV agent of a 32-UGV world: 4.6 KiB instead of ~190).
+  template <typename Part>
+  [[nodiscard]] bool read_part(std::size_t offset, Part& out, std::int64_t* sim_time_ns = nullptr) {
+    static_assert(std::is_trivially_copyable_v<Part>, "a part is copied byte-wise");
+    if (offset + sizeof(Part) > sizeof(T)) return false;
+    return copy_consistent(&out, offset, sizeof(Part), sim_time_ns);
   }
 
   // The writer's sequence now: compare with last_read_sequence() to know whether anything
@@ -91,6 +80,32 @@ class SeqlockReader {
   const std::string& name() const { return segment_.name(); }
 
  private:
+  // The seqlock's reader side over bytes [offset, offset + size) of the payload.
+  bool copy_consistent(void* out, std::size_t offset, std::size_t size, std::int64_t* sim_time_ns) {
+    const SegmentHeader& header = segment_.header();
+    int copies = 0;
+    int spins = 0;
+    while (copies < kMaxCopies && spins < kMaxSpins) {
+      const std::uint64_t before = header.sequence.load(std::memory_order_acquire);
+      if (before == 0) return false;
+      if (before % 2 == 1) {
+        ++spins;
+        cpu_relax();
+        continue;
+      }
+      ++copies;
+      std::memcpy(out, segment_.payload() + offset, size);
+      const std::int64_t stamp = header.sim_time_ns.load(std::memory_order_relaxed);
+      std::atomic_thread_fence(std::memory_order_acquire);
+      if (header.sequence.load(std::memory_order_relaxed) == before) {
+        if (sim_time_ns != nullptr) *sim_time_ns = stamp;
+        last_read_sequence_ = before;
+        return true;
+      }
+    }
+    return false;
+  }
+
   explicit SeqlockReader(Segment segment) : segment_(std::move(segment)) {}
 
   static void cpu_relax() {

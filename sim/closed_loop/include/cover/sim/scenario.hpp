@@ -72,6 +72,10 @@ struct Scenario {
   // it names the document in errors and its task files are relative to its folder.
   static Scenario from_yaml(const YAML::Node& document, const std::string& path);
   void validate() const;
+  // Keeps UAVs 0..uavs-1 and UGVs 0..ugvs-1 (cover-sim --uavs / --ugvs: a fleet's size set
+  // at start, a smaller part of a bigger scenario). Throws ConfigError for a count outside
+  // 1..the scenario's, or when a kept UAV's task or deck names a UGV left out.
+  void keep_fleet(int uavs, int ugvs);
 };
 
 // config/scenarios/<name>.yaml

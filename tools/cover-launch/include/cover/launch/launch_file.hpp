@@ -67,10 +67,15 @@ struct LaunchFile {
   // Throws ConfigError naming the offending process, key or argument.
   void validate() const;
 
-  // Reads the mapping under `launch:`; `context` names the source in errors.
+  // Reads the mapping under `launch:`; `context` names the source in errors. A process's
+  // `count: "{name}"` takes variable `name`'s value from `overrides` (the --var flags) when
+  // given there, else from the file; the copies are made here (process_count.hpp).
   static LaunchFile parse(const YAML::Node& root, const std::string& context,
-                          const std::string& directory);
-  static LaunchFile load_file(const std::string& path);  // throws ConfigError
+                          const std::string& directory,
+                          const std::map<std::string, std::string>& overrides = {});
+  static LaunchFile load_file(const std::string& path,
+                              const std::map<std::string, std::string>& overrides = {});
+  // throws ConfigError
 };
 
 // Placeholders every launch file may use besides its own variables: run_dir, run_id,

@@ -24,6 +24,9 @@ struct LaunchOptions {
   bool record = false;    // --record: as the file's `record: true`
   bool foxglove = false;  // --foxglove: as the file's `foxglove: true`
   bool ground_station = false;  // --ground-station: as the file's `ground_station: true`
+  // --dds-profile / $COVER_DDS_PROFILE: the config/dds.yaml profile every process uses; one
+  // naming a discovery_server adds the server (discovery_server.hpp). Empty: none.
+  std::string dds_profile;
   pid_t launcher_pid = 0;
 };
 

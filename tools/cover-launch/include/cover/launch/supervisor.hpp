@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,8 +18,9 @@ struct ProcessOutcome {
   std::string stopped_by;        // "", "SIGINT", "SIGTERM" or "SIGKILL": the last one sent
   int respawns = 0;              // restarts after a death (respawn: true)
   std::optional<double> cpu_s;   // CPU time (user + system) of the latest run, once it ended
-  int realtime_priority = 0;     // the SCHED_FIFO priority it runs at; 0: normal scheduling
-  std::vector<int> cpus;         // the CPUs it was pinned to (cpu_affinity); empty: any
+  std::optional<std::int64_t> max_rss_kib;  // its peak resident memory, KiB, once it ended
+  int realtime_priority = 0;  // the SCHED_FIFO priority it runs at; 0: normal scheduling
+  std::vector<int> cpus;      // the CPUs it was pinned to (cpu_affinity); empty: any
 };
 
 struct RunOutcome {

@@ -45,7 +45,9 @@ class SimShmImuSource : public ImuSource {
 
   cover::shm::SeqlockReader<cover::sim::SharedWorld> reader_;
   int ugv_index_;
-  cover::sim::SharedWorld world_{};  // the last copy, kept to avoid a 30 KiB stack frame
+  // The last copy of this UGV's ring alone: copying the whole world on every read would
+  // make each UGV agent's cost grow with the fleet (N agents x N rings).
+  cover::sim::ImuRing ring_{};
   // When the segment was first seen closed while its writer still ran (monotonic).
   std::optional<std::chrono::steady_clock::time_point> closed_since_;
   std::uint64_t seen_sequence_ = 0;
