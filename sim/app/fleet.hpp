@@ -105,13 +105,13 @@ class Fleet {
     std::unique_ptr<fc::SimulatedAutopilot> autopilot;      // with FleetAutopilots::profile
     std::unique_ptr<firmware_link::FirmwareLink> firmware;  // with FleetFirmware
     MotorOutputs outputs{};                                 // the firmware's, held
-    bool firmware_landing = false;                          // its bridge says: land mode
-    bool firmware_was_armed = false;
     // The autopilot's state as the segment shows it, taken at its last step (the autopilot
     // itself changes on its link's thread; advance() must not read it).
     OffboardState autopilot_view = OffboardState::WaitingForAgent;
     QuadrotorCommand plant_command;
     mission::ControllerStatus last_status;
+    bool firmware_landing = false;  // its bridge says: in the firmware's land mode
+    bool firmware_was_armed = false;
   };
   void step_firmware_uav(Uav& uav);
   void capture_imu();
