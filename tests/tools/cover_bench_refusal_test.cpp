@@ -110,19 +110,21 @@ TEST(CoverBenchRefusal, DdsWithNoRoundTripAskedForRefuses) {
 
 // Arguments that would measure nothing are usage errors before anything runs.
 TEST(CoverBenchRefusal, ArgumentsThatAskForNothingAreUsageErrors) {
-  for (const std::vector<std::string>& args :
-       std::vector<std::vector<std::string>>{{"planner", "--problems", "0"},
-                                             {"sim", "--steps", "0"},
-                                             {"mpc", "--iterations", "0"},
-                                             {"fc", "--samples", "0"},
-                                             {"tasks", "--tasks", "0"},
-                                             {"record", "--duration", "0"},
-                                             {"faults", "--count", "0"},
-                                             {"wifi", "--seeds", "0"},
-                                             {"table1", "--runs", "0"},
-                                             {"fleet", "--uavs", "0"},
-                                             {"fleet", "--uavs", "3"},
-                                             {"discovery", "--processes", "1"}}) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"planner", "--problems", "0"},
+           {"sim", "--steps", "0"},
+           {"mpc", "--iterations", "0"},
+           {"fc", "--samples", "0"},
+           {"tasks", "--tasks", "0"},
+           {"record", "--duration", "0"},
+           {"faults", "--count", "0"},
+           {"wifi", "--seeds", "0"},
+           {"table1", "--runs", "0"},
+           {"fleet", "--uavs", "0"},
+           {"fleet", "--uavs", "3"},
+           {"discovery", "--processes", "1"},
+           {"firmware-world", "--seeds", "0", "--realtime", "0"},
+           {"faults", "--firmware", "px4", "--fault", "sim_kill"}}) {
     SCOPED_TRACE(args[0]);
     const BenchRun run = run_bench(args);
     EXPECT_EQ(run.exit_code, kUsage) << run.err;

@@ -211,6 +211,10 @@ int run(const std::vector<std::string>& args) {
       ->check(CLI::Range(0, 200))
       ->capture_default_str();
   if (int rc = cover::bench::parse_args(app, args); rc >= 0) return rc;
+  if (seeds + realtime_runs == 0) {
+    std::cerr << "cover-bench firmware-world: --seeds 0 and --realtime 0 ask for no run\n";
+    return 2;
+  }
 
   cover::bench::NotMeasured missing;
   nlohmann::json rows = nlohmann::json::array();
