@@ -356,13 +356,13 @@ TEST(SimulatedAutopilot, RatesFrdBecomeFluAndTelemetryIsNedFrd) {
 
 TEST(SimulatedAutopilot, NedAttitudeOfANorthFacingVehicleIsIdentity) {
   const Eigen::Quaterniond north = cover::sim::yaw_quaternion(M_PI / 2);
-  const Eigen::Quaterniond q = cover::sim::fc::ned_frd_attitude(north);
+  const Eigen::Quaterniond q = cover::sim::ned_frd_attitude(north);
   EXPECT_NEAR(std::abs(q.w()), 1.0, 1e-12);
   // Pitching nose up in ENU/FLU (negative rotation about FLU y) is nose up in FRD too.
   const Eigen::Quaterniond nose_up =
       north * Eigen::Quaterniond(Eigen::AngleAxisd(-0.2, Eigen::Vector3d::UnitY()));
   const Eigen::Vector3d forward_ned =
-      cover::sim::fc::ned_frd_attitude(nose_up) * Eigen::Vector3d::UnitX();
+      cover::sim::ned_frd_attitude(nose_up) * Eigen::Vector3d::UnitX();
   EXPECT_LT(forward_ned.z(), 0.0);  // NED z is down: the nose points up
 }
 

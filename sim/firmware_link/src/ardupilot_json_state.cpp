@@ -1,5 +1,7 @@
 #include "cover/firmware_link/ardupilot_json_state.hpp"
 
+#include "cover/sim/frame_conventions.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -7,23 +9,8 @@
 namespace cover::firmware_link {
 namespace {
 
-// ENU -> NED and FLU -> FRD swap / negate axes: both are their own inverse.
-Eigen::Vector3d enu_to_ned(const Eigen::Vector3d& v) {
-  return {v.y(), v.x(), -v.z()};
-}
-Eigen::Vector3d flu_to_frd(const Eigen::Vector3d& v) {
-  return {v.x(), -v.y(), -v.z()};
-}
-
-Eigen::Quaterniond frd_to_ned(const Eigen::Quaterniond& flu_to_enu) {
-  Eigen::Matrix3d ned_from_enu;
-  ned_from_enu << 0, 1, 0, 1, 0, 0, 0, 0, -1;
-  const Eigen::Matrix3d flu_from_frd = Eigen::Vector3d(1, -1, -1).asDiagonal();
-  Eigen::Quaterniond q(ned_from_enu * flu_to_enu.normalized().toRotationMatrix() * flu_from_frd);
-  q.normalize();
-  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
-  return q;
-}
+using sim::enu_to_ned;
+using sim::flu_to_frd;
 
 void require_finite(double v, const char* what) {
   if (!std::isfinite(v)) {
@@ -54,7 +41,7 @@ ArduPilotJsonState ardupilot_json_state(const PlantSample& sample, const sim::Ua
   state.accel_frd_m_s2 = flu_to_frd(imu.specific_force_flu_m_s2);
   state.position_ned_m = enu_to_ned(sample.body.position_m.eigen());
   state.velocity_ned_m_s = enu_to_ned(sample.body.velocity_m_s.eigen());
-  state.attitude_frd_to_ned = frd_to_ned(sample.body.attitude.eigen());
+  state.attitude_frd_to_ned = sim::ned_frd_attitude(sample.body.attitude.eigen());
   state.no_time_sync = no_time_sync;
   return state;
 }

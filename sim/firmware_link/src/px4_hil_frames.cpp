@@ -1,5 +1,7 @@
 #include "cover/firmware_link/px4_hil_frames.hpp"
 
+#include "cover/sim/frame_conventions.hpp"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -8,26 +10,11 @@
 namespace cover::firmware_link {
 namespace {
 
+using sim::enu_to_ned;
+using sim::flu_to_frd;
+using sim::ned_frd_attitude;
+
 constexpr double kEarthRadiusM = 6378137.0;  // WGS-84 equatorial: small offsets only
-
-Eigen::Vector3d enu_to_ned(const Eigen::Vector3d& v) {
-  return {v.y(), v.x(), -v.z()};
-}
-
-Eigen::Vector3d flu_to_frd(const Eigen::Vector3d& v) {
-  return {v.x(), -v.y(), -v.z()};
-}
-
-// R_ned<-frd = T R_enu<-flu F, with T the ENU -> NED map and F the FRD -> FLU map (both
-// their own inverses).
-Eigen::Quaterniond ned_frd_attitude(const Eigen::Quaterniond& enu_flu) {
-  Eigen::Matrix3d t;
-  t << 0, 1, 0, 1, 0, 0, 0, 0, -1;
-  const Eigen::Matrix3d f = Eigen::Vector3d(1, -1, -1).asDiagonal();
-  Eigen::Quaterniond q(t * enu_flu.normalized().toRotationMatrix() * f);
-  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
-  return q.normalized();
-}
 
 template <typename T>
 T saturate(double value) {
