@@ -141,7 +141,7 @@ TEST(MavlinkImuSource, ReceiveStampsAreTheHostsSystemClock) {
 }
 
 TEST(MavlinkImuSource, BadUrlsAndTakenPortsThrow) {
-  EXPECT_THROW(MavlinkImuSource("tcp://127.0.0.1:1", MavlinkStamp::Autopilot),
+  EXPECT_THROW(MavlinkImuSource("sctp://127.0.0.1:1", MavlinkStamp::Autopilot),
                std::invalid_argument);
   const auto port = free_port_base(1);
   MavlinkImuSource first("udpin://127.0.0.1:" + std::to_string(port), MavlinkStamp::Autopilot);
