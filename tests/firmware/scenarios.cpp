@@ -658,14 +658,21 @@ void pilot_takes_over(FirmwareRig& rig) {
       },
       5s))
       << context(rig);
+  // The monitor hears the firmware's own HEARTBEAT (1 Hz on its link) independently of the
+  // bridge's link: it may come up to a period after the bridge reported the change.
   std::int64_t left_ns = 0;
-  for (const auto& hb : monitor.heartbeats_since(change_ns)) {
-    if (!in_offboard(fw, hb.value)) {
-      left_ns = hb.at_ns;
-      break;
-    }
-  }
-  ASSERT_NE(left_ns, 0);
+  ASSERT_TRUE(wait_until(
+      [&] {
+        for (const auto& hb : monitor.heartbeats_since(change_ns)) {
+          if (!in_offboard(fw, hb.value)) {
+            left_ns = hb.at_ns;
+            return true;
+          }
+        }
+        return false;
+      },
+      3s))
+      << "no HEARTBEAT out of offboard after the mode change" << context(rig);
   const bool taken_back = wait_until(
       [&] {
         for (const auto& c : rig.tap().commands()) {

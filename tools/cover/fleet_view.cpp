@@ -88,14 +88,15 @@ std::string manager_state(const msg::ManagerReply& reply, std::string& task) {
   return std::to_string(queued) + " queued, " + std::to_string(in_flight) + " in flight";
 }
 
-// Three periods of the kind's slowest periodic message, at least 1 s: UAV status and
-// bridge state 10 Hz, UGV status 1 Hz, the clock exchange 1 Hz (config/time_sync.yaml).
+// Past the kind's slowest periodic message by a margin: UAV status and bridge state 10 Hz
+// (five periods: a killed agent's row turns red within 1 s on the operator's page, not
+// after one), UGV status 1 Hz, the clock exchange 1 Hz (config/time_sync.yaml): three.
 double stale_after_s(FleetKind kind, bool status_heard, double manager_query_period_s) {
   switch (kind) {
     case FleetKind::UavAgent:
     case FleetKind::FcBridge:
     case FleetKind::Sim:
-      return status_heard ? 1.0 : 3.0;
+      return status_heard ? 0.5 : 3.0;
     case FleetKind::TaskManager:
       return std::max(3.0, 2.0 * manager_query_period_s);
     default:
