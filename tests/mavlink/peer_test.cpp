@@ -511,8 +511,9 @@ TEST_F(MavlinkPeer, FakeAutopilotKeepsItsArdupilotContract) {
 
 // The tcpin:// server against a PX4-like simulator_mavlink client on node's net (peer/
 // hil_client.js): it connects, says HEARTBEAT, answers each HIL_SENSOR with a
-// HIL_ACTUATOR_CONTROLS of the same time, drops the connection and connects again, the
-// later connections beginning with 300 bytes of garbage. The server serves each new
+// HIL_ACTUATOR_CONTROLS of the same time, drops the connection once our next sensor frame
+// shows we read its last answer and connects again, the later connections beginning with
+// 300 bytes of garbage. The server serves each new
 // connection, decodes every answer node-mavlink wrote, and node decodes every sensor frame
 // to exactly our values.
 TEST_F(MavlinkPeer, TcpServerServesAReconnectingHilClientThroughGarbage) {

@@ -9,8 +9,8 @@
 // autopilot 12) and then, for each HIL_SENSOR it receives, one HIL_ACTUATOR_CONTROLS with
 // time_usec = the sensor's time_usec, flags 1 (lockstep), controls[i] = (i + 1) / 16
 // (connection 1) or (16 - i) / 16 (later connections), mode 129. After A answers
-// (default 3) it drops the connection (destroys the socket) and connects again, C times
-// (default 2) in all. With --garbage each connection after the first begins with 300 bytes
+// (default 3), on the next HIL_SENSOR (the server's sign that it read the last answer) it
+// drops the connection (destroys the socket) and connects again, C times (default 2) in all. With --garbage each connection after the first begins with 300 bytes
 // that are not MAVLink (0xFD start markers among them) before its HEARTBEAT.
 // Prints one JSON line per HIL_SENSOR received: {connection, fields (codec.js naming)},
 // and at the end {done: true, connections, crc_errors}. Exit 0; 1 when no server accepted
@@ -72,9 +72,22 @@ function connect(index) {
     hello.mavlinkVersion = 3
     socket.write(frame(hello))
     let answers = 0
+    let closing = false
     const splitter = new MavLinkPacketSplitter()
     socket.pipe(splitter).pipe(new MavLinkPacketParser()).on('data', (packet) => {
-      if (packet.header.msgid !== common.HilSensor.MSG_ID || answers >= ANSWERS) return
+      if (packet.header.msgid !== common.HilSensor.MSG_ID || closing) return
+      if (answers === ANSWERS) {
+        // The server sends its next sensor frame only after it has read our last answer:
+        // dropping the connection before that could lose the answer in the server's socket
+        // when it accepts the new connection first.
+        closing = true
+        crcErrors += splitter.invalidPackages
+        socket.end(() => {
+          socket.destroy()
+          connect(index + 1)
+        })
+        return
+      }
       const sensor = packet.protocol.data(packet.payload, common.HilSensor)
       process.stdout.write(JSON.stringify({ connection: index, fields: toJson(sensor) }) + '\n')
       const answer = new common.HilActuatorControls()
@@ -84,14 +97,7 @@ function connect(index) {
                                    (_, i) => (index === 1 ? i + 1 : 16 - i) / 16)
       answer.mode = 129
       socket.write(frame(answer))
-      if (++answers === ANSWERS) {
-        crcErrors += splitter.invalidPackages
-        // Let the answer leave before the connection drops, as a PX4 that restarts would.
-        socket.end(() => {
-          socket.destroy()
-          connect(index + 1)
-        })
-      }
+      ++answers
     })
   })
 }
