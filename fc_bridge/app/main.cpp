@@ -81,7 +81,7 @@ cover::fc_bridge::NodeOptions node_options(const CommandLine& cli, const CLI::Ap
   options.uav_id = static_cast<std::uint32_t>(cli.uav_id);
   options.clock = *cover::sim_clock::parse_clock_mode(cli.clock);
   options.step_frames = !cli.real_firmware;
-  options.bridge.autopilot = *cover::fc_bridge::parse_autopilot(cli.autopilot);
+  options.bridge.autopilot = *cover::parse_autopilot(cli.autopilot);
   options.bridge.params = cover::fc_bridge::FcBridgeParams::load_file(cli.params_file);
   if (app.count("--hover-thrust") > 0) options.bridge.params.hover_thrust = cli.hover_thrust;
   if (cli.auto_arm) options.bridge.params.auto_arm = true;

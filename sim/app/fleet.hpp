@@ -21,7 +21,7 @@ namespace cover::sim {
 // agent's cover/uav/<u>/cmd through OffboardFailsafe), or a simulated PX4 / ArduPilot
 // autopilot that a flight-controller bridge talks MAVLink to.
 struct FleetAutopilots {
-  std::optional<fc::AutopilotProfile> profile;  // nullopt: direct
+  std::optional<cover::Autopilot> profile;  // nullopt: direct
   fc::SimFcParams params;
   // Lockstep: every step's frames end with a HIGHRES_IMU (the simulator's own contract with
   // a bridge; real firmware has none).

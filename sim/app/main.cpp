@@ -89,7 +89,7 @@ nlohmann::json autopilot_json(const cover::sim::Fleet& fleet, const cover::sim::
     if (e.kind == fc::AutopilotEvent::Kind::Failsafe) failsafes.push_back(one);
     events.push_back(one);
   }
-  nlohmann::json out = {{"autopilot", fc::to_string(autopilot.profile())},
+  nlohmann::json out = {{"autopilot", cover::to_string(autopilot.profile())},
                         {"system_id", autopilot.system_id()},
                         {"mode", autopilot.mode_name()},
                         {"armed", autopilot.armed()},
@@ -340,9 +340,9 @@ cover::sim::SimRunOptions run_options(const CommandLine& cli, const cover::sim::
 // Real firmware: the motor-level UAV and one physics link per UAV, bound now.
 cover::sim::FleetFirmware fleet_firmware(const CommandLine& cli, int uav_count) {
   namespace link = cover::firmware_link;
-  const link::FirmwareKind kind = *link::parse_firmware_kind(cli.firmware);
+  const cover::Autopilot kind = *cover::parse_autopilot(cli.firmware);
   cover::sim::FleetFirmware firmware;
-  firmware.name = link::firmware_name(kind);
+  firmware.name = cover::display_name(kind);
   const std::string file =
       cli.firmware_uav_file.empty()
           ? cover::config::default_config_dir() + "/sim/" + link::firmware_uav_file_name(kind)
@@ -389,7 +389,7 @@ int run(const CLI::App& app, const CommandLine& cli) {
   const auto mission = cover::mission::MissionParams::load_file(
       cover::config::default_config_dir() + "/mission.yaml");
   cover::sim::FleetAutopilots autopilots;
-  autopilots.profile = cover::sim::fc::parse_profile(cli.fc);  // nullopt: direct
+  autopilots.profile = cover::parse_autopilot(cli.fc);  // nullopt: direct
   const bool mavlink = autopilots.profile || cli.ugv_imu == "mavlink";
   if (mavlink) autopilots.params = cover::sim::fc::SimFcParams::load_file(cli.fc_params_file);
   // In lockstep every step's frames end with a HIGHRES_IMU, which a bridge waits for

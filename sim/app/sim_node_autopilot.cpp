@@ -26,7 +26,7 @@ void SimNode::start_autopilot_links() {
   for (int u = 0; u < fleet_.uav_count(); ++u) {
     const fc::SimulatedAutopilot& autopilot = fleet_.autopilot(u);
     spdlog::info("UAV {}: simulated {} autopilot, MAVLink system {}, {}, {} and disarmed", u,
-                 fc::to_string(autopilot.profile()), autopilot.system_id(),
+                 cover::to_string(autopilot.profile()), autopilot.system_id(),
                  autopilot_links_->describe(u), autopilot.mode_name());
   }
 }

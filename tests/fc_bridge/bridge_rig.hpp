@@ -21,35 +21,34 @@ inline constexpr double kStep_s = 0.01;  // the agent's 100 Hz
 // HEARTBEAT at 1 Hz and landed state at 5 Hz. With `obey`, the autopilot acks every
 // COMMAND_LONG as accepted and does what it asks.
 struct BridgeRig {
-  explicit BridgeRig(AutopilotKind kind = AutopilotKind::Px4, bool auto_arm = false)
+  explicit BridgeRig(Autopilot kind = Autopilot::Px4, bool auto_arm = false)
       : BridgeRig(config(kind, auto_arm)) {}
   explicit BridgeRig(const BridgeConfig& config)
       : kind(config.autopilot),
         bridge(config),
         autopilot(kSys, AutopilotProfile(config.autopilot).mav_autopilot()) {
-    custom_mode = kind == AutopilotKind::Px4
-                      ? mav::px4_mode::custom_mode(mav::px4_mode::kMainPosctl)
-                      : mav::copter_mode::kStabilize;
+    custom_mode = kind == Autopilot::Px4 ? mav::px4_mode::custom_mode(mav::px4_mode::kMainPosctl)
+                                         : mav::copter_mode::kStabilize;
   }
-  static BridgeConfig config(AutopilotKind kind, bool auto_arm) {
+  static BridgeConfig config(Autopilot kind, bool auto_arm) {
     BridgeConfig c;
     c.autopilot = kind;
     c.params.auto_arm = auto_arm;
     return c;
   }
   std::uint32_t offboard_mode() const {
-    return kind == AutopilotKind::Px4 ? mav::px4_mode::custom_mode(mav::px4_mode::kMainOffboard)
-                                      : mav::copter_mode::kGuidedNoGps;
+    return kind == Autopilot::Px4 ? mav::px4_mode::custom_mode(mav::px4_mode::kMainOffboard)
+                                  : mav::copter_mode::kGuidedNoGps;
   }
   std::uint32_t land_mode() const {
-    return kind == AutopilotKind::Px4
+    return kind == Autopilot::Px4
                ? mav::px4_mode::custom_mode(mav::px4_mode::kMainAuto, mav::px4_mode::kAutoSubLand)
                : mav::copter_mode::kLand;
   }
   std::uint32_t mode_of(const mav::CommandLong& c) const {
     const auto main = static_cast<std::uint8_t>(c.param[1]);
     const auto sub = static_cast<std::uint8_t>(c.param[2]);
-    return kind == AutopilotKind::Px4 ? mav::px4_mode::custom_mode(main, sub) : main;
+    return kind == Autopilot::Px4 ? mav::px4_mode::custom_mode(main, sub) : main;
   }
   void heartbeat() { bridge.on_frame(autopilot.heartbeat(armed, custom_mode), t); }
   void flying() {  // armed in offboard, in the air
@@ -120,7 +119,7 @@ struct BridgeRig {
     n.clear();
   }
 
-  AutopilotKind kind;
+  Autopilot kind;
   Bridge bridge;
   FakeAutopilot autopilot;
   double t = 100.0;

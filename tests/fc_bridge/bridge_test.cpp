@@ -172,7 +172,7 @@ TEST(Bridge, LandRequestedAgainUntilTheAutopilotIsInLandMode) {
 }
 
 TEST(Bridge, HandoverCommandsLandAtOnce) {
-  Rig rig(AutopilotKind::ArduPilot);
+  Rig rig(Autopilot::ArduPilot);
   rig.run(1.0);
   rig.flying();
   rig.run(0.3);
@@ -283,7 +283,7 @@ TEST(Bridge, ArmedFromTheAcceptedArmBeforeTheNextHeartbeat) {
 // The same for the mode: OFFBOARD / GUIDED_NOGPS accepted is the mode at once, an older
 // HEARTBEAT within the hold does not undo it, a later one does.
 TEST(Bridge, ModeFromTheAcceptedSetModeBeforeTheNextHeartbeat) {
-  for (const AutopilotKind kind : {AutopilotKind::Px4, AutopilotKind::ArduPilot}) {
+  for (const Autopilot kind : {Autopilot::Px4, Autopilot::ArduPilot}) {
     Rig rig(kind);
     rig.heartbeats = false;
     rig.heartbeat();
@@ -304,7 +304,7 @@ TEST(Bridge, ModeFromTheAcceptedSetModeBeforeTheNextHeartbeat) {
 }
 
 TEST(Bridge, AutoArmStreamsThenOffboardThenArms) {
-  for (const AutopilotKind kind : {AutopilotKind::Px4, AutopilotKind::ArduPilot}) {
+  for (const Autopilot kind : {Autopilot::Px4, Autopilot::ArduPilot}) {
     Rig rig(kind, true);
     rig.heartbeat();
     double offboard_at = -1.0;
@@ -323,14 +323,14 @@ TEST(Bridge, AutoArmStreamsThenOffboardThenArms) {
     EXPECT_LE(offboard_at - start, 1.1);
     EXPECT_GT(arm_at, offboard_at);
     EXPECT_EQ(rig.sent_commands(mav::mav_cmd::kDoSetMode)[0].param[1],
-              kind == AutopilotKind::Px4 ? 6.0F : 20.0F);
+              kind == Autopilot::Px4 ? 6.0F : 20.0F);
     EXPECT_EQ(rig.sent_commands(mav::mav_cmd::kComponentArmDisarm).size(), 1U);
     EXPECT_TRUE(rig.bridge.state(rig.t).offboard_ready) << to_string(kind);
   }
 }
 
 TEST(Bridge, AutoArmGivesUpWhenThePilotTakesOver) {
-  Rig rig(AutopilotKind::Px4, true);
+  Rig rig(Autopilot::Px4, true);
   rig.heartbeat();
   rig.run(4.0);
   ASSERT_TRUE(rig.bridge.state(rig.t).offboard_ready);
@@ -402,7 +402,7 @@ TEST(Bridge, PayloadReleaseOnTheRisingEdgeOnly) {
 // With `velocity`, the autopilot's LOCAL_POSITION_NED gives the climb at 25 Hz too.
 double hover_estimate_after(double hover_setting, double seconds, bool velocity = false) {
   const double truth = 9.81 / 20.0;
-  BridgeConfig config = Rig::config(AutopilotKind::Px4, false);
+  BridgeConfig config = Rig::config(Autopilot::Px4, false);
   config.params.hover_thrust = hover_setting;
   Rig tuned(config);
   tuned.flying();

@@ -17,7 +17,7 @@ namespace mav = cover::mavlink;
 constexpr std::uint8_t kCustom = mav::mav_mode_flag::kCustomModeEnabled;
 
 TEST(AutopilotProfile, Px4ModesDecodeFromMainAndSubMode) {
-  const AutopilotProfile px4(AutopilotKind::Px4);
+  const AutopilotProfile px4(Autopilot::Px4);
   const auto offboard = mav::px4_mode::custom_mode(mav::px4_mode::kMainOffboard);
   EXPECT_EQ(offboard, 0x00060000U);
   EXPECT_EQ(px4.decode_mode(kCustom, offboard), FcMode::Offboard);
@@ -37,7 +37,7 @@ TEST(AutopilotProfile, Px4ModesDecodeFromMainAndSubMode) {
 }
 
 TEST(AutopilotProfile, ArduPilotModesAreCopterNumbers) {
-  const AutopilotProfile apm(AutopilotKind::ArduPilot);
+  const AutopilotProfile apm(Autopilot::ArduPilot);
   EXPECT_EQ(apm.decode_mode(kCustom, 20), FcMode::Offboard);
   EXPECT_EQ(apm.mode_name(kCustom, 20), "GUIDED_NOGPS");
   EXPECT_EQ(apm.decode_mode(kCustom, 9), FcMode::Land);
@@ -48,8 +48,8 @@ TEST(AutopilotProfile, ArduPilotModesAreCopterNumbers) {
 }
 
 TEST(AutopilotProfile, ModeAndArmCommands) {
-  const AutopilotProfile px4(AutopilotKind::Px4);
-  const AutopilotProfile apm(AutopilotKind::ArduPilot);
+  const AutopilotProfile px4(Autopilot::Px4);
+  const AutopilotProfile apm(Autopilot::ArduPilot);
   EXPECT_EQ(px4.offboard_command().command, mav::mav_cmd::kDoSetMode);
   EXPECT_EQ(px4.offboard_command().param[0], 1.0F);
   EXPECT_EQ(px4.offboard_command().param[1], 6.0F);
@@ -63,8 +63,8 @@ TEST(AutopilotProfile, ModeAndArmCommands) {
   EXPECT_EQ(px4.arm_command(false).param[0], 0.0F);
   EXPECT_EQ(px4.mav_autopilot(), mav::mav_autopilot::kPx4);
   EXPECT_EQ(apm.mav_autopilot(), mav::mav_autopilot::kArdupilotMega);
-  EXPECT_EQ(parse_autopilot("px4"), AutopilotKind::Px4);
-  EXPECT_EQ(parse_autopilot("ardupilot"), AutopilotKind::ArduPilot);
+  EXPECT_EQ(parse_autopilot("px4"), Autopilot::Px4);
+  EXPECT_EQ(parse_autopilot("ardupilot"), Autopilot::ArduPilot);
   EXPECT_FALSE(parse_autopilot("PX4 "));
 }
 
@@ -166,7 +166,7 @@ TEST(HoverThrustEstimator, StaysWithinItsBoundsAndRefusesNonsense) {
 }
 
 CommandSpec arm_spec() {
-  return AutopilotProfile(AutopilotKind::Px4).arm_command(true);
+  return AutopilotProfile(Autopilot::Px4).arm_command(true);
 }
 
 TEST(CommandSender, ResendsWithConfirmationUpToTheRetriesThenNoAnswer) {
@@ -214,8 +214,8 @@ TEST(CommandSender, AckAcceptsOrRefusesInWordsAndInProgressWaits) {
 
 TEST(CommandSender, PreemptSupersedesTheCommandInFlight) {
   CommandSender sender(0.25, 3);
-  const auto offboard = AutopilotProfile(AutopilotKind::ArduPilot).offboard_command();
-  const auto land = AutopilotProfile(AutopilotKind::ArduPilot).land_command();
+  const auto offboard = AutopilotProfile(Autopilot::ArduPilot).offboard_command();
+  const auto land = AutopilotProfile(Autopilot::ArduPilot).land_command();
   ASSERT_TRUE(sender.start(offboard, 7, 1, 1, 0.0, false));
   const auto sent = sender.start(land, 7, 1, 2, 0.05, true);
   ASSERT_TRUE(sent);

@@ -37,7 +37,7 @@ bool asked_for(const BridgeRig& rig, std::uint32_t id, double interval_us) {
 }
 
 TEST(Streams, ArduPilotIsAskedForWhatTheBridgeReadsOnceItIsFound) {
-  BridgeRig rig(AutopilotKind::ArduPilot);
+  BridgeRig rig(Autopilot::ArduPilot);
   rig.run(2.0);
   EXPECT_TRUE(asked_for(rig, mav::HighresImu::kId, 10000.0));  // 100 Hz
   EXPECT_TRUE(asked_for(rig, mav::ExtendedSysState::kId, 200000.0));
@@ -50,7 +50,7 @@ TEST(Streams, ArduPilotIsAskedForWhatTheBridgeReadsOnceItIsFound) {
 }
 
 TEST(Streams, AStreamThatDoesNotComeIsNamedAskedAgainAndClearedWhenItComes) {
-  BridgeRig rig(AutopilotKind::ArduPilot);  // the rig's autopilot sends no HIGHRES_IMU
+  BridgeRig rig(Autopilot::ArduPilot);  // the rig's autopilot sends no HIGHRES_IMU
   rig.run(3.0);
   const std::size_t asked_first = stream_requests(rig).size();
   FcStatus s = rig.bridge.state(rig.t);
@@ -113,7 +113,7 @@ TEST(Streams, AnOptionalStreamIsAskedButNeverNamedMissing) {
   const auto again = monitor.next_request(10.0);
   ASSERT_TRUE(again.has_value());
   EXPECT_EQ(again->param[0], static_cast<float>(mav::LocalPositionNed::kId));
-  const auto plan = stream_plan(AutopilotKind::ArduPilot, [] {
+  const auto plan = stream_plan(Autopilot::ArduPilot, [] {
     StreamRates rates;
     rates.local_position_ned_hz = 50.0;
     return rates;
@@ -125,7 +125,7 @@ TEST(Streams, AnOptionalStreamIsAskedButNeverNamedMissing) {
 }
 
 TEST(Streams, AskedAgainAfterTheAutopilotComesBack) {
-  BridgeRig rig(AutopilotKind::Px4);
+  BridgeRig rig(Autopilot::Px4);
   rig.run(2.0);
   const std::size_t before = stream_requests(rig).size();
   rig.heartbeats = false;  // a reboot: silent, then back
@@ -171,7 +171,7 @@ TEST(Px4Events, TextsWithTheirArguments) {
 }
 
 TEST(Px4Events, ARefusedArmSaysWhyInTheOperatorsAnswer) {
-  BridgeRig rig(AutopilotKind::Px4);
+  BridgeRig rig(Autopilot::Px4);
   rig.obey = false;
   rig.run(1.0);
   rig.bridge.on_operator_request(OperatorCommand::Arm, "arm-1", rig.t);
@@ -203,7 +203,7 @@ void answer_all(BridgeRig& rig, double seconds) {
 }
 
 TEST(Parameters, ArduPilotAngleBoostOnHoldsTasksWithTheReason) {
-  BridgeRig rig(AutopilotKind::ArduPilot);
+  BridgeRig rig(Autopilot::ArduPilot);
   rig.parameters = {{"ATC_ANGLE_BOOST", 1.0F}, {"GUID_OPTIONS", 8.0F},    {"GUID_TIMEOUT", 3.0F},
                     {"FS_THR_ENABLE", 0.0F},   {"MOT_THST_HOVER", 0.39F}, {"DISARM_DELAY", 10.0F},
                     {"SYSID_THISMAV", 7.0F}};  // before 4.7: MAV_SYSID unanswered
@@ -229,7 +229,7 @@ TEST(Parameters, ArduPilotAngleBoostOnHoldsTasksWithTheReason) {
 }
 
 TEST(Parameters, GuidedThrustNotSelectedIsBlocking) {
-  BridgeRig rig(AutopilotKind::ArduPilot);
+  BridgeRig rig(Autopilot::ArduPilot);
   rig.parameters = {{"ATC_ANGLE_BOOST", 0.0F}, {"GUID_OPTIONS", 0.0F}};
   answer_all(rig, 8.0);
   EXPECT_NE(rig.bridge.state(rig.t).flight_blocker.find("GUID_OPTIONS is 0, COVER needs bit 3"),
@@ -237,7 +237,7 @@ TEST(Parameters, GuidedThrustNotSelectedIsBlocking) {
 }
 
 TEST(Parameters, Px4DisarmDelayAndAbsentParameters) {
-  BridgeRig rig(AutopilotKind::Px4);
+  BridgeRig rig(Autopilot::Px4);
   rig.parameters = {{"COM_DISARM_PRFLT", 10.0F}, {"COM_OF_LOSS_T", 1.0F}, {"NAV_DLL_ACT", 2.0F}};
   answer_all(rig, 8.0);
   const FcStatus s = rig.bridge.state(rig.t);
@@ -265,10 +265,10 @@ double finding_value(const FcStatus& s, const std::string& name) {
 // PX4 copies an integer parameter's bytes into PARAM_VALUE's float (seen from real PX4 SITL:
 // COM_RC_IN_MODE 1 arrived as 1.4e-45); ArduPilot converts the value.
 TEST(Parameters, Px4SendsIntegersBytewiseArduPilotAsValues) {
-  for (const AutopilotKind kind : {AutopilotKind::Px4, AutopilotKind::ArduPilot}) {
+  for (const Autopilot kind : {Autopilot::Px4, Autopilot::ArduPilot}) {
     BridgeRig rig(kind);
     rig.run(1.0);
-    const bool px4 = kind == AutopilotKind::Px4;
+    const bool px4 = kind == Autopilot::Px4;
     mav::ParamValue value;
     value.param_id = mav::param_id_from(px4 ? "NAV_DLL_ACT" : "FS_THR_ENABLE");
     value.param_type = px4 ? mav::mav_param_type::kInt32 : mav::mav_param_type::kInt8;
@@ -285,7 +285,7 @@ TEST(Parameters, Px4SendsIntegersBytewiseArduPilotAsValues) {
 }
 
 TEST(Parameters, TheEstimateStartsAtTheAutopilotsHoverThrustWhenAsked) {
-  BridgeConfig config = BridgeRig::config(AutopilotKind::ArduPilot, false);
+  BridgeConfig config = BridgeRig::config(Autopilot::ArduPilot, false);
   config.params.hover_thrust_from_autopilot = true;
   BridgeRig rig(config);
   rig.parameters = {{"MOT_THST_HOVER", 0.39F}};
@@ -295,7 +295,7 @@ TEST(Parameters, TheEstimateStartsAtTheAutopilotsHoverThrustWhenAsked) {
 }
 
 TEST(Estimator, Px4FlagsAndSensorHealthInWords) {
-  EstimatorHealthTracker px4(AutopilotKind::Px4);
+  EstimatorHealthTracker px4(Autopilot::Px4);
   EXPECT_FALSE(px4.health().reported);
   mav::SysStatus status;
   namespace bit = mav::mav_sys_status_sensor;
@@ -314,7 +314,7 @@ TEST(Estimator, Px4FlagsAndSensorHealthInWords) {
 }
 
 TEST(Estimator, ArduPilotUninitialisedEkfIsNotReady) {
-  EstimatorHealthTracker ap(AutopilotKind::ArduPilot);
+  EstimatorHealthTracker ap(Autopilot::ArduPilot);
   ap.on_estimator_flags(1024 | mav::estimator_flags::kAttitude);
   EXPECT_FALSE(ap.health().attitude_ok);
   EXPECT_EQ(ap.health().text, "EKF not initialised");

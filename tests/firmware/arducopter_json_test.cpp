@@ -26,6 +26,7 @@
 #include "cover/firmware/firmware_monitor.hpp"
 #include "cover/firmware/instance_slot.hpp"
 #include "cover/firmware/params_file.hpp"
+#include "cover/firmware/sitl_ports.hpp"
 #include "cover/firmware/sitl_process.hpp"
 #include "cover/firmware_link/ardupilot_json_link.hpp"
 #include "cover/mavlink/encoder.hpp"
@@ -268,10 +269,10 @@ class ArduCopterJson : public ::testing::Test {
 // clock (no "no_time_sync"), and the physics steps as its packets come, stepping on without
 // one after the link's realtime timeout.
 void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
-  InstanceSlot slot = InstanceSlot::claim(Firmware::ArduCopter, 4, 9);
+  InstanceSlot slot = InstanceSlot::claim(Autopilot::ArduPilot, 4, 9);
   const int n = slot.instance();
   fl::ArduPilotJsonLinkOptions options;
-  options.port = fl::ardupilot_json_port(n);
+  options.port = cover::firmware::physics_port(cover::Autopilot::ArduPilot, n);
   options.log = stdout;
   options.pacing = pacing;
   fl::ArduPilotJsonLink link(options);

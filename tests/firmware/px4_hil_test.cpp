@@ -21,6 +21,7 @@
 #include "cover/firmware/firmware_monitor.hpp"
 #include "cover/firmware/instance_slot.hpp"
 #include "cover/firmware/params_file.hpp"
+#include "cover/firmware/sitl_ports.hpp"
 #include "cover/firmware/sitl_process.hpp"
 #include "cover/firmware_link/px4_hil_link.hpp"
 #include "cover/mavlink/link.hpp"
@@ -222,14 +223,15 @@ class Px4Hil : public ::testing::Test {
 // wall clock for the companion's stream. Realtime: paced from the start, each frame waits
 // only a few ms for its answer.
 void boot_align_arm_and_hover(const FirmwareBuild& build, Pacing pacing) {
-  InstanceSlot slot = InstanceSlot::claim(Firmware::Px4, 4, 9);
+  InstanceSlot slot = InstanceSlot::claim(Autopilot::Px4, 4, 9);
   const int n = slot.instance();
   Px4HilConfig config;
-  config.port = firmware_link::px4_hil_port(n);
+  config.port = static_cast<std::uint16_t>(cover::firmware::physics_port(cover::Autopilot::Px4, n));
   config.pacing = pacing;
   const bool lockstep = pacing == Pacing::Lockstep;
   Px4HilLink link(config);  // listening before PX4 starts: it connects at once
-  ASSERT_EQ(link.port(), firmware_link::px4_hil_port(n));
+  ASSERT_EQ(link.port(),
+            static_cast<std::uint16_t>(cover::firmware::physics_port(cover::Autopilot::Px4, n)));
 
   sim::WorldParams world_params =
       sim::WorldParams::load_file(config_path("sim/world_default.yaml"));

@@ -14,6 +14,7 @@
 
 #include "cover/dds/domain_claim.hpp"
 #include "cover/firmware/firmware_build.hpp"
+#include "cover/firmware/sitl_ports.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "launch_run.hpp"
 
@@ -37,10 +38,11 @@ bool px4(const SitlCase& c) {
 // The instance's ports, as the launch file's comment gives them.
 std::vector<std::string> instance_vars(const SitlCase& c) {
   const int instance = px4(c) ? 6 : 7;
-  const int physics = px4(c) ? 4560 + instance : 9002 + 10 * instance;
+  const cover::Autopilot autopilot = px4(c) ? cover::Autopilot::Px4 : cover::Autopilot::ArduPilot;
+  const int physics = cover::firmware::physics_port(autopilot, instance);
   return {"--var", "instance=" + std::to_string(instance),
           "--var", "physics_port=" + std::to_string(physics),
-          "--var", "fc_port=" + std::to_string(14540 + instance)};
+          "--var", "fc_port=" + std::to_string(cover::firmware::companion_port(instance))};
 }
 
 double number(const nlohmann::json& j, const char* key) {

@@ -151,7 +151,7 @@ bool bridge_sent_arm(FirmwareRig& rig) {
 // the firmware. `watch_for_self_arming`: 2 s in offboard first, in which the bridge must
 // not arm the UAV by itself.
 void operator_arms(FirmwareRig& rig, bool watch_for_self_arming = false) {
-  const Firmware fw = rig.firmware_kind();
+  const Autopilot fw = rig.firmware_kind();
   ASSERT_TRUE(rig.connect_monitor(60s)) << "the monitor's streams" << context(rig);
   ASSERT_TRUE(wait_until([&] { return bridge_link_up(rig); }, 30s)) << context(rig);
   rig.agent_flies([] { return motors_off(); });
@@ -465,7 +465,7 @@ void expect_rate_step_tracked(FirmwareRig& rig, std::int64_t start_ns) {
 // The agent falls silent: the bridge's land command and the firmware's acceptance of it
 // (its COMMAND_ACK on the bridge's link), timed from the agent's last command.
 void expect_agent_silent_land(FirmwareRig& rig) {
-  const Firmware fw = rig.firmware_kind();
+  const Autopilot fw = rig.firmware_kind();
   const std::int64_t silent_ns = rig.agent_falls_silent();
   std::optional<Timed<mav::CommandLong>> land;
   std::optional<Timed<mav::CommandAck>> accepted;
@@ -518,7 +518,7 @@ void expect_agent_silent_land(FirmwareRig& rig) {
 // firmware's hover thrust as its parameters said at take-off.
 void hover_on_the_estimate(FirmwareRig& rig, double before, std::int64_t airborne_ns) {
   const FirmwareProfile& profile = rig.profile();
-  const Firmware fw = profile.firmware;
+  const Autopilot fw = profile.firmware;
   auto& monitor = rig.monitor();
   ASSERT_TRUE(wait_until([&] { return estimate_settled(rig, airborne_ns); }, kSettleDeadline))
       << "the bridge's hover-thrust estimate did not settle" << context(rig);
@@ -548,9 +548,9 @@ void hover_on_the_estimate(FirmwareRig& rig, double before, std::int64_t airborn
   const auto after = firmware_hover_thrust(fw, monitor);
   ASSERT_TRUE(after.has_value()) << "the firmware did not give its hover thrust" << context(rig);
   double truth = *after;
-  std::string source = fw == Firmware::Px4 ? "SIH_MASS g / (4 SIH_T_MAX)"
-                                           : "MOT_THST_HOVER as ArduCopter learned it";
-  if (fw == Firmware::ArduCopter && std::abs(*after - before) < 1e-4) {
+  std::string source = fw == Autopilot::Px4 ? "SIH_MASS g / (4 SIH_T_MAX)"
+                                            : "MOT_THST_HOVER as ArduCopter learned it";
+  if (fw == Autopilot::ArduPilot && std::abs(*after - before) < 1e-4) {
     // ArduCopter learns MOT_THST_HOVER only under its own altitude control, not while it
     // flies GUIDED_NOGPS thrust: the hover thrust is then what its own vertical
     // acceleration over the window says of the thrust it was sent.
@@ -573,7 +573,7 @@ void hover_on_the_estimate(FirmwareRig& rig, double before, std::int64_t airborn
       profile.bridge_hover_start);
   ::testing::Test::RecordProperty("hover_vz_max_m_s", std::to_string(vz_max));
   ::testing::Test::RecordProperty("hover_estimate_error_percent", std::to_string(100.0 * error));
-  if (fw == Firmware::Px4) {
+  if (fw == Autopilot::Px4) {
     if (vz_max > kHoverVzLimit_m_s) {
       std::printf(
           "hover: PX4 SIH |vz| max %.3f m/s is over the %.1f m/s target (known, see "
@@ -610,7 +610,7 @@ void rate_step(FirmwareRig& rig, double height) {
 // The operator gives the UAV back to COVER in flight: the agent streams its height hold,
 // `cover fc offboard 0`, and the UAV climbs back to `height` on COVER's commands.
 void operator_takes_back(FirmwareRig& rig, double height) {
-  const Firmware fw = rig.firmware_kind();
+  const Autopilot fw = rig.firmware_kind();
   auto& monitor = rig.monitor();
   rig.agent_flies(hold_height(monitor, height));
   // The bridge asks for a second of setpoints before offboard (an agent restarted after
@@ -644,7 +644,7 @@ void operator_takes_back(FirmwareRig& rig, double height) {
 // firmware refuses the operator's disarm in flight and accepts the operator's land.
 void pilot_takes_over(FirmwareRig& rig) {
   const FirmwareProfile& profile = rig.profile();
-  const Firmware fw = profile.firmware;
+  const Autopilot fw = profile.firmware;
   auto& monitor = rig.monitor();
   const std::int64_t change_ns = now_ns();
   const auto result = monitor.set_mode(profile.pilot_mode_main, profile.pilot_mode_sub);
@@ -704,7 +704,7 @@ void pilot_takes_over(FirmwareRig& rig) {
 // HEARTBEAT (1 Hz: PX4 refuses a faster one) would not time it.
 void firmware_failsafe_when_the_bridge_dies(FirmwareRig& rig, double height) {
   const FirmwareProfile& profile = rig.profile();
-  const Firmware fw = profile.firmware;
+  const Autopilot fw = profile.firmware;
   auto& monitor = rig.monitor();
   const auto loss = monitor.read_param(profile.offboard_loss_param, 5s);
   ASSERT_TRUE(loss.has_value()) << profile.offboard_loss_param << context(rig);
@@ -738,11 +738,11 @@ void firmware_failsafe_when_the_bridge_dies(FirmwareRig& rig, double height) {
   // PX4 says when it takes over ("Failsafe activated"), then turns its yaw rate down over
   // ~0.4 s (AUTO.LAND's yaw slew; its rate loop is noisy, +-0.05 rad/s with SIH); ArduCopter
   // says nothing, and turns the yaw rate down at once (its acceleration limit).
-  if (fw == Firmware::Px4) {
+  if (fw == Autopilot::Px4) {
     ASSERT_TRUE(announced_ns.has_value()) << "PX4 announced no failsafe" << context(rig);
   }
   const double after_s =
-      ms_between(last_ns, fw == Firmware::Px4 ? *announced_ns : *yaw_left_ns) * 1e-3;
+      ms_between(last_ns, fw == Autopilot::Px4 ? *announced_ns : *yaw_left_ns) * 1e-3;
   std::printf(
       "bridge killed: the firmware took over %.3f s after the last setpoint (%s %g); its yaw "
       "rate fell below %.2f rad/s %.3f s and below 0.1 rad/s %.3f s after it\n",
@@ -751,7 +751,7 @@ void firmware_failsafe_when_the_bridge_dies(FirmwareRig& rig, double height) {
   ::testing::Test::RecordProperty("failsafe_s", std::to_string(after_s));
   EXPECT_GE(after_s, loss_s - 0.05) << context(rig);
   EXPECT_LE(after_s, loss_s + 0.5 * cover::test::time_scale()) << context(rig);
-  if (fw == Firmware::Px4) {
+  if (fw == Autopilot::Px4) {
     // Land (COM_OBL_RC_ACT 4), or descend without a position: either way down.
     EXPECT_TRUE(wait_until(
         [&] { return monitor_sees(rig, [&](auto& hb) { return in_land(fw, hb); }); }, 3s))
@@ -782,7 +782,7 @@ void link_streams_and_parameters(const FirmwareProfile& profile, const FirmwareB
   ASSERT_TRUE(wait_until([&] { return bridge_link_up(rig); }, 30s)) << context(rig);
   EXPECT_EQ(rig.state()->system_id, static_cast<std::uint32_t>(rig.firmware().system_id()));
   EXPECT_EQ(rig.monitor().system_id(), rig.firmware().system_id());
-  EXPECT_EQ(rig.state()->autopilot, profile.firmware == Firmware::Px4
+  EXPECT_EQ(rig.state()->autopilot, profile.firmware == Autopilot::Px4
                                         ? msg::FcAutopilot::FC_AUTOPILOT_PX4
                                         : msg::FcAutopilot::FC_AUTOPILOT_ARDUPILOT);
 

@@ -58,7 +58,7 @@ void check_state(const fc::FcStatus& s, const fc::FcBridgeParams& p) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   fc::BridgeConfig config;
-  config.autopilot = (data[0] & 1) != 0 ? fc::AutopilotKind::ArduPilot : fc::AutopilotKind::Px4;
+  config.autopilot = (data[0] & 1) != 0 ? cover::Autopilot::ArduPilot : cover::Autopilot::Px4;
   config.params.hover_thrust_from_autopilot = (data[0] & 2) != 0;
   fc::Bridge bridge(config);
   mav::StreamParser parser;

@@ -34,7 +34,7 @@ class AutopilotBench {
   static constexpr std::uint8_t kSystem = 3;  // not 1: the companion must target it
   static constexpr double kPeriodS = 0.01;
 
-  explicit AutopilotBench(AutopilotProfile profile, const WorldParams& world = ground_world(),
+  explicit AutopilotBench(Autopilot profile, const WorldParams& world = ground_world(),
                           const SimFcParams& params = SimFcParams{},
                           StepClosing closing = StepClosing::None)
       : world_(world), autopilot_(profile, kSystem, params, closing) {}

@@ -14,13 +14,12 @@
 
 namespace {
 
+using cover::Autopilot;
 using cover::fc_bridge::AgentCommand;
-using cover::fc_bridge::AutopilotKind;
 using cover::fc_bridge::Bridge;
 using cover::fc_bridge::BridgeConfig;
 using cover::fc_bridge::FcStatus;
 using cover::fc_bridge::OperatorCommand;
-using cover::sim::fc::AutopilotProfile;
 using cover::sim::fc::SimFcParams;
 using cover::sim::fc::SimulatedAutopilot;
 using cover::sim::fc::test::ground_world;
@@ -35,7 +34,7 @@ constexpr double kPeriod_s = 0.01;
 // its answers the bridge.
 class BridgeOnAutopilot {
  public:
-  explicit BridgeOnAutopilot(AutopilotProfile profile, const SimFcParams& params = SimFcParams{})
+  explicit BridgeOnAutopilot(Autopilot profile, const SimFcParams& params = SimFcParams{})
       : world_(ground_world()), autopilot_(profile, kSystem, params), bridge_(config(profile)) {}
 
   void run(double seconds) {
@@ -72,9 +71,9 @@ class BridgeOnAutopilot {
   bool agent = false;
 
  private:
-  static BridgeConfig config(AutopilotProfile profile) {
+  static BridgeConfig config(Autopilot profile) {
     BridgeConfig c;
-    c.autopilot = profile == AutopilotProfile::Px4 ? AutopilotKind::Px4 : AutopilotKind::ArduPilot;
+    c.autopilot = profile == Autopilot::Px4 ? Autopilot::Px4 : Autopilot::ArduPilot;
     return c;
   }
   AgentCommand command() const {
@@ -126,7 +125,7 @@ const cover::fc_bridge::StreamState* stream(const FcStatus& s, std::uint32_t id)
 // reads then arrives at the asked rate (streams_missing empty, the landed state and the
 // battery known, the estimator aligned).
 TEST(BridgeOnSimulatedAutopilot, ArduPilotStreamsArriveAsTheBridgeAsks) {
-  BridgeOnAutopilot rig(AutopilotProfile::ArduPilot);
+  BridgeOnAutopilot rig(Autopilot::ArduPilot);
   rig.run(5.0);
   const FcStatus s = rig.state();
   EXPECT_TRUE(s.link_ok);
@@ -150,7 +149,7 @@ TEST(BridgeOnSimulatedAutopilot, ArduPilotStreamsArriveAsTheBridgeAsks) {
 
 // PX4 streams ~25 types the codec does not know: skipped whole, no error, no gap.
 TEST(BridgeOnSimulatedAutopilot, Px4UnknownTypesAreSkippedWhole) {
-  BridgeOnAutopilot rig(AutopilotProfile::Px4);
+  BridgeOnAutopilot rig(Autopilot::Px4);
   rig.run(3.0);
   const FcStatus s = rig.state();
   EXPECT_EQ(s.streams_missing, "");
@@ -163,7 +162,7 @@ TEST(BridgeOnSimulatedAutopilot, Px4UnknownTypesAreSkippedWhole) {
 // The parameters the bridge reads, as the simulated firmware types them: all known and as
 // COVER needs them by default; a wrong ATC_ANGLE_BOOST set in sim_fc.yaml holds the flights.
 TEST(BridgeOnSimulatedAutopilot, TheBridgeReadsEveryParameterAndCatchesAWrongAngleBoost) {
-  for (const auto profile : {AutopilotProfile::Px4, AutopilotProfile::ArduPilot}) {
+  for (const auto profile : {Autopilot::Px4, Autopilot::ArduPilot}) {
     BridgeOnAutopilot rig(profile);
     rig.run(2.0);
     const FcStatus s = rig.state();
@@ -173,11 +172,11 @@ TEST(BridgeOnSimulatedAutopilot, TheBridgeReadsEveryParameterAndCatchesAWrongAng
       EXPECT_TRUE(p.ok) << p.name << " = " << p.value;
     }
     EXPECT_EQ(s.flight_blocker, "");
-    EXPECT_DOUBLE_EQ(s.auto_disarm_s, profile == AutopilotProfile::Px4 ? 11.0 : 10.0);
+    EXPECT_DOUBLE_EQ(s.auto_disarm_s, profile == Autopilot::Px4 ? 11.0 : 10.0);
   }
   SimFcParams wrong;
   wrong.ardupilot.atc_angle_boost = 1;
-  BridgeOnAutopilot rig(AutopilotProfile::ArduPilot, wrong);
+  BridgeOnAutopilot rig(Autopilot::ArduPilot, wrong);
   rig.run(2.0);
   EXPECT_NE(rig.state().flight_blocker.find("ATC_ANGLE_BOOST is 1, COVER needs 0"),
             std::string::npos)
@@ -187,7 +186,7 @@ TEST(BridgeOnSimulatedAutopilot, TheBridgeReadsEveryParameterAndCatchesAWrongAng
 // PX4 SITL in OFFBOARD without setpoints refused the operator's arm; its reasons came only
 // as EVENTs, which the bridge puts in its answer.
 TEST(BridgeOnSimulatedAutopilot, Px4ArmRefusalCarriesTheEventsReasons) {
-  BridgeOnAutopilot rig(AutopilotProfile::Px4);
+  BridgeOnAutopilot rig(Autopilot::Px4);
   rig.run(1.0);
   mav::CommandLong offboard;
   offboard.command = mav::mav_cmd::kDoSetMode;
@@ -209,7 +208,7 @@ TEST(BridgeOnSimulatedAutopilot, Px4ArmRefusalCarriesTheEventsReasons) {
 
 // PX4 SITL disarmed 11 s after an arm on the ground: the bridge sees it disarmed, in words.
 TEST(BridgeOnSimulatedAutopilot, Px4PreflightDisarmReachesTheBridge) {
-  BridgeOnAutopilot rig(AutopilotProfile::Px4);
+  BridgeOnAutopilot rig(Autopilot::Px4);
   rig.run(1.0);
   const auto replies = rig.operator_request(OperatorCommand::Arm);  // in AUTO.LOITER
   ASSERT_EQ(replies.size(), 1u);

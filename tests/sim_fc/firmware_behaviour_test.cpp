@@ -17,8 +17,8 @@
 
 namespace {
 
+using cover::Autopilot;
 using cover::sim::fc::AutopilotEvent;
-using cover::sim::fc::AutopilotProfile;
 using cover::sim::fc::FlightMode;
 using cover::sim::fc::SimFcParams;
 using cover::sim::fc::StepClosing;
@@ -43,7 +43,7 @@ double disarmed_at(const cover::sim::fc::SimulatedAutopilot& autopilot) {
 // and delivered at exactly the asked rate; 0 = its default (off), -1 off; a message it has
 // no stream of refused 2 DENIED with "No ap_message for mavlink id (230)".
 TEST(FirmwareBehaviour, ArduPilotStreamsNothingButHeartbeatUntilAskedThenAtTheAskedRate) {
-  AutopilotBench bench(AutopilotProfile::ArduPilot);
+  AutopilotBench bench(Autopilot::ArduPilot);
   bench.idle(3.0);
   EXPECT_EQ(bench.sent<mav::Heartbeat>().size(), 3u);
   EXPECT_EQ(bench.received().size(), 3u) << "anything but HEARTBEAT before a request";
@@ -75,7 +75,7 @@ TEST(FirmwareBehaviour, ArduPilotStreamsNothingButHeartbeatUntilAskedThenAtTheAs
 // PX4 SITL: HIGHRES_IMU 49.7 Hz by default, 99.3 asked at 100, back to 49.3 at 0, off at -1;
 // an unsupported message 4 FAILED.
 TEST(FirmwareBehaviour, Px4StreamRatesChangePerMessage) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   bench.idle(1.0);
   EXPECT_EQ(bench.sent<mav::HighresImu>().size(), 50u);
   EXPECT_EQ(bench.interval(mav::HighresImu::kId, 10000.0F)->result, mav::mav_result::kAccepted);
@@ -101,7 +101,7 @@ TEST(FirmwareBehaviour, Px4StreamRatesChangePerMessage) {
 // sent it, FlightFromCoverCommands); neither of ours sends it unasked. A vehicle resting on
 // the ground: position and velocity zero.
 TEST(FirmwareBehaviour, BothSendLocalPositionNedWhenAsked) {
-  for (const auto profile : {AutopilotProfile::Px4, AutopilotProfile::ArduPilot}) {
+  for (const auto profile : {Autopilot::Px4, Autopilot::ArduPilot}) {
     AutopilotBench bench(profile);
     bench.idle(1.0);
     EXPECT_TRUE(bench.sent<mav::LocalPositionNed>().empty());
@@ -119,7 +119,7 @@ TEST(FirmwareBehaviour, BothSendLocalPositionNedWhenAsked) {
 // A rate change lands on the new rate's grid of simulated time: a frame both rates would
 // send does not move, whenever the request came.
 TEST(FirmwareBehaviour, AStreamChangedBetweenGridPointsKeepsItsPhase) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   bench.idle(0.13);
   bench.interval(mav::SysStatus::kId, 500000.0F);  // 2 Hz, asked at 0.13 s
   bench.clear();
@@ -139,7 +139,7 @@ TEST(FirmwareBehaviour, AStreamChangedBetweenGridPointsKeepsItsPhase) {
 // The simulator's own lockstep contract (real firmware has none): every step's frames end
 // with a HIGHRES_IMU stamped with the step's time, whatever the stream's rate, even off.
 TEST(FirmwareBehaviour, LockstepClosesEveryStepWithAHighresImuWhateverItsRate) {
-  for (const auto profile : {AutopilotProfile::Px4, AutopilotProfile::ArduPilot}) {
+  for (const auto profile : {Autopilot::Px4, Autopilot::ArduPilot}) {
     AutopilotBench bench(profile, ground_world(), SimFcParams{}, StepClosing::HighresImu);
     for (int i = 0; i < 40; ++i) {
       const double t = bench.t_s();
@@ -152,7 +152,7 @@ TEST(FirmwareBehaviour, LockstepClosesEveryStepWithAHighresImuWhateverItsRate) {
       EXPECT_EQ(bench.sent<mav::HighresImu>().size(), 1u);
     }
   }
-  AutopilotBench realtime(AutopilotProfile::ArduPilot);
+  AutopilotBench realtime(Autopilot::ArduPilot);
   realtime.idle(0.5);
   EXPECT_TRUE(realtime.sent<mav::HighresImu>().empty());
 }
@@ -163,11 +163,11 @@ TEST(FirmwareBehaviour, LockstepClosesEveryStepWithAHighresImuWhateverItsRate) {
 TEST(FirmwareBehaviour, ArduPilotSpeaksOnlyOnceItsLinkHasHeardAFrame) {
   SimFcParams params;
   params.ardupilot.estimator_align_s = 0.5;
-  AutopilotBench silent(AutopilotProfile::ArduPilot, ground_world(), params);
+  AutopilotBench silent(Autopilot::ArduPilot, ground_world(), params);
   silent.idle(1.0);
   EXPECT_TRUE(silent.sent<mav::StatusText>().empty());
 
-  AutopilotBench heard(AutopilotProfile::ArduPilot, ground_world(), params);
+  AutopilotBench heard(Autopilot::ArduPilot, ground_world(), params);
   heard.companion_heartbeat();
   heard.idle(1.0);
   EXPECT_EQ(heard.last_statustext(), "EKF3 IMU0 tilt alignment complete");
@@ -175,7 +175,7 @@ TEST(FirmwareBehaviour, ArduPilotSpeaksOnlyOnceItsLinkHasHeardAFrame) {
 
 // PX4 SITL sent no STATUSTEXT in three runs; each change is an EVENT, in sequence.
 TEST(FirmwareBehaviour, Px4ReportsThroughEventsNeverStatustext) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   bench.stream(1.0, 0.0F);
   bench.set_mode(px4::kMainOffboard);
   bench.arm();
@@ -239,7 +239,7 @@ std::optional<Answer> answer_of(const std::vector<mav::Frame>& frames) {
 // As PX4 SITL answered: REAL32 floats, INT32 integers with their bytes copied into the
 // float (COM_RC_IN_MODE 1 reads 1.4e-45), its own index; an unknown name PARAM_ERROR.
 TEST(FirmwareBehaviour, Px4AnswersItsParametersByNameAndIndexWithPx4sTypes) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   const struct {
     const char* name;
     std::uint8_t type;
@@ -280,7 +280,7 @@ TEST(FirmwareBehaviour, ArduPilotAnswersItsParametersWithArduPilotsTypes) {
   SimFcParams params;
   params.ardupilot.atc_angle_boost = 1;
   params.ardupilot.disarm_delay_s = 7;
-  AutopilotBench bench(AutopilotProfile::ArduPilot, ground_world(), params);
+  AutopilotBench bench(Autopilot::ArduPilot, ground_world(), params);
   const struct {
     const char* name;
     std::uint8_t type;
@@ -312,7 +312,7 @@ TEST(FirmwareBehaviour, ArduPilotAngleBoostDividesTheThrustByTheTiltsCosine) {
   for (const int boost : {0, 1}) {
     SimFcParams params;
     params.ardupilot.atc_angle_boost = boost;
-    AutopilotBench bench(AutopilotProfile::ArduPilot, world, params);
+    AutopilotBench bench(Autopilot::ArduPilot, world, params);
     bench.set_mode(copter::kGuidedNoGps);
     bench.arm();
     for (int i = 0; i < 30; ++i) {  // roll at 1 rad/s for 0.3 s
@@ -334,7 +334,7 @@ TEST(FirmwareBehaviour, ArduPilotAngleBoostDividesTheThrustByTheTiltsCosine) {
 // PX4 SITL: "Disarmed by preflight inaction" 11 s after arming on the ground
 // (COM_DISARM_PRFLT 10 s + 1 s spool-up), in any mode; a take-off ends the count.
 TEST(FirmwareBehaviour, Px4DisarmsElevenSecondsAfterArmingUnlessItTookOff) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   bench.idle(0.5);
   const double armed_s = bench.t_s();
   ASSERT_EQ(bench.arm()->result, mav::mav_result::kAccepted);
@@ -348,12 +348,12 @@ TEST(FirmwareBehaviour, Px4DisarmsElevenSecondsAfterArmingUnlessItTookOff) {
 
   SimFcParams never;
   never.px4.com_disarm_prflt_s = -1.0;
-  AutopilotBench kept(AutopilotProfile::Px4, ground_world(), never);
+  AutopilotBench kept(Autopilot::Px4, ground_world(), never);
   kept.arm();
   kept.idle(15.0);
   EXPECT_TRUE(kept.autopilot().armed());
 
-  AutopilotBench flying(AutopilotProfile::Px4);
+  AutopilotBench flying(Autopilot::Px4);
   flying.stream(1.0, 0.0F);
   flying.set_mode(px4::kMainOffboard);
   flying.arm();
@@ -365,7 +365,7 @@ TEST(FirmwareBehaviour, Px4DisarmsElevenSecondsAfterArmingUnlessItTookOff) {
 // ArduCopter SITL: GUIDED_NOGPS, armed without setpoints, on the ground: "Disarming motors"
 // 10 s after arming (DISARM_DELAY). A thrust setpoint is not zero throttle.
 TEST(FirmwareBehaviour, ArduPilotDisarmsAfterDisarmDelayLandedAtZeroThrottle) {
-  AutopilotBench bench(AutopilotProfile::ArduPilot);
+  AutopilotBench bench(Autopilot::ArduPilot);
   bench.set_mode(copter::kGuidedNoGps);
   const double armed_s = bench.t_s();
   ASSERT_EQ(bench.arm()->result, mav::mav_result::kAccepted);
@@ -376,7 +376,7 @@ TEST(FirmwareBehaviour, ArduPilotDisarmsAfterDisarmDelayLandedAtZeroThrottle) {
   EXPECT_NEAR(disarmed_at(bench.autopilot()) - armed_s, 10.0, 0.011);
   EXPECT_EQ(bench.last_statustext(), "Disarming motors");
 
-  AutopilotBench spinning(AutopilotProfile::ArduPilot);
+  AutopilotBench spinning(Autopilot::ArduPilot);
   spinning.set_mode(copter::kGuidedNoGps);
   spinning.arm();
   spinning.stream(12.0, 0.3F);  // below hover: resting, but the throttle is not zero
@@ -389,7 +389,7 @@ TEST(FirmwareBehaviour, ArduPilotDisarmsAfterDisarmDelayLandedAtZeroThrottle) {
 // ArduCopter SITL: after the bridge's LAND it "disarmed by itself" on touchdown; it stays
 // in LAND.
 TEST(FirmwareBehaviour, ArduPilotLandDisarmsOnTouchdown) {
-  AutopilotBench bench(AutopilotProfile::ArduPilot);
+  AutopilotBench bench(Autopilot::ArduPilot);
   bench.set_mode(copter::kGuidedNoGps);
   bench.arm();
   bench.stream(1.0, 0.7F);
@@ -414,10 +414,10 @@ TEST(FirmwareBehaviour, ArduPilotLandDisarmsOnTouchdown) {
 TEST(FirmwareBehaviour, EstimatorFlagsAndAhrsHealthOnceAligned) {
   SimFcParams params;
   params.ardupilot.estimator_align_s = 2.0;
-  AutopilotBench bench(AutopilotProfile::ArduPilot, ground_world(), params);
+  AutopilotBench bench(Autopilot::ArduPilot, ground_world(), params);
   bench.interval(mav::SysStatus::kId, 5e5F);
   bench.interval(mav::EkfStatusReport::kId, 5e5F);
-  cover::fc_bridge::EstimatorHealthTracker before(cover::fc_bridge::AutopilotKind::ArduPilot);
+  cover::fc_bridge::EstimatorHealthTracker before(cover::Autopilot::ArduPilot);
   bench.idle(1.0);
   before.on_sys_status(bench.sent<mav::SysStatus>().back());
   before.on_estimator_flags(bench.sent<mav::EkfStatusReport>().back().flags);
@@ -429,7 +429,7 @@ TEST(FirmwareBehaviour, EstimatorFlagsAndAhrsHealthOnceAligned) {
   EXPECT_EQ(before.health().text, "EKF not initialised");
 
   bench.idle(1.5);
-  cover::fc_bridge::EstimatorHealthTracker after(cover::fc_bridge::AutopilotKind::ArduPilot);
+  cover::fc_bridge::EstimatorHealthTracker after(cover::Autopilot::ArduPilot);
   const auto status = bench.sent<mav::SysStatus>().back();
   after.on_sys_status(status);
   after.on_estimator_flags(bench.sent<mav::EkfStatusReport>().back().flags);
@@ -445,7 +445,7 @@ TEST(FirmwareBehaviour, EstimatorFlagsAndAhrsHealthOnceAligned) {
   EXPECT_EQ(after.health().text, "attitude, horizontal velocity, vertical velocity, altitude ok");
 
   // PX4 SITL reported aligned with its first ESTIMATOR_STATUS.
-  AutopilotBench px4_bench(AutopilotProfile::Px4);
+  AutopilotBench px4_bench(Autopilot::Px4);
   px4_bench.tick();
   EXPECT_EQ(px4_bench.sent<mav::EstimatorStatus>().back().flags, 0xa7);
   EXPECT_NE(px4_bench.sent<mav::SysStatus>().back().onboard_control_sensors_health & sensor::kAhrs,

@@ -75,7 +75,7 @@ TEST(SimFcParams, FirmwareParametersAndStreamsComeFromTheFile) {
 }
 
 TEST(AutopilotMode, NamesAndDoSetModeParameters) {
-  using cover::sim::fc::AutopilotProfile;
+  using cover::Autopilot;
   using cover::sim::fc::FlightMode;
   using cover::sim::fc::parse_mode_name;
   using cover::sim::fc::requested_mode;
@@ -85,13 +85,13 @@ TEST(AutopilotMode, NamesAndDoSetModeParameters) {
   EXPECT_EQ(parse_mode_name("AUTO.LAND"), FlightMode::Land);
   EXPECT_EQ(parse_mode_name("auto.loiter"), FlightMode::Hold);
   EXPECT_FALSE(parse_mode_name("ACRO"));
-  EXPECT_EQ(requested_mode(AutopilotProfile::Px4, 1, 6, 0), FlightMode::Offboard);
-  EXPECT_EQ(requested_mode(AutopilotProfile::Px4, 1, 4, 6), FlightMode::Land);
-  EXPECT_EQ(requested_mode(AutopilotProfile::Px4, 1, 4, 3), FlightMode::Hold);  // AUTO.LOITER
-  EXPECT_FALSE(requested_mode(AutopilotProfile::Px4, 1, 4, 4));                 // AUTO.MISSION
-  EXPECT_FALSE(requested_mode(AutopilotProfile::Px4, 0, 6, 0));  // no custom-mode flag
-  EXPECT_EQ(requested_mode(AutopilotProfile::ArduPilot, 1, 20, 0), FlightMode::Offboard);
-  EXPECT_FALSE(requested_mode(AutopilotProfile::ArduPilot, 1, 6.5F, 0));
+  EXPECT_EQ(requested_mode(Autopilot::Px4, 1, 6, 0), FlightMode::Offboard);
+  EXPECT_EQ(requested_mode(Autopilot::Px4, 1, 4, 6), FlightMode::Land);
+  EXPECT_EQ(requested_mode(Autopilot::Px4, 1, 4, 3), FlightMode::Hold);  // AUTO.LOITER
+  EXPECT_FALSE(requested_mode(Autopilot::Px4, 1, 4, 4));                 // AUTO.MISSION
+  EXPECT_FALSE(requested_mode(Autopilot::Px4, 0, 6, 0));                 // no custom-mode flag
+  EXPECT_EQ(requested_mode(Autopilot::ArduPilot, 1, 20, 0), FlightMode::Offboard);
+  EXPECT_FALSE(requested_mode(Autopilot::ArduPilot, 1, 6.5F, 0));
 }
 
 }  // namespace

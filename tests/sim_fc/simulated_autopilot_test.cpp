@@ -13,8 +13,8 @@
 
 namespace {
 
+using cover::Autopilot;
 using cover::sim::fc::AutopilotEvent;
-using cover::sim::fc::AutopilotProfile;
 using cover::sim::fc::FlightMode;
 using cover::sim::fc::SimFcParams;
 using cover::sim::fc::test::AutopilotBench;
@@ -28,7 +28,7 @@ constexpr double kMaxThrust = 20.0;  // config/sim/world_default.yaml
 // Streams 1 s of setpoints, switches to OFFBOARD / GUIDED_NOGPS and arms.
 void fly_offboard(AutopilotBench& bench, float thrust) {
   bench.stream(1.0, thrust);
-  const bool is_px4 = bench.autopilot().profile() == AutopilotProfile::Px4;
+  const bool is_px4 = bench.autopilot().profile() == Autopilot::Px4;
   ASSERT_EQ(bench.set_mode(is_px4 ? kPx4Offboard : copter::kGuidedNoGps)->result,
             mav::mav_result::kAccepted);
   ASSERT_EQ(bench.arm()->result, mav::mav_result::kAccepted);
@@ -45,7 +45,7 @@ bool has_event(const cover::sim::fc::SimulatedAutopilot& autopilot, AutopilotEve
 // PX4 SITL, disarmed, no setpoint for over a minute: DO_SET_MODE OFFBOARD answered ACCEPTED
 // twice, the HEARTBEAT showing OFFBOARD; the arm then TEMPORARILY_REJECTED with two EVENTs.
 TEST(SimulatedAutopilot, Px4AcceptsOffboardDisarmedWithoutSetpointsAndRefusesTheArmThen) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   bench.idle(2.0);
   bench.clear();
   auto ack = bench.set_mode(kPx4Offboard);
@@ -75,7 +75,7 @@ TEST(SimulatedAutopilot, Px4AcceptsOffboardDisarmedWithoutSetpointsAndRefusesThe
 }
 
 TEST(SimulatedAutopilot, Px4AnswersEveryDoSetModeWithTwoIdenticalAcks) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   for (const std::uint32_t main :
        {std::uint32_t{px4::kMainPosctl}, kPx4Offboard, std::uint32_t{99}}) {
     bench.clear();
@@ -86,7 +86,7 @@ TEST(SimulatedAutopilot, Px4AnswersEveryDoSetModeWithTwoIdenticalAcks) {
     EXPECT_EQ(acks[0].command, acks[1].command);
     EXPECT_EQ(acks[0].target_system, acks[1].target_system);
   }
-  AutopilotBench ardupilot(AutopilotProfile::ArduPilot);
+  AutopilotBench ardupilot(Autopilot::ArduPilot);
   ardupilot.set_mode(copter::kLoiter);
   EXPECT_EQ(ardupilot.sent<mav::CommandAck>().size(), 1u);
   bench.clear();
@@ -96,7 +96,7 @@ TEST(SimulatedAutopilot, Px4AnswersEveryDoSetModeWithTwoIdenticalAcks) {
 
 // Armed, PX4 checks OFFBOARD's requirements: the offboard signal.
 TEST(SimulatedAutopilot, Px4RefusesOffboardWhileArmedWithoutAnOffboardSignal) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   ASSERT_EQ(bench.arm()->result, mav::mav_result::kAccepted);  // in AUTO.LOITER: no stream needed
   bench.clear();
   EXPECT_EQ(bench.set_mode(kPx4Offboard)->result, mav::mav_result::kTemporarilyRejected);
@@ -110,7 +110,7 @@ TEST(SimulatedAutopilot, Px4RefusesOffboardWhileArmedWithoutAnOffboardSignal) {
 
 // ArduCopter SITL: GUIDED_NOGPS with no setpoints ACK 0, then arming ACK 0 ("Arming motors").
 TEST(SimulatedAutopilot, ArduPilotEntersGuidedNoGpsWithoutSetpointsAndArmsInIt) {
-  AutopilotBench bench(AutopilotProfile::ArduPilot);
+  AutopilotBench bench(Autopilot::ArduPilot);
   bench.companion_heartbeat();
   EXPECT_EQ(bench.set_mode(copter::kGuidedNoGps)->result, mav::mav_result::kAccepted);
   EXPECT_EQ(bench.autopilot().mode(), FlightMode::Offboard);
@@ -121,7 +121,7 @@ TEST(SimulatedAutopilot, ArduPilotEntersGuidedNoGpsWithoutSetpointsAndArmsInIt) 
 
 // The offboard signal is PX4's: a setpoint within COM_OF_LOSS_T (offboardCheck.cpp).
 TEST(SimulatedAutopilot, Px4OffboardSignalIsASetpointWithinComOfLossT) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   ASSERT_EQ(bench.set_mode(kPx4Offboard)->result, mav::mav_result::kAccepted);
   bench.send(bench.setpoint(0.0F));
   bench.idle(0.95);
@@ -132,7 +132,7 @@ TEST(SimulatedAutopilot, Px4OffboardSignalIsASetpointWithinComOfLossT) {
 }
 
 TEST(SimulatedAutopilot, ArmsOnlyByCommand) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   bench.stream(1.0, 0.7F);
   EXPECT_EQ(bench.set_mode(kPx4Offboard)->result, mav::mav_result::kAccepted);
   auto step = bench.stream(0.5, 0.7F);
@@ -150,7 +150,7 @@ TEST(SimulatedAutopilot, ArmsOnlyByCommand) {
 }
 
 TEST(SimulatedAutopilot, ArmingInOffboardNeedsAFreshSetpointUnlessForced) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   bench.stream(1.0, 0.0F);
   ASSERT_EQ(bench.set_mode(kPx4Offboard)->result, mav::mav_result::kAccepted);
   bench.idle(1.1);
@@ -165,7 +165,7 @@ TEST(SimulatedAutopilot, ArmingInOffboardNeedsAFreshSetpointUnlessForced) {
 
 // ArduCopter SITL, descending in LAND: the disarm answered 4 FAILED, no text.
 TEST(SimulatedAutopilot, DisarmingInTheAirIsRefused) {
-  AutopilotBench bench(AutopilotProfile::ArduPilot);
+  AutopilotBench bench(Autopilot::ArduPilot);
   fly_offboard(bench, 0.7F);
   bench.stream(1.0, 0.7F);
   ASSERT_EQ(bench.command(mav::mav_cmd::kNavLand)->result, mav::mav_result::kAccepted);
@@ -178,7 +178,7 @@ TEST(SimulatedAutopilot, DisarmingInTheAirIsRefused) {
   EXPECT_TRUE(
       has_event(bench.autopilot(), AutopilotEvent::Kind::Refusal, "Disarming denied: not landed"));
 
-  AutopilotBench px4_bench(AutopilotProfile::Px4);
+  AutopilotBench px4_bench(Autopilot::Px4);
   fly_offboard(px4_bench, 0.7F);
   px4_bench.stream(1.0, 0.7F);
   EXPECT_EQ(px4_bench.arm(false)->result, mav::mav_result::kTemporarilyRejected);
@@ -186,7 +186,7 @@ TEST(SimulatedAutopilot, DisarmingInTheAirIsRefused) {
 }
 
 TEST(SimulatedAutopilot, HeartbeatCarriesEachProfilesCustomMode) {
-  AutopilotBench px4_bench(AutopilotProfile::Px4);
+  AutopilotBench px4_bench(Autopilot::Px4);
   px4_bench.tick();
   auto hb = px4_bench.sent<mav::Heartbeat>().at(0);
   EXPECT_EQ(hb.autopilot, mav::mav_autopilot::kPx4);
@@ -206,7 +206,7 @@ TEST(SimulatedAutopilot, HeartbeatCarriesEachProfilesCustomMode) {
   // AUTO (4) with sub mode LAND (6) in bits 24-31.
   EXPECT_EQ(px4_bench.sent<mav::Heartbeat>().back().custom_mode, 0x06040000u);
 
-  AutopilotBench ardu_bench(AutopilotProfile::ArduPilot);
+  AutopilotBench ardu_bench(Autopilot::ArduPilot);
   ardu_bench.tick();
   hb = ardu_bench.sent<mav::Heartbeat>().at(0);
   EXPECT_EQ(hb.autopilot, mav::mav_autopilot::kArdupilotMega);
@@ -219,7 +219,7 @@ TEST(SimulatedAutopilot, HeartbeatCarriesEachProfilesCustomMode) {
 }
 
 TEST(SimulatedAutopilot, Px4OffboardLossDescendsAfterComOfLossTAndDisarmsTwoSecondsAfterTouchdown) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   fly_offboard(bench, 0.7F);
   bench.stream(1.0, 0.6F);
   ASSERT_GT(bench.world().state().uav.position_m.z, 0.5);
@@ -274,7 +274,7 @@ TEST(SimulatedAutopilot, Px4OffboardLossDescendsAfterComOfLossTAndDisarmsTwoSeco
 TEST(SimulatedAutopilot, LandModeDescendsAtTheLandSpeed) {
   SimFcParams params;
   params.land_speed_m_s = 0.4;
-  AutopilotBench bench(AutopilotProfile::Px4, cover::sim::fc::test::ground_world(), params);
+  AutopilotBench bench(Autopilot::Px4, cover::sim::fc::test::ground_world(), params);
   fly_offboard(bench, 0.7F);
   bench.stream(1.5, 0.6F);
   ASSERT_EQ(bench.command(mav::mav_cmd::kNavLand)->result, mav::mav_result::kAccepted);
@@ -286,7 +286,7 @@ TEST(SimulatedAutopilot, LandModeDescendsAtTheLandSpeed) {
 }
 
 TEST(SimulatedAutopilot, ArduPilotGuidedTimeoutLevelsThenLands) {
-  AutopilotBench bench(AutopilotProfile::ArduPilot);
+  AutopilotBench bench(Autopilot::ArduPilot);
   fly_offboard(bench, 0.7F);
   bench.stream(1.0, 0.6F);
   bench.stream(1.0, 0.515F);  // about hover
@@ -307,7 +307,7 @@ TEST(SimulatedAutopilot, ArduPilotGuidedTimeoutLevelsThenLands) {
 TEST(SimulatedAutopilot, ThrustIsTheTrueMaxThrustTimesTheSetpoint) {
   auto world = cover::sim::fc::test::ground_world();
   world.uav.max_thrust_m_s2 = 25.0;
-  AutopilotBench bench(AutopilotProfile::Px4, world);
+  AutopilotBench bench(Autopilot::Px4, world);
   fly_offboard(bench, 0.5F);
   bench.send(bench.setpoint(0.5F));
   EXPECT_DOUBLE_EQ(bench.tick().plant_command.thrust_m_s2, 12.5);
@@ -320,7 +320,7 @@ TEST(SimulatedAutopilot, ThrustIsTheTrueMaxThrustTimesTheSetpoint) {
 TEST(SimulatedAutopilot, RatesFrdBecomeFluAndTelemetryIsNedFrd) {
   auto world = cover::sim::fc::test::ground_world();
   world.uav_initial.yaw_rad = 0.0;  // facing east (ENU x)
-  AutopilotBench bench(AutopilotProfile::Px4, world);
+  AutopilotBench bench(Autopilot::Px4, world);
   bench.tick();
   // At rest: the accelerometer reads -g along FRD z; the attitude faces east: NED yaw +90 deg.
   const auto imu = bench.sent<mav::HighresImu>().back();
@@ -367,7 +367,7 @@ TEST(SimulatedAutopilot, NedAttitudeOfANorthFacingVehicleIsIdentity) {
 }
 
 TEST(SimulatedAutopilot, ModeSwitchInjectionTakesOverFromTheSetpoints) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   fly_offboard(bench, 0.7F);
   bench.stream(1.0, 0.6F);
   bench.autopilot().inject_mode_switch(FlightMode::Position);
@@ -382,7 +382,7 @@ TEST(SimulatedAutopilot, ModeSwitchInjectionTakesOverFromTheSetpoints) {
 }
 
 TEST(SimulatedAutopilot, SetpointsOnlyForThisSystemFromTheCompanionWithRatesAndThrust) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   auto wrong_target = bench.setpoint(0.5F);
   wrong_target.target_system = 1;
   EXPECT_FALSE(bench.send(wrong_target).setpoint_accepted);
@@ -411,13 +411,13 @@ TEST(SimulatedAutopilot, SetpointsOnlyForThisSystemFromTheCompanionWithRatesAndT
 }
 
 TEST(SimulatedAutopilot, TakesSetpointsFromACompanionOnItsOwnSystem) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   mav::Encoder onboard(AutopilotBench::kSystem, mav::mav_comp::kOnboardComputer);
   EXPECT_TRUE(bench.send(bench.setpoint(0.5F), &onboard).setpoint_accepted);
 }
 
 TEST(SimulatedAutopilot, AnswersTimesyncAndReleasesThePayloadOnTheGripperCommand) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   bench.idle(0.5);
   mav::Timesync request;
   request.ts1 = 123456789;
@@ -441,7 +441,7 @@ TEST(SimulatedAutopilot, AnswersTimesyncAndReleasesThePayloadOnTheGripperCommand
 
 // PX4 SITL's onboard link without a request, over 2 s (docs/autopilots.md, measured on real SITL).
 TEST(SimulatedAutopilot, Px4StreamsItsOnboardSetAndHeartbeatsStopOnInjection) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   bench.idle(2.0);
   EXPECT_EQ(bench.sent<mav::Heartbeat>().size(), 2u);
   EXPECT_EQ(bench.count(30), 200u);  // ATTITUDE 100 Hz
@@ -470,7 +470,7 @@ TEST(SimulatedAutopilot, Px4StreamsItsOnboardSetAndHeartbeatsStopOnInjection) {
 }
 
 TEST(SimulatedAutopilot, BatterySagsUnderLoadAndEmpties) {
-  AutopilotBench bench(AutopilotProfile::Px4);
+  AutopilotBench bench(Autopilot::Px4);
   fly_offboard(bench, 0.7F);
   bench.stream(3.0, 0.55F);
   const auto status = bench.sent<mav::SysStatus>().back();

@@ -29,6 +29,7 @@
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
+#include "cover/firmware/sitl_ports.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/shm/segment_name.hpp"
 #include "cover/shm/seqlock_reader.hpp"
@@ -224,8 +225,11 @@ struct FirmwareRun {
   std::string name;  // "px4" / "ardupilot"
   int instance = 1;
   bool px4() const { return name == "px4"; }
-  int physics_port() const { return px4() ? 4560 + instance : 9002 + 10 * instance; }
-  int mavlink_port() const { return 14540 + instance; }
+  cover::Autopilot autopilot() const {
+    return px4() ? cover::Autopilot::Px4 : cover::Autopilot::ArduPilot;
+  }
+  int physics_port() const { return cover::firmware::physics_port(autopilot(), instance); }
+  int mavlink_port() const { return cover::firmware::companion_port(instance); }
   std::string params_file() const {
     return cover::config::default_config_dir() +
            (px4() ? "/firmware/px4_hil.params" : "/firmware/arducopter_json.parm");

@@ -113,7 +113,7 @@ bool monitor_sees(fw::FirmwareRig& rig, const std::function<bool(const mav::Hear
 }
 
 bool flying_for_cover(fw::FirmwareRig& rig) {
-  const fw::Firmware kind = rig.firmware_kind();
+  const cover::Autopilot kind = rig.firmware_kind();
   return monitor_sees(rig, [&](auto& hb) { return fw::in_offboard(kind, hb) && fw::armed(hb); });
 }
 
@@ -142,7 +142,7 @@ void still_flying(fw::FirmwareRig& rig, const std::string& phase) {
 // `cover fc offboard 0` and `cover fc arm 0`, each answered by the firmware; the agent
 // climbs to kFlightHeight_m. The height held.
 double arm_and_take_off(fw::FirmwareRig& rig) {
-  const fw::Firmware kind = rig.firmware_kind();
+  const cover::Autopilot kind = rig.firmware_kind();
   require(rig.connect_monitor(60s), "the monitor's streams");
   // The firmware's own setpoint report and its rates at 100 Hz (it may grant less).
   rig.monitor().request_stream(mav::AttitudeTarget::kId, 100.0);
@@ -349,7 +349,7 @@ struct Hover {
 
 Hover hover_estimate(fw::FirmwareRig& rig, double before, std::int64_t airborne_ns) {
   Hover h;
-  const fw::Firmware kind = rig.firmware_kind();
+  const cover::Autopilot kind = rig.firmware_kind();
   if (!wait_for([&] { return estimate_settled(rig, airborne_ns); }, 45s)) {
     h.truth_source = "the bridge's estimate did not settle in 45 s";
     return h;
@@ -363,7 +363,7 @@ Hover hover_estimate(fw::FirmwareRig& rig, double before, std::int64_t airborne_
   const auto sent = rig.tap().last_setpoint();
   h.estimate = state ? state->hover_thrust : NAN;
   const auto after = fw::firmware_hover_thrust(kind, rig.monitor());
-  if (kind == fw::Firmware::Px4) {
+  if (kind == cover::Autopilot::Px4) {
     h.truth = after.value_or(NAN);
     h.truth_source = "SIH_MASS g / (4 SIH_T_MAX)";
   } else if (after && std::abs(*after - before) > 1e-4) {
@@ -454,7 +454,7 @@ double failsafe_after_s(fw::FirmwareRig& rig, std::int64_t from_ns,
   std::optional<std::int64_t> at;
   wait_for(
       [&] {
-        if (rig.firmware_kind() == fw::Firmware::Px4) {
+        if (rig.firmware_kind() == cover::Autopilot::Px4) {
           for (const auto& t : rig.monitor().texts()) {
             if (t.at_ns >= from_ns && t.value.find("Failsafe") != std::string::npos) {
               at = t.at_ns;
@@ -521,7 +521,7 @@ void turn(fw::FirmwareRig& rig, double height) {
 }
 
 FaultTry agent_killed(fw::FirmwareRig& rig) {
-  const fw::Firmware kind = rig.firmware_kind();
+  const cover::Autopilot kind = rig.firmware_kind();
   const std::int64_t silent = rig.agent_falls_silent();
   std::optional<std::int64_t> land_at, accepted_at;
   wait_for(
@@ -644,9 +644,9 @@ FaultTry bridge_killed(fw::FirmwareRig& rig, double height, double loss_s) {
   const std::int64_t last_ns = last ? last->at_ns : now_ns();
   const double firmware_s = failsafe_after_s(
       rig, last_ns, std::chrono::milliseconds(static_cast<long long>(loss_s * 1000)) + 6s);
-  const fw::Firmware kind = rig.firmware_kind();
+  const cover::Autopilot kind = rig.firmware_kind();
   const double mode_s =
-      kind == fw::Firmware::Px4
+      kind == cover::Autopilot::Px4
           ? mode_after_s(
                 rig, last_ns, [&](auto& hb) { return fw::in_land(kind, hb); }, 3s)
           : NAN;  // ArduCopter stays in GUIDED_NOGPS: it levels and holds its altitude
@@ -733,9 +733,10 @@ struct Options {
 nlohmann::json fly_autopilot(const fw::FirmwareProfile& profile, const fw::FirmwareBuild& build,
                              const Options& options, cover::bench::NotMeasured& missing) {
   const std::string name = profile.bridge_autopilot;
-  nlohmann::json out{{"autopilot", name},
-                     {"firmware", profile.firmware == fw::Firmware::Px4 ? "PX4 SITL, SIH quad"
-                                                                        : "ArduCopter SITL, quad"}};
+  nlohmann::json out{
+      {"autopilot", name},
+      {"firmware",
+       profile.firmware == cover::Autopilot::Px4 ? "PX4 SITL, SIH quad" : "ArduCopter SITL, quad"}};
   fw::RigSetup setup;
   setup.fc_bridge = kBinDir / "cover-fc-bridge";
   setup.cli = kCli;

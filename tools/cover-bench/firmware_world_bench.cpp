@@ -16,6 +16,7 @@
 #include "bench_registry.hpp"
 #include "bench_stats.hpp"
 #include "cover/firmware/firmware_build.hpp"
+#include "cover/firmware/sitl_ports.hpp"
 #include "launch_run.hpp"
 #include "not_measured.hpp"
 
@@ -75,8 +76,9 @@ std::vector<std::string> port_flags(const Way& way, int domain) {
   }
   const int instance = 1 + domain % 8;
   var("instance", instance);
-  var("fc_port", 14540 + instance);
-  var("physics_port", way.px4 ? 4560 + instance : 9002 + 10 * instance);
+  var("fc_port", cover::firmware::companion_port(instance));
+  var("physics_port", cover::firmware::physics_port(
+                          way.px4 ? cover::Autopilot::Px4 : cover::Autopilot::ArduPilot, instance));
   return flags;
 }
 

@@ -79,20 +79,22 @@ fw::FirmwareParams collect_params(const CommandLine& cli) {
   return params;
 }
 
-std::optional<fw::FirmwareBuild> find_build(const CommandLine& cli, fw::Firmware firmware) {
-  const char* variable = firmware == fw::Firmware::Px4 ? "COVER_PX4_SITL" : "COVER_ARDUPILOT_SITL";
+std::optional<fw::FirmwareBuild> find_build(const CommandLine& cli, cover::Autopilot firmware) {
+  const char* variable =
+      firmware == cover::Autopilot::Px4 ? "COVER_PX4_SITL" : "COVER_ARDUPILOT_SITL";
   if (!cli.sitl.empty()) ::setenv(variable, cli.sitl.c_str(), 1);
   const fw::FirmwareLookup lookup =
-      firmware == fw::Firmware::Px4 ? fw::find_px4_sitl() : fw::find_arducopter_sitl();
+      firmware == cover::Autopilot::Px4 ? fw::find_px4_sitl() : fw::find_arducopter_sitl();
   if (!lookup.build) spdlog::error("{}", lookup.missing);
   return lookup.build;
 }
 
-fw::SitlProcess start(const CommandLine& cli, fw::Firmware firmware, const fw::FirmwareBuild& build,
-                      fw::InstanceSlot slot, const fw::FirmwareParams& params) {
+fw::SitlProcess start(const CommandLine& cli, cover::Autopilot firmware,
+                      const fw::FirmwareBuild& build, fw::InstanceSlot slot,
+                      const fw::FirmwareParams& params) {
   const std::filesystem::path workdir = std::filesystem::absolute(cli.workdir);
   const bool builtin = cli.physics == "builtin";
-  if (firmware == fw::Firmware::Px4) {
+  if (firmware == cover::Autopilot::Px4) {
     return builtin ? fw::SitlProcess::start_px4(build, std::move(slot), workdir, params)
                    : fw::SitlProcess::start_px4_hil(build, std::move(slot), workdir, params);
   }
@@ -101,8 +103,7 @@ fw::SitlProcess start(const CommandLine& cli, fw::Firmware firmware, const fw::F
 }
 
 int run(const CommandLine& cli) {
-  const fw::Firmware firmware =
-      cli.firmware == "px4" ? fw::Firmware::Px4 : fw::Firmware::ArduCopter;
+  const cover::Autopilot firmware = *cover::parse_autopilot(cli.firmware);  // CLI11 checked it
   const fw::FirmwareParams params = collect_params(cli);
   const std::optional<fw::FirmwareBuild> build = find_build(cli, firmware);
   if (!build) return 3;
@@ -111,19 +112,20 @@ int run(const CommandLine& cli) {
   spdlog::info(
       "{} SITL instance {} started (pid {}, {} physics, {} parameters), system id {}; "
       "its console: {}",
-      fw::to_string(firmware), sitl.instance(), sitl.pid(), cli.physics, params.size(),
+      cover::display_name(firmware), sitl.instance(), sitl.pid(), cli.physics, params.size(),
       sitl.system_id(), sitl.console_log().string());
   while (!cover::process::ShutdownSignal::wait_for(200ms)) {
     if (!sitl.running()) {
       const int code = sitl.stop();
       spdlog::error("{} SITL instance {} ended by itself (exit {}); see {}",
-                    fw::to_string(firmware), sitl.instance(), code, sitl.console_log().string());
+                    cover::display_name(firmware), sitl.instance(), code,
+                    sitl.console_log().string());
       return 1;
     }
   }
   const int code = sitl.stop(5s);
-  spdlog::info("{} SITL instance {} stopped (exit {})", fw::to_string(firmware), sitl.instance(),
-               code);
+  spdlog::info("{} SITL instance {} stopped (exit {})", cover::display_name(firmware),
+               sitl.instance(), code);
   return 0;
 }
 

@@ -73,8 +73,8 @@ const ModeRow* find(const ModeRow (&rows)[N], std::uint32_t number) {
   return nullptr;
 }
 
-const ModeRow* lookup(AutopilotKind kind, std::uint32_t custom_mode) {
-  if (kind == AutopilotKind::ArduPilot) return find(kCopter, custom_mode);
+const ModeRow* lookup(Autopilot kind, std::uint32_t custom_mode) {
+  if (kind == Autopilot::ArduPilot) return find(kCopter, custom_mode);
   const std::uint8_t main = mav::px4_mode::main_mode(custom_mode);
   if (main == mav::px4_mode::kMainAuto) {
     return find(kPx4AutoSub, mav::px4_mode::sub_mode(custom_mode));
@@ -97,16 +97,6 @@ CommandSpec set_mode(float custom_main, float custom_sub = 0.0F) {
 
 }  // namespace
 
-std::optional<AutopilotKind> parse_autopilot(const std::string& text) {
-  if (text == "px4") return AutopilotKind::Px4;
-  if (text == "ardupilot") return AutopilotKind::ArduPilot;
-  return std::nullopt;
-}
-
-const char* to_string(AutopilotKind kind) {
-  return kind == AutopilotKind::Px4 ? "px4" : "ardupilot";
-}
-
 const char* to_string(FcMode mode) {
   switch (mode) {
     case FcMode::Unknown:
@@ -124,17 +114,16 @@ const char* to_string(FcMode mode) {
 }
 
 std::uint8_t AutopilotProfile::mav_autopilot() const {
-  return kind_ == AutopilotKind::Px4 ? mav::mav_autopilot::kPx4
-                                     : mav::mav_autopilot::kArdupilotMega;
+  return kind_ == Autopilot::Px4 ? mav::mav_autopilot::kPx4 : mav::mav_autopilot::kArdupilotMega;
 }
 
 CommandSpec AutopilotProfile::offboard_command() const {
-  return kind_ == AutopilotKind::Px4 ? set_mode(mav::px4_mode::kMainOffboard)
-                                     : set_mode(mav::copter_mode::kGuidedNoGps);
+  return kind_ == Autopilot::Px4 ? set_mode(mav::px4_mode::kMainOffboard)
+                                 : set_mode(mav::copter_mode::kGuidedNoGps);
 }
 
 CommandSpec AutopilotProfile::land_command() const {
-  if (kind_ == AutopilotKind::ArduPilot) return set_mode(mav::copter_mode::kLand);
+  if (kind_ == Autopilot::ArduPilot) return set_mode(mav::copter_mode::kLand);
   // PX4 takes NAV_LAND at the current position into AUTO.LAND; NaN yaw / lat / lon /
   // altitude would mean "here", zeros are what PX4's commander reads as "not given" too.
   CommandSpec spec;
@@ -150,7 +139,7 @@ CommandSpec AutopilotProfile::arm_command(bool arm) const {
 }
 
 const char* AutopilotProfile::offboard_mode_name() const {
-  return kind_ == AutopilotKind::Px4 ? "OFFBOARD" : "GUIDED_NOGPS";
+  return kind_ == Autopilot::Px4 ? "OFFBOARD" : "GUIDED_NOGPS";
 }
 
 FcMode AutopilotProfile::decode_mode(std::uint8_t base_mode, std::uint32_t custom_mode) const {
@@ -162,7 +151,7 @@ FcMode AutopilotProfile::decode_mode(std::uint8_t base_mode, std::uint32_t custo
 std::string AutopilotProfile::mode_name(std::uint8_t base_mode, std::uint32_t custom_mode) const {
   if (!custom_mode_flag(base_mode)) return "no custom mode";
   if (const ModeRow* row = lookup(kind_, custom_mode)) return row->name;
-  if (kind_ == AutopilotKind::Px4) {
+  if (kind_ == Autopilot::Px4) {
     return "PX4 mode " + std::to_string(mav::px4_mode::main_mode(custom_mode)) + "." +
            std::to_string(mav::px4_mode::sub_mode(custom_mode));
   }

@@ -116,8 +116,8 @@ Bridge::Bridge(const BridgeConfig& config)
       streams_(stream_plan(config.autopilot, stream_rates(config.params)),
                config.params.stream_reask_s),
       parameters_(parameter_rules(config.autopilot),
-                  config.autopilot == AutopilotKind::Px4 ? mavlink::ParamEncoding::Bytewise
-                                                         : mavlink::ParamEncoding::CCast,
+                  config.autopilot == Autopilot::Px4 ? mavlink::ParamEncoding::Bytewise
+                                                     : mavlink::ParamEncoding::CCast,
                   config.params.param_read_timeout_s, config.params.param_read_tries,
                   config.params.param_refresh_s),
       estimator_health_(config.autopilot),
@@ -296,7 +296,7 @@ void Bridge::seed_hover_thrust() {
   if (!config_.params.hover_thrust_from_autopilot || hover_seeded_ || estimator_.learning()) {
     return;
   }
-  const char* name = profile_.kind() == AutopilotKind::Px4 ? "MPC_THR_HOVER" : "MOT_THST_HOVER";
+  const char* name = profile_.kind() == Autopilot::Px4 ? "MPC_THR_HOVER" : "MOT_THST_HOVER";
   const auto value = parameters_.value(name);
   if (!value) return;
   const double before = estimator_.estimate();
@@ -473,7 +473,7 @@ void Bridge::finish(const InFlight& flight, const CommandResult& result, double 
     const auto main = static_cast<std::uint8_t>(flight.spec.param[1]);
     const auto sub = static_cast<std::uint8_t>(flight.spec.param[2]);
     session_.on_mode_accepted(static_cast<std::uint8_t>(flight.spec.param[0]),
-                              profile_.kind() == AutopilotKind::Px4
+                              profile_.kind() == Autopilot::Px4
                                   ? mav::px4_mode::custom_mode(main, sub)
                                   : std::uint32_t{main},
                               now_s);
@@ -651,7 +651,7 @@ void Bridge::note_health_changes(double now_s) {
 }
 
 double Bridge::auto_disarm_s() const {
-  if (profile_.kind() == AutopilotKind::Px4) {
+  if (profile_.kind() == Autopilot::Px4) {
     const auto delay = parameters_.value("COM_DISARM_PRFLT");
     return delay && *delay > 0.0 ? *delay + kPx4SpoolUp_s : -1.0;
   }

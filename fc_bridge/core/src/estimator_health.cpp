@@ -50,7 +50,7 @@ std::string EstimatorHealthTracker::sensor_problems() const {
 }
 
 std::string EstimatorHealthTracker::flag_summary() const {
-  if (kind_ == AutopilotKind::ArduPilot && (flags_ & kArduPilotUninitialised) != 0) {
+  if (kind_ == Autopilot::ArduPilot && (flags_ & kArduPilotUninitialised) != 0) {
     return "EKF not initialised";
   }
   std::string good;
@@ -72,9 +72,8 @@ EstimatorHealth EstimatorHealthTracker::health() const {
   const bool ahrs_ok =
       !sys_status_seen_ || (present_ & sensor::kAhrs) == 0 || (healthy_ & sensor::kAhrs) != 0;
   const bool flags_ok =
-      !flags_seen_ ||
-      ((flags_ & flag::kAttitude) != 0 &&
-       !(kind_ == AutopilotKind::ArduPilot && (flags_ & kArduPilotUninitialised) != 0));
+      !flags_seen_ || ((flags_ & flag::kAttitude) != 0 &&
+                       !(kind_ == Autopilot::ArduPilot && (flags_ & kArduPilotUninitialised) != 0));
   h.attitude_ok = ahrs_ok && flags_ok;
   if (flags_seen_) h.text = flag_summary();
   const std::string problems = sys_status_seen_ ? sensor_problems() : std::string();

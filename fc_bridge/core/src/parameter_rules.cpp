@@ -115,8 +115,8 @@ std::vector<ParameterRule> ardupilot_rules() {
 
 }  // namespace
 
-std::vector<ParameterRule> parameter_rules(AutopilotKind kind) {
-  return kind == AutopilotKind::Px4 ? px4_rules() : ardupilot_rules();
+std::vector<ParameterRule> parameter_rules(Autopilot kind) {
+  return kind == Autopilot::Px4 ? px4_rules() : ardupilot_rules();
 }
 
 }  // namespace cover::fc_bridge

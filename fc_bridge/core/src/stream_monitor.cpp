@@ -131,7 +131,7 @@ std::string StreamMonitor::missing_summary(double now_s) const {
   return summary;
 }
 
-std::vector<StreamRequest> stream_plan(AutopilotKind kind, const StreamRates& rates) {
+std::vector<StreamRequest> stream_plan(Autopilot kind, const StreamRates& rates) {
   std::vector<StreamRequest> plan;
   const auto add = [&plan](std::uint32_t id, const char* name, double rate_hz,
                            bool optional = false) {
@@ -141,7 +141,7 @@ std::vector<StreamRequest> stream_plan(AutopilotKind kind, const StreamRates& ra
   add(mav::ExtendedSysState::kId, "EXTENDED_SYS_STATE", rates.extended_sys_state_hz);
   add(mav::SysStatus::kId, "SYS_STATUS", rates.sys_status_hz);
   add(mav::BatteryStatus::kId, "BATTERY_STATUS", rates.battery_status_hz);
-  if (kind == AutopilotKind::Px4) {
+  if (kind == Autopilot::Px4) {
     add(mav::EstimatorStatus::kId, "ESTIMATOR_STATUS", rates.estimator_status_hz);
   } else {
     add(mav::EkfStatusReport::kId, "EKF_STATUS_REPORT", rates.estimator_status_hz);

@@ -9,7 +9,7 @@ constexpr double kPx4SpoolUp_s = 1.0;
 constexpr double kTimeTolerance_s = 1e-9;
 }  // namespace
 
-AutoDisarm::AutoDisarm(AutopilotProfile profile, const SimFcParams& params)
+AutoDisarm::AutoDisarm(Autopilot profile, const SimFcParams& params)
     : profile_(profile),
       px4_preflight_s_(params.px4.com_disarm_prflt_s > 0.0
                            ? params.px4.com_disarm_prflt_s + kPx4SpoolUp_s
@@ -26,8 +26,8 @@ void AutoDisarm::on_armed(double now_s) {
 }
 
 AutoDisarmStep AutoDisarm::step(double now_s, bool landed, bool throttle_zero) {
-  return profile_ == AutopilotProfile::Px4 ? px4_step(now_s, landed)
-                                           : ardupilot_step(now_s, landed, throttle_zero);
+  return profile_ == Autopilot::Px4 ? px4_step(now_s, landed)
+                                    : ardupilot_step(now_s, landed, throttle_zero);
 }
 
 AutoDisarmStep AutoDisarm::px4_step(double now_s, bool landed) {

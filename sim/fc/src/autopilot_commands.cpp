@@ -68,7 +68,7 @@ void SimulatedAutopilot::handle_command(const mavlink::Frame& frame,
   ack.target_system = frame.system_id;
   ack.target_component = frame.component_id;
   queue(ack);
-  if (profile_ == AutopilotProfile::Px4 && command.command == mavlink::mav_cmd::kDoSetMode) {
+  if (profile_ == Autopilot::Px4 && command.command == mavlink::mav_cmd::kDoSetMode) {
     queue(ack);
   }
 }
@@ -84,12 +84,12 @@ std::uint8_t SimulatedAutopilot::set_mode_command(const mavlink::CommandLong& co
     log_event(AutopilotEvent::Kind::Refusal, now_s,
               "Mode " + std::to_string(static_cast<long>(command.param[1])) + "/" +
                   std::to_string(static_cast<long>(command.param[2])) + " not simulated");
-    return profile_ == AutopilotProfile::Px4 ? result::kDenied : result::kFailed;
+    return profile_ == Autopilot::Px4 ? result::kDenied : result::kFailed;
   }
   if (*mode == FlightMode::Land) return land_command(now_s);
-  const bool px4_offboard_blocked =
-      profile_ == AutopilotProfile::Px4 && *mode == FlightMode::Offboard &&
-      mode_ != FlightMode::Offboard && armed_ && !offboard_signal(now_s);
+  const bool px4_offboard_blocked = profile_ == Autopilot::Px4 && *mode == FlightMode::Offboard &&
+                                    mode_ != FlightMode::Offboard && armed_ &&
+                                    !offboard_signal(now_s);
   if (px4_offboard_blocked) {
     log_event(AutopilotEvent::Kind::Refusal, now_s,
               "OFFBOARD refused while armed: no offboard signal");
@@ -123,8 +123,7 @@ std::uint8_t SimulatedAutopilot::arm_command(const mavlink::CommandLong& command
     return refusal_result();
   }
   // PX4 SITL, armed in OFFBOARD with no setpoint stream: ACK 1 and these two EVENTs.
-  if (profile_ == AutopilotProfile::Px4 && mode_ == FlightMode::Offboard &&
-      !offboard_signal(now_s)) {
+  if (profile_ == Autopilot::Px4 && mode_ == FlightMode::Offboard && !offboard_signal(now_s)) {
     log_event(AutopilotEvent::Kind::Refusal, now_s, "Arming denied: no offboard signal");
     report(Px4Event("commander_arm_denied_resolve_failures", Px4EventLevel::Critical), now_s);
     report(Px4Event("check_modes_offboard_signal", Px4EventLevel::Critical)
@@ -186,12 +185,12 @@ std::uint8_t SimulatedAutopilot::message_interval_command(const mavlink::Command
   link_notes_.push_back("SET_MESSAGE_INTERVAL refused: message " + std::to_string(asked) +
                         " is no stream of this autopilot");
   say(kSeverityInfo, "No ap_message for mavlink id (" + std::to_string(asked) + ")");
-  return profile_ == AutopilotProfile::Px4 ? result::kFailed : result::kDenied;
+  return profile_ == Autopilot::Px4 ? result::kFailed : result::kDenied;
 }
 
 // PX4 answers a request it cannot grant now "temporarily rejected"; ArduPilot "failed".
 std::uint8_t SimulatedAutopilot::refusal_result() const {
-  return profile_ == AutopilotProfile::Px4 ? result::kTemporarilyRejected : result::kFailed;
+  return profile_ == Autopilot::Px4 ? result::kTemporarilyRejected : result::kFailed;
 }
 
 // By name (param_index -1) or by index. A name it does not have: ArduPilot stays silent,
@@ -210,7 +209,7 @@ void SimulatedAutopilot::handle_param_request(const mavlink::Frame& frame,
     queue(parameters_.value_message(*index, by_name));
     return;
   }
-  if (profile_ != AutopilotProfile::Px4 || !by_name) return;
+  if (profile_ != Autopilot::Px4 || !by_name) return;
   std::array<std::uint8_t, kParamErrorLength> payload{};
   const auto param_index = static_cast<std::uint16_t>(request.param_index);
   payload[0] = static_cast<std::uint8_t>(param_index & 0xFF);

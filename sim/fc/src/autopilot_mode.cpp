@@ -15,22 +15,12 @@ constexpr std::uint32_t kCopterBrake = 17;
 constexpr FlightMode kModes[] = {FlightMode::Hold, FlightMode::Manual, FlightMode::Position,
                                  FlightMode::Offboard, FlightMode::Land};
 
-const char* to_string(AutopilotProfile profile) {
-  return profile == AutopilotProfile::Px4 ? "px4" : "ardupilot";
+FlightMode start_mode(Autopilot profile) {
+  return profile == Autopilot::Px4 ? FlightMode::Hold : FlightMode::Manual;
 }
 
-std::optional<AutopilotProfile> parse_profile(const std::string& text) {
-  if (text == "px4") return AutopilotProfile::Px4;
-  if (text == "ardupilot") return AutopilotProfile::ArduPilot;
-  return std::nullopt;
-}
-
-FlightMode start_mode(AutopilotProfile profile) {
-  return profile == AutopilotProfile::Px4 ? FlightMode::Hold : FlightMode::Manual;
-}
-
-const char* mode_name(AutopilotProfile profile, FlightMode mode) {
-  const bool is_px4 = profile == AutopilotProfile::Px4;
+const char* mode_name(Autopilot profile, FlightMode mode) {
+  const bool is_px4 = profile == Autopilot::Px4;
   switch (mode) {
     case FlightMode::Hold:
       return is_px4 ? "AUTO.LOITER" : "BRAKE";
@@ -46,8 +36,8 @@ const char* mode_name(AutopilotProfile profile, FlightMode mode) {
   return "UNKNOWN";
 }
 
-std::uint32_t custom_mode(AutopilotProfile profile, FlightMode mode) {
-  if (profile == AutopilotProfile::Px4) {
+std::uint32_t custom_mode(Autopilot profile, FlightMode mode) {
+  if (profile == Autopilot::Px4) {
     switch (mode) {
       case FlightMode::Hold:
         return px4::custom_mode(px4::kMainAuto, px4::kAutoSubLoiter);
@@ -87,7 +77,7 @@ std::optional<std::uint32_t> whole(float value) {
 
 }  // namespace
 
-std::optional<FlightMode> requested_mode(AutopilotProfile profile, float param1, float param2,
+std::optional<FlightMode> requested_mode(Autopilot profile, float param1, float param2,
                                          float param3) {
   const auto flags = whole(param1);
   if (!flags || (*flags & mavlink::mav_mode_flag::kCustomModeEnabled) == 0) return std::nullopt;
@@ -95,7 +85,7 @@ std::optional<FlightMode> requested_mode(AutopilotProfile profile, float param1,
   if (!main) return std::nullopt;
   for (FlightMode mode : kModes) {
     const std::uint32_t custom = custom_mode(profile, mode);
-    if (profile == AutopilotProfile::ArduPilot) {
+    if (profile == Autopilot::ArduPilot) {
       if (custom == *main) return mode;
       continue;
     }
@@ -114,7 +104,7 @@ std::optional<FlightMode> parse_mode_name(const std::string& text) {
   std::transform(upper.begin(), upper.end(), upper.begin(),
                  [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
   for (FlightMode mode : kModes) {
-    for (AutopilotProfile profile : {AutopilotProfile::Px4, AutopilotProfile::ArduPilot}) {
+    for (Autopilot profile : {Autopilot::Px4, Autopilot::ArduPilot}) {
       if (upper == mode_name(profile, mode)) return mode;
     }
   }

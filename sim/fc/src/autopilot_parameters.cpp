@@ -44,13 +44,13 @@ constexpr std::uint16_t kArduPilotByName = 65535;
 
 }  // namespace
 
-AutopilotParameters::AutopilotParameters(AutopilotProfile profile, const SimFcParams& params,
+AutopilotParameters::AutopilotParameters(Autopilot profile, const SimFcParams& params,
                                          std::uint8_t system_id)
     : profile_(profile),
-      encoding_(profile == AutopilotProfile::Px4 ? mavlink::ParamEncoding::Bytewise
-                                                 : mavlink::ParamEncoding::CCast),
-      table_(profile == AutopilotProfile::Px4 ? px4_table(params, system_id)
-                                              : ardupilot_table(params, system_id)) {}
+      encoding_(profile == Autopilot::Px4 ? mavlink::ParamEncoding::Bytewise
+                                          : mavlink::ParamEncoding::CCast),
+      table_(profile == Autopilot::Px4 ? px4_table(params, system_id)
+                                       : ardupilot_table(params, system_id)) {}
 
 std::optional<std::size_t> AutopilotParameters::index_of(const std::string& name) const {
   for (std::size_t i = 0; i < table_.size(); ++i) {
@@ -66,9 +66,8 @@ mavlink::ParamValue AutopilotParameters::value_message(std::size_t index, bool b
   v.param_type = p.type;
   v.param_value = mavlink::param_field_of(p.value, p.type, encoding_);
   v.param_count = static_cast<std::uint16_t>(table_.size());
-  v.param_index = by_name && profile_ == AutopilotProfile::ArduPilot
-                      ? kArduPilotByName
-                      : static_cast<std::uint16_t>(index);
+  v.param_index = by_name && profile_ == Autopilot::ArduPilot ? kArduPilotByName
+                                                              : static_cast<std::uint16_t>(index);
   return v;
 }
 

@@ -49,7 +49,7 @@ void SimulatedAutopilot::disarm(double now_s, const std::string& why, std::uint8
   say(kSeverityInfo, "Disarming motors");
   if (mode_ != FlightMode::Land) return;
   landed_in_land_mode_ = true;
-  if (profile_ == AutopilotProfile::Px4) set_mode(mode_before_land_, now_s, "after its landing");
+  if (profile_ == Autopilot::Px4) set_mode(mode_before_land_, now_s, "after its landing");
 }
 
 void SimulatedAutopilot::log_event(AutopilotEvent::Kind kind, double now_s,
@@ -58,7 +58,7 @@ void SimulatedAutopilot::log_event(AutopilotEvent::Kind kind, double now_s,
 }
 
 void SimulatedAutopilot::say(std::uint8_t severity, const std::string& text) {
-  if (profile_ != AutopilotProfile::ArduPilot || !link_active_) return;
+  if (profile_ != Autopilot::ArduPilot || !link_active_) return;
   mavlink::StatusText status;
   status.severity = severity;
   status.set_text(text);
@@ -66,7 +66,7 @@ void SimulatedAutopilot::say(std::uint8_t severity, const std::string& text) {
 }
 
 void SimulatedAutopilot::report(const Px4Event& event, double now_s) {
-  if (profile_ != AutopilotProfile::Px4) return;
+  if (profile_ != Autopilot::Px4) return;
   queue(event.message(event_sequence_++, boot_ms(now_s)));
 }
 

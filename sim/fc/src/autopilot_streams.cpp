@@ -174,7 +174,7 @@ void SimulatedAutopilot::queue_streams(double now_s, const World& world,
   if (streams_.due(mav::SysStatus::kId, now_s)) queue(sys_status(now_s));
   if (streams_.due(mav::BatteryStatus::kId, now_s)) queue(battery_status());
   const std::uint32_t estimator =
-      profile_ == AutopilotProfile::Px4 ? mav::EstimatorStatus::kId : mav::EkfStatusReport::kId;
+      profile_ == Autopilot::Px4 ? mav::EstimatorStatus::kId : mav::EkfStatusReport::kId;
   if (streams_.due(estimator, now_s)) outbox_.push_back(estimator_report(now_s));
   queue_unknown_types(now_s, world);
   // In lockstep every step carries the position too, asked or not: a vertical velocity that
@@ -218,8 +218,8 @@ void SimulatedAutopilot::queue_unknown_types(double now_s, const World& world) {
 }
 
 bool SimulatedAutopilot::estimator_aligned(double now_s) const {
-  const double align_s = profile_ == AutopilotProfile::Px4 ? params_.px4.estimator_align_s
-                                                           : params_.ardupilot.estimator_align_s;
+  const double align_s = profile_ == Autopilot::Px4 ? params_.px4.estimator_align_s
+                                                    : params_.ardupilot.estimator_align_s;
   return now_s + kTimeTolerance_s >= align_s;
 }
 
@@ -234,8 +234,8 @@ mavlink::Heartbeat SimulatedAutopilot::heartbeat() const {
   mavlink::Heartbeat h;
   h.custom_mode = custom_mode(profile_, mode_);
   h.type = mavlink::mav_type::kQuadrotor;
-  h.autopilot = profile_ == AutopilotProfile::Px4 ? mavlink::mav_autopilot::kPx4
-                                                  : mavlink::mav_autopilot::kArdupilotMega;
+  h.autopilot = profile_ == Autopilot::Px4 ? mavlink::mav_autopilot::kPx4
+                                           : mavlink::mav_autopilot::kArdupilotMega;
   h.base_mode = mavlink::mav_mode_flag::kCustomModeEnabled |
                 (armed_ ? mavlink::mav_mode_flag::kSafetyArmed : 0);
   h.system_status = system_status();
@@ -315,7 +315,7 @@ std::uint8_t SimulatedAutopilot::landed_state(const World& world) const {
 mavlink::SysStatus SimulatedAutopilot::sys_status(double now_s) const {
   const bool aligned = estimator_aligned(now_s);
   const SensorBits bits =
-      profile_ == AutopilotProfile::Px4 ? px4_sensors(aligned) : ardupilot_sensors(aligned);
+      profile_ == Autopilot::Px4 ? px4_sensors(aligned) : ardupilot_sensors(aligned);
   mavlink::SysStatus s;
   s.onboard_control_sensors_present = bits.present;
   s.onboard_control_sensors_enabled = bits.enabled;
@@ -344,7 +344,7 @@ mavlink::BatteryStatus SimulatedAutopilot::battery_status() const {
 // PX4's ESTIMATOR_STATUS / ArduPilot's EKF_STATUS_REPORT: its flags once aligned.
 mavlink::EncodedFrame SimulatedAutopilot::estimator_report(double now_s) {
   const bool aligned = estimator_aligned(now_s);
-  if (profile_ == AutopilotProfile::Px4) {
+  if (profile_ == Autopilot::Px4) {
     mavlink::EstimatorStatus s;
     s.time_usec = boot_us(now_s);
     s.flags = aligned ? kAlignedFlags : 0;

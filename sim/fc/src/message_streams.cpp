@@ -23,10 +23,10 @@ double grid_at_or_after(double t_s, double period_s) {
 
 }  // namespace
 
-MessageStreams::MessageStreams(AutopilotProfile profile, const StreamRates& r) {
+MessageStreams::MessageStreams(Autopilot profile, const StreamRates& r) {
   namespace mav = mavlink;
   const std::uint32_t estimator =
-      profile == AutopilotProfile::Px4 ? mav::EstimatorStatus::kId : mav::EkfStatusReport::kId;
+      profile == Autopilot::Px4 ? mav::EstimatorStatus::kId : mav::EkfStatusReport::kId;
   const std::pair<std::uint32_t, double> rates[] = {
       {mav::Heartbeat::kId, r.heartbeat_hz},
       {mav::SysStatus::kId, r.sys_status_hz},
@@ -43,7 +43,7 @@ MessageStreams::MessageStreams(AutopilotProfile profile, const StreamRates& r) {
     streams_.push_back({id, period_of(rate_hz), period_of(rate_hz), 0.0});
   }
   // Real PX4 streams about 25 message types COVER's codec does not know; two of them.
-  if (profile == AutopilotProfile::Px4) {
+  if (profile == Autopilot::Px4) {
     for (const std::uint32_t id : {stream_id::kVfrHud, stream_id::kAltitude}) {
       streams_.push_back({id, period_of(r.codec_unknown_hz), period_of(r.codec_unknown_hz), 0.0});
     }

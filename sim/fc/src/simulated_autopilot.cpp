@@ -46,15 +46,14 @@ const char* to_string(AutopilotEvent::Kind kind) {
   return "unknown";
 }
 
-SimulatedAutopilot::SimulatedAutopilot(AutopilotProfile profile, std::uint8_t system_id,
+SimulatedAutopilot::SimulatedAutopilot(Autopilot profile, std::uint8_t system_id,
                                        const SimFcParams& params, StepClosing closing)
     : profile_(profile),
       params_(params),
       closing_(closing),
       encoder_(system_id, mavlink::mav_comp::kAutopilot1),
       battery_(params.battery),
-      streams_(profile,
-               profile == AutopilotProfile::Px4 ? params.px4.streams : params.ardupilot.streams),
+      streams_(profile, profile == Autopilot::Px4 ? params.px4.streams : params.ardupilot.streams),
       parameters_(profile, params, system_id),
       auto_disarm_(profile, params),
       mode_(start_mode(profile)),
@@ -155,7 +154,7 @@ AutopilotStep SimulatedAutopilot::step(double now_s, const World& world) {
   last_now_s_ = now_s;
   resting_ = world.state().uav_contact.resting;
   // ArduPilot's LAND disarms as soon as it touches down; PX4's waits COM_DISARM_LAND.
-  if (armed_ && mode_ == FlightMode::Land && resting_ && profile_ == AutopilotProfile::ArduPilot) {
+  if (armed_ && mode_ == FlightMode::Land && resting_ && profile_ == Autopilot::ArduPilot) {
     disarm(now_s, "landed", 0);
   }
   check_offboard_loss(now_s);
@@ -179,7 +178,7 @@ AutopilotStep SimulatedAutopilot::step(double now_s, const World& world) {
 void SimulatedAutopilot::check_offboard_loss(double now_s) {
   if (!armed_ || mode_ != FlightMode::Offboard) return;
   const double age_s = setpoint_age_s(now_s);
-  if (profile_ == AutopilotProfile::Px4) {
+  if (profile_ == Autopilot::Px4) {
     if (age_s <= params_.px4.com_of_loss_t_s) return;
     in_failsafe_ = true;
     log_event(AutopilotEvent::Kind::Failsafe, now_s, "Failsafe: offboard lost, descending");
@@ -254,7 +253,7 @@ QuadrotorCommand SimulatedAutopilot::hold_command(const World& world) {
 QuadrotorCommand SimulatedAutopilot::setpoint_command(const World& world) const {
   const mavlink::SetAttitudeTarget& s = setpoint_->message;
   double throttle = std::clamp(static_cast<double>(s.thrust), 0.0, 1.0);
-  if (profile_ == AutopilotProfile::ArduPilot && params_.ardupilot.atc_angle_boost != 0) {
+  if (profile_ == Autopilot::ArduPilot && params_.ardupilot.atc_angle_boost != 0) {
     throttle = std::clamp(throttle * angle_boost(world), 0.0, 1.0);
   }
   QuadrotorCommand command;

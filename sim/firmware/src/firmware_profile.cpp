@@ -15,7 +15,7 @@ constexpr auto kParamTimeout = 5s;
 
 FirmwareProfile px4_sih_profile() {
   FirmwareProfile p;
-  p.firmware = Firmware::Px4;
+  p.firmware = Autopilot::Px4;
   p.bridge_autopilot = "px4";
   p.flight_params = {
       // Without RC, PX4's default reaction to lost setpoints (Position) falls through to
@@ -46,7 +46,7 @@ FirmwareProfile px4_sih_profile() {
 
 FirmwareProfile arducopter_profile() {
   FirmwareProfile p;
-  p.firmware = Firmware::ArduCopter;
+  p.firmware = Autopilot::ArduPilot;
   p.bridge_autopilot = "ardupilot";
   // docs/flight-controller.md, "Connecting a real ArduPilot"; GUID_TIMEOUT is its default.
   p.flight_params = {{"FS_THR_ENABLE", "0"},
@@ -72,23 +72,23 @@ FirmwareProfile arducopter_profile() {
   return p;
 }
 
-bool in_offboard(Firmware firmware, const mav::Heartbeat& heartbeat) {
-  if (firmware == Firmware::Px4) {
+bool in_offboard(Autopilot firmware, const mav::Heartbeat& heartbeat) {
+  if (firmware == Autopilot::Px4) {
     return mav::px4_mode::main_mode(heartbeat.custom_mode) == mav::px4_mode::kMainOffboard;
   }
   return heartbeat.custom_mode == mav::copter_mode::kGuidedNoGps;
 }
 
-bool in_land(Firmware firmware, const mav::Heartbeat& heartbeat) {
-  if (firmware == Firmware::Px4) {
+bool in_land(Autopilot firmware, const mav::Heartbeat& heartbeat) {
+  if (firmware == Autopilot::Px4) {
     return mav::px4_mode::main_mode(heartbeat.custom_mode) == mav::px4_mode::kMainAuto &&
            mav::px4_mode::sub_mode(heartbeat.custom_mode) == mav::px4_mode::kAutoSubLand;
   }
   return heartbeat.custom_mode == mav::copter_mode::kLand;
 }
 
-bool is_land_command(Firmware firmware, const mav::CommandLong& command) {
-  if (firmware == Firmware::Px4) return command.command == mav::mav_cmd::kNavLand;
+bool is_land_command(Autopilot firmware, const mav::CommandLong& command) {
+  if (firmware == Autopilot::Px4) return command.command == mav::mav_cmd::kNavLand;
   return command.command == mav::mav_cmd::kDoSetMode &&
          command.param[1] == static_cast<float>(mav::copter_mode::kLand);
 }
@@ -99,8 +99,8 @@ bool is_control_command(const mav::CommandLong& command) {
          command.command == mav::mav_cmd::kNavLand;
 }
 
-std::optional<double> firmware_hover_thrust(Firmware firmware, FirmwareMonitor& monitor) {
-  if (firmware == Firmware::ArduCopter) {
+std::optional<double> firmware_hover_thrust(Autopilot firmware, FirmwareMonitor& monitor) {
+  if (firmware == Autopilot::ArduPilot) {
     const auto hover = monitor.read_param("MOT_THST_HOVER", kParamTimeout);
     if (!hover) return std::nullopt;
     return hover->value(false);

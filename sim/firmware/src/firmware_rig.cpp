@@ -94,17 +94,17 @@ FirmwareRig::FirmwareRig(const RigSetup& setup, const FirmwareProfile& profile,
   bridge_argv_ = argv;
   restart_bridge();
 
-  const auto workdir = setup_.workdir / to_string(profile.firmware);
-  firmware_.emplace(profile.firmware == Firmware::Px4
+  const auto workdir = setup_.workdir / display_name(profile.firmware);
+  firmware_.emplace(profile.firmware == Autopilot::Px4
                         ? SitlProcess::start_px4(build, std::move(slot), workdir, params)
                         : SitlProcess::start_arducopter(build, std::move(slot), workdir, params));
   std::fprintf(setup_.log,
                "%s SITL instance %d (system %d) in %s, bridge on UDP %d, DDS domain %d\n",
-               to_string(profile.firmware), n, firmware_->system_id(), workdir.c_str(),
+               display_name(profile.firmware), n, firmware_->system_id(), workdir.c_str(),
                bridge_port_, domain_.domain());
 
   monitor_ =
-      profile.firmware == Firmware::Px4 ? FirmwareMonitor::px4(n) : FirmwareMonitor::arducopter(n);
+      profile.firmware == Autopilot::Px4 ? FirmwareMonitor::px4(n) : FirmwareMonitor::arducopter(n);
   participant_ = std::make_unique<dds::Participant>(on_domain(domain_.domain()));
   fc_ = participant_->make_reader(dds::topics::fc_state(0), [this](const msg::FcState& s) {
     std::lock_guard<std::mutex> lock(states_mutex_);

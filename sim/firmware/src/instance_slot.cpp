@@ -45,7 +45,7 @@ bool port_free(const PortUse& use) {
   return free;
 }
 
-InstanceSlot InstanceSlot::claim(Firmware firmware, int first, int last) {
+InstanceSlot InstanceSlot::claim(Autopilot firmware, int first, int last) {
   std::string taken;
   for (int n = first; n <= last; ++n) {
     const int fd = bind_claim(n);
@@ -65,7 +65,7 @@ InstanceSlot InstanceSlot::claim(Firmware firmware, int first, int last) {
     if (free) return InstanceSlot(n, fd);
     ::close(fd);
   }
-  throw std::runtime_error(std::string("no free ") + to_string(firmware) + " SITL instance in " +
+  throw std::runtime_error(std::string("no free ") + display_name(firmware) + " SITL instance in " +
                            std::to_string(first) + ".." + std::to_string(last) + ":" + taken);
 }
 

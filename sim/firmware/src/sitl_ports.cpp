@@ -2,12 +2,8 @@
 
 namespace cover::firmware {
 
-const char* to_string(Firmware firmware) {
-  return firmware == Firmware::Px4 ? "PX4" : "ArduCopter";
-}
-
-std::vector<PortUse> ports_of(Firmware firmware, int instance) {
-  if (firmware == Firmware::Px4) {
+std::vector<PortUse> ports_of(Autopilot firmware, int instance) {
+  if (firmware == Autopilot::Px4) {
     return {{false, companion_port(instance)}, {false, px4_onboard_port(instance)},
             {false, px4_gcs_port(instance)},   {false, 14280 + instance},  // payload link
             {false, 13030 + instance},                                     // gimbal link
@@ -16,10 +12,10 @@ std::vector<PortUse> ports_of(Firmware firmware, int instance) {
   const int base = 10 * instance;
   return {{false, companion_port(instance)},
           {true, arducopter_gcs_port(instance)},
-          {true, 5762 + base},    // SERIAL1's default, were it not UDP
-          {true, 5763 + base},    // SERIAL2
-          {false, 5501 + base},   // RC input
-          {false, 9002 + base}};  // the JSON backend's physics (ArduPilotJsonLink binds it)
+          {true, 5762 + base},   // SERIAL1's default, were it not UDP
+          {true, 5763 + base},   // SERIAL2
+          {false, 5501 + base},  // RC input
+          {false, physics_port(firmware, instance)}};
 }
 
 }  // namespace cover::firmware

@@ -49,7 +49,7 @@ fs::path link_px4_commands(const FirmwareBuild& build, const fs::path& workdir) 
 
 }  // namespace
 
-SitlProcess::SitlProcess(Firmware firmware, InstanceSlot slot, fs::path console_log,
+SitlProcess::SitlProcess(Autopilot firmware, InstanceSlot slot, fs::path console_log,
                          std::unique_ptr<process::ChildProcess> child)
     : firmware_(firmware),
       slot_(std::move(slot)),
@@ -71,7 +71,7 @@ SitlProcess SitlProcess::start_px4(const FirmwareBuild& build, InstanceSlot slot
       std::vector<std::string>{px4.string(), "-d", "-i", n, "-w", workdir.string(),
                                build.data.string()},
       options);
-  return SitlProcess(Firmware::Px4, std::move(slot), console, std::move(child));
+  return SitlProcess(Autopilot::Px4, std::move(slot), console, std::move(child));
 }
 
 SitlProcess SitlProcess::start_px4_hil(const FirmwareBuild& build, InstanceSlot slot,
@@ -95,7 +95,7 @@ SitlProcess SitlProcess::start_px4_hil(const FirmwareBuild& build, InstanceSlot 
       std::vector<std::string>{px4.string(), "-d", "-i", n, "-w", workdir.string(),
                                build.data.string()},
       options);
-  return SitlProcess(Firmware::Px4, std::move(slot), console, std::move(child));
+  return SitlProcess(Autopilot::Px4, std::move(slot), console, std::move(child));
 }
 
 SitlProcess SitlProcess::start_arducopter(const FirmwareBuild& build, InstanceSlot slot,
@@ -147,7 +147,7 @@ SitlProcess SitlProcess::start_arducopter_model(const FirmwareBuild& build, Inst
                                 "--serial1",
                                 "udpclient:127.0.0.1:" + std::to_string(companion_port(n))};
   auto child = std::make_unique<process::ChildProcess>(argv, spawn_options(console));
-  return SitlProcess(Firmware::ArduCopter, std::move(slot), console, std::move(child));
+  return SitlProcess(Autopilot::ArduPilot, std::move(slot), console, std::move(child));
 }
 
 SitlProcess::~SitlProcess() {
@@ -175,7 +175,7 @@ int SitlProcess::stop(std::chrono::milliseconds grace) {
       exit_code_ = child_->terminate(std::chrono::seconds(5), SIGKILL);
     }
   }
-  if (firmware_ == Firmware::Px4) remove_px4_tmp_files();
+  if (firmware_ == Autopilot::Px4) remove_px4_tmp_files();
   return *exit_code_;
 }
 

@@ -5,11 +5,9 @@
 #include <optional>
 #include <string>
 
-namespace cover::fc_bridge {
+#include "cover/vocabulary/autopilot.hpp"
 
-enum class AutopilotKind { Px4, ArduPilot };
-std::optional<AutopilotKind> parse_autopilot(const std::string& text);  // "px4", "ardupilot"
-const char* to_string(AutopilotKind kind);
+namespace cover::fc_bridge {
 
 // The flight mode as COVER needs to know it (the autopilot's own name comes apart).
 enum class FcMode {
@@ -34,8 +32,8 @@ struct CommandSpec {
 //             Copter flight mode number.
 class AutopilotProfile {
  public:
-  explicit AutopilotProfile(AutopilotKind kind) : kind_(kind) {}
-  AutopilotKind kind() const { return kind_; }
+  explicit AutopilotProfile(Autopilot kind) : kind_(kind) {}
+  Autopilot kind() const { return kind_; }
   // MAV_AUTOPILOT this family reports in its HEARTBEAT.
   std::uint8_t mav_autopilot() const;
   CommandSpec offboard_command() const;
@@ -48,7 +46,7 @@ class AutopilotProfile {
   std::string mode_name(std::uint8_t base_mode, std::uint32_t custom_mode) const;
 
  private:
-  AutopilotKind kind_;
+  Autopilot kind_;
 };
 
 }  // namespace cover::fc_bridge

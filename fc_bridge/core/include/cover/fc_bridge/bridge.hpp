@@ -72,7 +72,7 @@ struct FcStatus {
 
 struct BridgeConfig {
   FcBridgeParams params;
-  AutopilotKind autopilot = AutopilotKind::Px4;
+  Autopilot autopilot = Autopilot::Px4;
   std::optional<mavlink::SigningKey> signing_key;  // signs what the bridge writes
 };
 

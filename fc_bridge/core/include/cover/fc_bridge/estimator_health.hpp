@@ -21,7 +21,7 @@ struct EstimatorHealth {
 
 class EstimatorHealthTracker {
  public:
-  explicit EstimatorHealthTracker(AutopilotKind kind) : kind_(kind) {}
+  explicit EstimatorHealthTracker(Autopilot kind) : kind_(kind) {}
   void on_sys_status(const mavlink::SysStatus& status);
   void on_estimator_flags(std::uint16_t flags);  // ESTIMATOR_STATUS / EKF_STATUS_REPORT
   EstimatorHealth health() const;
@@ -33,7 +33,7 @@ class EstimatorHealthTracker {
   std::string sensor_problems() const;
   std::string flag_summary() const;
 
-  AutopilotKind kind_;
+  Autopilot kind_;
   bool sys_status_seen_ = false;
   std::uint32_t present_ = 0;
   std::uint32_t enabled_ = 0;

@@ -27,7 +27,7 @@ struct ParameterRule {
   std::string why;
   bool (*acceptable)(double value) = nullptr;  // nullptr: any value
 };
-std::vector<ParameterRule> parameter_rules(AutopilotKind kind);
+std::vector<ParameterRule> parameter_rules(Autopilot kind);
 
 // A parameter as read and judged.
 struct ParameterFinding {

@@ -85,6 +85,6 @@ struct StreamRates {
   double attitude_target_hz = 0.0;
   double local_position_ned_hz = 0.0;  // optional
 };
-std::vector<StreamRequest> stream_plan(AutopilotKind kind, const StreamRates& rates);
+std::vector<StreamRequest> stream_plan(Autopilot kind, const StreamRates& rates);
 
 }  // namespace cover::fc_bridge

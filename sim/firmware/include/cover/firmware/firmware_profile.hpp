@@ -18,7 +18,7 @@ namespace cover::firmware {
 namespace mav = cover::mavlink;
 
 struct FirmwareProfile {
-  Firmware firmware = Firmware::Px4;
+  Autopilot firmware = Autopilot::Px4;
   std::string bridge_autopilot;  // cover-fc-bridge --autopilot
   // What COVER needs of it (docs/flight-controller.md), given at its start.
   FirmwareParams flight_params;
@@ -52,14 +52,14 @@ struct FirmwareProfile {
 FirmwareProfile px4_sih_profile();
 FirmwareProfile arducopter_profile();
 
-bool in_offboard(Firmware firmware, const mav::Heartbeat& heartbeat);
-bool in_land(Firmware firmware, const mav::Heartbeat& heartbeat);
+bool in_offboard(Autopilot firmware, const mav::Heartbeat& heartbeat);
+bool in_land(Autopilot firmware, const mav::Heartbeat& heartbeat);
 inline bool armed(const mav::Heartbeat& heartbeat) {
   return (heartbeat.base_mode & mav::mav_mode_flag::kSafetyArmed) != 0;
 }
 // The bridge's land command as it goes on the wire (PX4 NAV_LAND; ArduCopter DO_SET_MODE
 // LAND).
-bool is_land_command(Firmware firmware, const mav::CommandLong& command);
+bool is_land_command(Autopilot firmware, const mav::CommandLong& command);
 // A command that takes or gives the vehicle: a mode change, arming, landing.
 bool is_control_command(const mav::CommandLong& command);
 
@@ -68,6 +68,6 @@ bool is_control_command(const mav::CommandLong& command);
 // the motor command, linear); ArduCopter: MOT_THST_HOVER, which it learns in flight under
 // its own altitude control (MOT_HOVER_LEARN 2). Read over the monitor's link; nullopt when
 // it does not answer.
-std::optional<double> firmware_hover_thrust(Firmware firmware, FirmwareMonitor& monitor);
+std::optional<double> firmware_hover_thrust(Autopilot firmware, FirmwareMonitor& monitor);
 
 }  // namespace cover::firmware

@@ -64,7 +64,7 @@ class FirmwareRig {
   FirmwareRig& operator=(const FirmwareRig&) = delete;
 
   const FirmwareProfile& profile() const { return profile_; }
-  Firmware firmware_kind() const { return profile_.firmware; }
+  Autopilot firmware_kind() const { return profile_.firmware; }
   SitlProcess& firmware() { return *firmware_; }
   FirmwareMonitor& monitor() { return *monitor_; }
   LinkTap& tap() { return *tap_; }

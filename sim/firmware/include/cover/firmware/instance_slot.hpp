@@ -14,7 +14,7 @@ class InstanceSlot {
  public:
   // The first free N of [first, last] for `firmware`; throws std::runtime_error naming why
   // when none is.
-  static InstanceSlot claim(Firmware firmware, int first, int last);
+  static InstanceSlot claim(Autopilot firmware, int first, int last);
 
   InstanceSlot(InstanceSlot&& other) noexcept;
   InstanceSlot& operator=(InstanceSlot&& other) noexcept;

@@ -4,10 +4,9 @@
 // its base ports). Two instances with one N, or anything else on these ports, collide.
 #include <vector>
 
-namespace cover::firmware {
+#include "cover/vocabulary/autopilot.hpp"
 
-enum class Firmware { Px4, ArduCopter };
-const char* to_string(Firmware firmware);
+namespace cover::firmware {
 
 // Both send their companion (onboard) link to UDP 127.0.0.1:14540 + N: PX4 by its start
 // script, ArduCopter because the test starts it with --serial1 udpclient:127.0.0.1:14540+N.
@@ -23,6 +22,12 @@ inline int px4_onboard_port(int instance) {
 inline int px4_gcs_port(int instance) {
   return 18570 + instance;
 }
+// The simulator's side when COVER is the firmware's physics: PX4's simulator_mavlink
+// connects to TCP 4560 + N (firmware_link::Px4HilLink serves it); ArduCopter's JSON backend
+// sends its servo packets to UDP 9002 + 10 N (firmware_link::ArduPilotJsonLink binds it).
+inline int physics_port(Autopilot autopilot, int instance) {
+  return autopilot == Autopilot::Px4 ? 4560 + instance : 9002 + 10 * instance;
+}
 // ArduCopter: SERIAL0, a TCP server (a ground station's port).
 inline int arducopter_gcs_port(int instance) {
   return 5760 + 10 * instance;
@@ -34,8 +39,8 @@ struct PortUse {
 };
 
 // Every port instance N of `firmware` binds, and the companion port (which the test's own
-// relay binds) and, for ArduCopter, its JSON physics port 9002 + 10 N (which
-// ArduPilotJsonLink binds): all must be free before it starts.
-std::vector<PortUse> ports_of(Firmware firmware, int instance);
+// relay binds) and, for ArduCopter, its JSON physics port (which ArduPilotJsonLink
+// binds): all must be free before it starts.
+std::vector<PortUse> ports_of(Autopilot firmware, int instance);
 
 }  // namespace cover::firmware

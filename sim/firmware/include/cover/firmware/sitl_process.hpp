@@ -61,7 +61,7 @@ class SitlProcess {
   SitlProcess& operator=(SitlProcess&&) = delete;
   ~SitlProcess();
 
-  Firmware firmware() const { return firmware_; }
+  Autopilot firmware() const { return firmware_; }
   int instance() const { return slot_.instance(); }
   int system_id() const { return slot_.instance() + 1; }
   pid_t pid() const { return child_ ? child_->pid() : -1; }
@@ -73,19 +73,18 @@ class SitlProcess {
   int stop(std::chrono::milliseconds grace = std::chrono::seconds(5));
 
  private:
-  SitlProcess(Firmware firmware, InstanceSlot slot, std::filesystem::path console_log,
+  SitlProcess(Autopilot firmware, InstanceSlot slot, std::filesystem::path console_log,
               std::unique_ptr<process::ChildProcess> child);
   void remove_px4_tmp_files() const;
   static SitlProcess start_arducopter_model(const FirmwareBuild& build, InstanceSlot slot,
                                             const std::filesystem::path& workdir,
                                             const FirmwareParams& params, const std::string& model);
 
-  Firmware firmware_;
+  Autopilot firmware_;
   InstanceSlot slot_;
   std::filesystem::path console_log_;
   std::unique_ptr<process::ChildProcess> child_;
   std::optional<int> exit_code_;
 };
-
 
 }  // namespace cover::firmware

@@ -18,14 +18,9 @@
 
 namespace cover::firmware_link {
 
-// ArduPilot SITL instance u sends its servo packets to 9002 + 10 u (-I u).
-inline int ardupilot_json_port(int instance) {
-  return 9002 + 10 * instance;
-}
-
 struct ArduPilotJsonLinkOptions {
   std::string address = "127.0.0.1";  // where to bind
-  int port = 9002;                    // ardupilot_json_port(u)
+  int port = 9002;                    // firmware::physics_port(ArduPilot, u)
   Pacing pacing = Pacing::Lockstep;
   // How long exchange() waits for the next servo packet: the firmware's turn in lockstep
   // (bounded so that a dead firmware is reported); in realtime, where the firmware paces

@@ -13,14 +13,9 @@
 
 namespace cover::firmware_link {
 
-// PX4 SITL instance N's simulator_mavlink connects to TCP 4560 + N.
-inline std::uint16_t px4_hil_port(int instance) {
-  return static_cast<std::uint16_t>(4560 + instance);
-}
-
 struct Px4HilConfig {
   std::string bind_host = "127.0.0.1";
-  std::uint16_t port = 4560;  // px4_hil_port(N); 0: the kernel's pick (tests)
+  std::uint16_t port = 4560;  // firmware::physics_port(Px4, N); 0: the kernel's pick (tests)
   Pacing pacing = Pacing::Lockstep;
   // Lockstep: how long a sensor frame waits for its answer before the plant goes on with
   // the last outputs (counted in answers_missed, logged): PX4 stalled, not PX4 slow.

@@ -21,15 +21,15 @@ struct AutoDisarmStep {
   std::optional<AutoDisarmCause> disarm;
 };
 
-// The firmwares' own auto-disarm, both measured with COVER's bridge (docs/autopilots.md, measured on real SITL):
-// PX4 "Disarmed by preflight inaction" 11 s after arming on the ground and "Disarmed by
-// landing" 2 s after touchdown (PX4 Commander: _auto_disarm_landed); ArduCopter "Disarming
+// The firmwares' own auto-disarm, both measured with COVER's bridge (docs/autopilots.md, measured
+// on real SITL): PX4 "Disarmed by preflight inaction" 11 s after arming on the ground and "Disarmed
+// by landing" 2 s after touchdown (PX4 Commander: _auto_disarm_landed); ArduCopter "Disarming
 // motors" DISARM_DELAY after arming when it stayed landed at zero throttle
 // (motors.cpp auto_disarm_check). The simulator's land detector is the plant's contact:
 // resting on a surface is landed.
 class AutoDisarm {
  public:
-  AutoDisarm(AutopilotProfile profile, const SimFcParams& params);
+  AutoDisarm(Autopilot profile, const SimFcParams& params);
 
   void on_armed(double now_s);
   // One step while armed: `landed` the plant rests on a surface, `throttle_zero` the
@@ -40,7 +40,7 @@ class AutoDisarm {
   AutoDisarmStep px4_step(double now_s, bool landed);
   AutoDisarmStep ardupilot_step(double now_s, bool landed, bool throttle_zero);
 
-  AutopilotProfile profile_;
+  Autopilot profile_;
   double px4_preflight_s_;    // COM_DISARM_PRFLT + spool-up; <= 0: never
   double px4_landed_s_;       // COM_DISARM_LAND; <= 0: never
   double ardupilot_delay_s_;  // DISARM_DELAY; 0: never

@@ -23,7 +23,7 @@ struct AutopilotParameter {
 // PX4 SITL and ArduCopter SITL, docs/autopilots.md), their values from config/sim/sim_fc.yaml.
 class AutopilotParameters {
  public:
-  AutopilotParameters(AutopilotProfile profile, const SimFcParams& params, std::uint8_t system_id);
+  AutopilotParameters(Autopilot profile, const SimFcParams& params, std::uint8_t system_id);
 
   std::optional<std::size_t> index_of(const std::string& name) const;
   std::size_t size() const { return table_.size(); }
@@ -34,7 +34,7 @@ class AutopilotParameters {
   mavlink::ParamValue value_message(std::size_t index, bool by_name) const;
 
  private:
-  AutopilotProfile profile_;
+  Autopilot profile_;
   mavlink::ParamEncoding encoding_;
   std::vector<AutopilotParameter> table_;
 };

@@ -23,7 +23,7 @@ inline constexpr std::uint32_t kAltitude = 141;  // unknown to the codec
 // would send, and t = 0 is on every grid.
 class MessageStreams {
  public:
-  MessageStreams(AutopilotProfile profile, const StreamRates& defaults);
+  MessageStreams(Autopilot profile, const StreamRates& defaults);
 
   // Whether message `id` is one of this autopilot's streams (else a SET_MESSAGE_INTERVAL for
   // it is refused).

@@ -79,7 +79,7 @@ enum class StepClosing { None, HighresImu };
 // Not thread-safe: its owner serialises on_frame and step. Never throws after construction.
 class SimulatedAutopilot {
  public:
-  SimulatedAutopilot(AutopilotProfile profile, std::uint8_t system_id, const SimFcParams& params,
+  SimulatedAutopilot(Autopilot profile, std::uint8_t system_id, const SimFcParams& params,
                      StepClosing closing = StepClosing::None);
 
   // A frame from the link, received at simulated time `now_s`.
@@ -95,7 +95,7 @@ class SimulatedAutopilot {
   // for the companion); nullopt once heartbeats are stopped.
   std::optional<mavlink::EncodedFrame> heartbeat_frame();
 
-  AutopilotProfile profile() const { return profile_; }
+  Autopilot profile() const { return profile_; }
   std::uint8_t system_id() const { return encoder_.system_id(); }
   FlightMode mode() const { return mode_; }
   const char* mode_name() const { return fc::mode_name(profile_, mode_); }
@@ -182,7 +182,7 @@ class SimulatedAutopilot {
     outbox_.push_back(encoder_.encode(message));
   }
 
-  AutopilotProfile profile_;
+  Autopilot profile_;
   SimFcParams params_;
   StepClosing closing_;
   mavlink::Encoder encoder_;
