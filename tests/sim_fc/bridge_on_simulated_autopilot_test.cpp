@@ -73,7 +73,7 @@ class BridgeOnAutopilot {
  private:
   static BridgeConfig config(Autopilot profile) {
     BridgeConfig c;
-    c.autopilot = profile == Autopilot::Px4 ? Autopilot::Px4 : Autopilot::ArduPilot;
+    c.autopilot = profile;
     return c;
   }
   AgentCommand command() const {
