@@ -273,7 +273,6 @@ void boot_arm_and_hover(const FirmwareBuild& build, fl::Pacing pacing) {
   const int n = slot.instance();
   fl::ArduPilotJsonLinkOptions options;
   options.port = cover::firmware::physics_port(cover::Autopilot::ArduPilot, n);
-  options.log = stdout;
   options.pacing = pacing;
   fl::ArduPilotJsonLink link(options);
   CompanionLink companion(companion_port(n));

@@ -92,12 +92,9 @@ class ArduPilotJsonLinkTest : public ::testing::Test {
     o.port = port_;
     o.lockstep_timeout = 300ms;
     o.repeat_grace = 50ms;
-    o.log = log_;
     return o;
   }
-  void TearDown() override { std::fclose(log_); }
   int port_ = free_port();
-  std::FILE* log_ = std::tmpfile();
 };
 
 TEST_F(ArduPilotJsonLinkTest, LockstepOneAnswerPerFrame) {

@@ -2,6 +2,7 @@
 
 #include <arpa/inet.h>
 #include <poll.h>
+#include <spdlog/spdlog.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -64,9 +65,8 @@ bool ArduPilotJsonLink::wait_for_firmware(std::chrono::milliseconds timeout) {
   const auto received = receive(timeout);
   if (!received) return false;
   take(*received);
-  std::fprintf(options_.log,
-               "ardupilot-json: firmware on UDP port %d (frame %u, %u Hz, %u channels)\n",
-               ntohs(received->from.sin_port), received->packet.frame_count,
+  spdlog::info("ardupilot json {}: firmware on UDP port {} (frame {}, {} Hz, {} channels)",
+               options_.port, ntohs(received->from.sin_port), received->packet.frame_count,
                received->packet.frame_rate_hz, received->packet.channels);
   return true;
 }
@@ -84,10 +84,10 @@ sim::MotorOutputs ArduPilotJsonLink::exchange(const PlantSample& sample) {
     // seconds: judged after 5 s of frames.
     const long physics_hz = sample.dt_s > 0.0 ? std::lround(1.0 / sample.dt_s) : 0;
     if (stats_.frames_sent == kRateCheckFrames && ardupilot_.frame_rate_hz != physics_hz) {
-      std::fprintf(options_.log,
-                   "ardupilot-json: the firmware runs %u Hz frames, the physics %ld Hz steps: "
-                   "set SIM_RATE_HZ to the physics rate\n",
-                   ardupilot_.frame_rate_hz, physics_hz);
+      spdlog::warn(
+          "ardupilot json {}: the firmware runs {} Hz frames, the physics {} Hz steps: set "
+          "SIM_RATE_HZ to the physics rate",
+          options_.port, ardupilot_.frame_rate_hz, physics_hz);
     }
   }
   const auto timeout =
@@ -116,9 +116,8 @@ bool ArduPilotJsonLink::await_next(std::chrono::milliseconds timeout) {
         send_answer();
         ++ardupilot_.repeats_answered;
         if (worth_logging(ardupilot_.repeats_answered)) {
-          std::fprintf(options_.log, "ardupilot-json: frame %u repeated: answered again (%llu)\n",
-                       ardupilot_.last_frame_count,
-                       static_cast<unsigned long long>(ardupilot_.repeats_answered));
+          spdlog::info("ardupilot json {}: frame {} repeated: answered again ({})", options_.port,
+                       ardupilot_.last_frame_count, ardupilot_.repeats_answered);
         }
         repeat_due.reset();
       }
@@ -165,7 +164,7 @@ std::optional<ArduPilotJsonLink::Received> ArduPilotJsonLink::receive(
     }
     ++stats_.frames_rejected;
     if (worth_logging(stats_.frames_rejected)) {
-      std::fprintf(options_.log, "ardupilot-json: %zd-byte datagram refused: %s\n", size,
+      spdlog::warn("ardupilot json {}: {}-byte datagram refused: {}", options_.port, size,
                    to_string(parsed.error));
     }
     if (Clock::now() >= deadline) return std::nullopt;
@@ -178,12 +177,12 @@ void ArduPilotJsonLink::take(const Received& received) {
     const std::uint32_t last = ardupilot_.last_frame_count;
     if (count < last) {
       ++ardupilot_.restarts;
-      std::fprintf(options_.log,
-                   "ardupilot-json: frame_count went back from %u to %u: the firmware restarted\n",
-                   last, count);
+      spdlog::warn("ardupilot json {}: frame_count went back from {} to {}: the firmware restarted",
+                   options_.port, last, count);
     } else if (count > last + 1) {
       ardupilot_.frames_skipped += count - last - 1;
-      std::fprintf(options_.log, "ardupilot-json: frames %u..%u never came\n", last + 1, count - 1);
+      spdlog::warn("ardupilot json {}: frames {}..{} never came", options_.port, last + 1,
+                   count - 1);
     }
   }
   ardupilot_.last_frame_count = count;
@@ -203,18 +202,16 @@ void ArduPilotJsonLink::send_answer() {
   const ssize_t sent = ::sendto(fd_, last_answer_.data(), last_answer_.size(), 0,
                                 reinterpret_cast<const sockaddr*>(&answer_to_), sizeof(answer_to_));
   if (sent != static_cast<ssize_t>(last_answer_.size())) {
-    std::fprintf(options_.log, "ardupilot-json: answer not sent: %s\n", std::strerror(errno));
+    spdlog::warn("ardupilot json {}: answer not sent: {}", options_.port, std::strerror(errno));
   }
 }
 
 void ArduPilotJsonLink::log_miss() {
   if (!worth_logging(stats_.answers_missed)) return;
-  std::fprintf(
-      options_.log, "ardupilot-json: no servo packet within %lld ms after frame %u (%llu missed)\n",
-      static_cast<long long>((options_.pacing == Pacing::Lockstep ? options_.lockstep_timeout
-                                                                  : options_.realtime_timeout)
-                                 .count()),
-      ardupilot_.last_frame_count, static_cast<unsigned long long>(stats_.answers_missed));
+  const auto timeout = options_.pacing == Pacing::Lockstep ? options_.lockstep_timeout
+                                                           : options_.realtime_timeout;
+  spdlog::warn("ardupilot json {}: no servo packet within {} ms after frame {} ({} missed)",
+               options_.port, timeout.count(), ardupilot_.last_frame_count, stats_.answers_missed);
 }
 
 }  // namespace cover::firmware_link

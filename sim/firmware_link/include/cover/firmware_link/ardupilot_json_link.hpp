@@ -8,7 +8,6 @@
 
 #include <chrono>
 #include <cstdint>
-#include <cstdio>
 #include <optional>
 #include <string>
 
@@ -31,7 +30,6 @@ struct ArduPilotJsonLinkOptions {
   // it is answered again unless a newer frame follows within this (a repeat that was
   // queued before our answer reached the firmware).
   std::chrono::milliseconds repeat_grace{100};
-  std::FILE* log = stderr;  // what the link reports (restarts, misses, repeats)
 };
 
 // What happened on the wire beyond FirmwareLinkStats.
