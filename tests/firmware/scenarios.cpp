@@ -17,6 +17,7 @@
 
 #include "cover/clock/clock.hpp"
 #include "cover/firmware/agent_flight.hpp"
+#include "cover/firmware/hover_settle.hpp"
 #include "cover/mavlink/state_messages.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
@@ -43,21 +44,12 @@ constexpr double kHoverVzLimit_m_s = 0.2;
 // fails.
 constexpr double kPx4SihHoverVzBound_m_s = 0.3;
 constexpr double kHoverEstimateTolerance = 0.05;
-// The hover starts with the height hold's vertical speed below this.
-constexpr double kHoverStartVz_m_s = 0.05;
-// The estimate counts as settled when over the last 2 s it moved by no more than 1 % of
-// itself: an error of 1 % is 0.1 m/s^2 of vertical acceleration on thrust g, so a hover
-// begun on an estimate still moving by more leaves the 0.2 m/s to chance. (On PX4 SIH the
-// aided estimate follows the firmware's vertical speed by +-0.5-1 % within a second: 0.5 %
-// took 40 s after the take-off in one run and more than 45 s in the next.) A steady bias
-// is not seen here: the bridge's drag model (velocity_drag_per_s) is what removes it. The
-// bridge publishes its state at 10 Hz; 2 s must hold most of those samples. Not before 8 s
-// after the take-off (the climb's thrust excites the estimate), not later than
-// kSettleDeadline.
-constexpr std::int64_t kSettleWindow_ns = 2'000'000'000;
-constexpr double kSettledSpread = 0.01;
-constexpr std::size_t kSettleMinStates = 10;
-constexpr std::int64_t kSettleAfterTakeOff_ns = 8'000'000'000;
+// The hover starts once the bridge's estimate has settled (firmware::HoverSettleRule: moved
+// by at most 1 % of itself over 2 s, 8 s after the take-off at the earliest, the vertical
+// speed below 0.05 m/s; on PX4 SIH the aided estimate follows the firmware's vertical speed
+// by +-0.5-1 % within a second: 0.5 % took 40 s after the take-off in one run and more than
+// 45 s in the next), and not later than kSettleDeadline. A steady bias is not seen here: the
+// bridge's drag model (velocity_drag_per_s) is what removes it.
 constexpr auto kSettleDeadline = 45s;
 constexpr double kLandLatencyLimit_ms = 150.0;
 constexpr double kStepRate_rad_s = 0.5;
@@ -336,25 +328,6 @@ void operator_commands_on_the_ground(FirmwareRig& rig) {
 
 // --- the hover ---------------------------------------------------------------------------
 
-// The bridge's estimate has settled (the issue: "once the hover-thrust estimate has
-// settled"): over the last kSettleWindow_ns it stayed within kSettledSpread of itself, at
-// least kSettleAfterTakeOff_ns after the take-off, and the vertical speed is within
-// kHoverStartVz_m_s (the agent's height hold has caught it: the hover on thrust g has
-// nothing that brings a speed it starts with back).
-bool estimate_settled(FirmwareRig& rig, std::int64_t airborne_ns) {
-  const std::int64_t now = now_ns();
-  if (now - airborne_ns < kSettleAfterTakeOff_ns) return false;
-  const auto states = rig.states_since(now - kSettleWindow_ns);
-  if (states.size() < kSettleMinStates) return false;
-  double lo = 1.0, hi = 0.0;
-  for (const auto& s : states) {
-    lo = std::min(lo, s.value.hover_thrust);
-    hi = std::max(hi, s.value.hover_thrust);
-  }
-  const auto p = rig.monitor().position();
-  return hi - lo <= kSettledSpread * hi && p && std::abs(p->value.vz) < kHoverStartVz_m_s;
-}
-
 double max_abs_vz(const std::vector<Timed<mav::LocalPositionNed>>& positions, std::int64_t to_ns) {
   double worst = 0.0;
   for (const auto& p : positions) {
@@ -520,7 +493,8 @@ void hover_on_the_estimate(FirmwareRig& rig, double before, std::int64_t airborn
   const FirmwareProfile& profile = rig.profile();
   const Autopilot fw = profile.firmware;
   auto& monitor = rig.monitor();
-  ASSERT_TRUE(wait_until([&] { return estimate_settled(rig, airborne_ns); }, kSettleDeadline))
+  ASSERT_TRUE(wait_until([&] { return hover_estimate_settled(rig, airborne_ns, now_ns()); },
+                         kSettleDeadline))
       << "the bridge's hover-thrust estimate did not settle" << context(rig);
   std::printf("hover: the estimate settled %.1f s after the take-off at %.4f\n",
               ms_between(airborne_ns, now_ns()) * 1e-3, rig.state()->hover_thrust);

@@ -45,6 +45,7 @@
 #include "cover/firmware/firmware_build.hpp"
 #include "cover/firmware/firmware_profile.hpp"
 #include "cover/firmware/firmware_rig.hpp"
+#include "cover/firmware/hover_settle.hpp"
 #include "cover/mavlink/state_messages.hpp"
 #include "not_measured.hpp"
 
@@ -306,20 +307,6 @@ RateAndLatency rate_and_latency(fw::FirmwareRig& rig, double height, std::chrono
 
 // --- hover thrust ----------------------------------------------------------------------------
 
-bool estimate_settled(fw::FirmwareRig& rig, std::int64_t airborne_ns) {
-  const std::int64_t now = now_ns();
-  if (now - airborne_ns < 8'000'000'000) return false;
-  const auto states = rig.states_since(now - 3'000'000'000);
-  if (states.size() < 15) return false;
-  double lo = 1.0, hi = 0.0;
-  for (const auto& s : states) {
-    lo = std::min(lo, s.value.hover_thrust);
-    hi = std::max(hi, s.value.hover_thrust);
-  }
-  const auto p = rig.monitor().position();
-  return hi - lo < 0.02 && p && std::abs(p->value.vz) < 0.1;
-}
-
 // The hover thrust the firmware's own motion gives on `thrust`: the specific force along it
 // is g + a_up = g thrust / hover, a_up the least-squares slope of its vertical speed.
 double hover_from_motion(const std::vector<fw::Timed<mav::LocalPositionNed>>& window,
@@ -350,7 +337,7 @@ struct Hover {
 Hover hover_estimate(fw::FirmwareRig& rig, double before, std::int64_t airborne_ns) {
   Hover h;
   const cover::Autopilot kind = rig.firmware_kind();
-  if (!wait_for([&] { return estimate_settled(rig, airborne_ns); }, 45s)) {
+  if (!wait_for([&] { return fw::hover_estimate_settled(rig, airborne_ns, now_ns()); }, 45s)) {
     h.truth_source = "the bridge's estimate did not settle in 45 s";
     return h;
   }
