@@ -26,7 +26,7 @@ ORDER = [
     # library only.
     ["vocabulary"],
     # Services without DDS: configuration, logging, clocks, processes, one start-up, shared memory,
-    # MAVLink and VRPN codecs, MCAP files.
+    # MAVLink and VRPN codecs, MCAP files, a WebSocket server.
     [
         "services/config",
         "services/logging",
@@ -37,6 +37,7 @@ ORDER = [
         "services/mavlink",
         "services/vrpn",
         "services/mcap",
+        "services/websocket",
     ],
     # The message catalogue and its converters to the vocabulary.
     ["idl"],
