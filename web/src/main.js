@@ -5,8 +5,18 @@ import uPlot from "uplot";
 
 const $ = (s) => document.querySelector(s);
 const token = new URLSearchParams(location.search).get("token") ?? "";
-const stats = { states: 0, latencies_ms: [], fleet_updates: 0, first_state_ms: 0 };
-window.__gs = stats; // read by the browser tests and cover-bench ground-station
+// Read by the browser tests and cover-bench ground-station: state_latencies_ms from a state's
+// sent_ms; per pushed row drawn, latencies_ms from the sample's own wall-clock stamp and
+// server_latencies_ms from the station's receive time; row_updates: times each fleet row
+// was drawn ("uav-agent/0": n).
+const stats = { states: 0, pushes: 0, state_latencies_ms: [], latencies_ms: [], server_latencies_ms: [],
+  fleet_updates: 0, row_updates: {}, first_state_ms: 0 };
+window.__gs = stats;
+const kMaxLatencies = 5000;
+function note(list, value) {
+  list.push(value);
+  if (list.length > kMaxLatencies) list.shift();
+}
 
 let ws;
 let nextId = 1;
@@ -24,6 +34,7 @@ function connect() {
   ws.onmessage = (e) => {
     const m = JSON.parse(e.data);
     if (m.type === "state") onState(m);
+    else if (m.type === "rows") { stats.pushes++; queueRows(m.rows); }
     else if (m.type === "reply" && pending.has(m.id)) { pending.get(m.id)(m); pending.delete(m.id); }
   };
   $("#rights").textContent = token ? "commands allowed (token)" : "read only: open the address with its token to command";
@@ -52,8 +63,7 @@ const short = (s) => (typeof s === "string" ? s.replace(/^[A-Z]+_(?:[A-Z]+_)?/, 
 
 function onState(m) {
   stats.states++;
-  stats.latencies_ms.push(Date.now() - m.sent_ms);
-  if (stats.latencies_ms.length > 2000) stats.latencies_ms.shift();
+  note(stats.state_latencies_ms, Date.now() - m.sent_ms);
   if (!stats.first_state_ms) stats.first_state_ms = Date.now();
   lastState = m;
   renderFleet(m.fleet);
@@ -64,18 +74,75 @@ function onState(m) {
   updateScene(m.live, m.fleet);
 }
 
+// The fleet table: one element per row ("kind/id"), its cells written only when their text
+// changed, at the next animation frame. A state lists every row (their order, ages, staleness);
+// a pushed row is one whose status just arrived.
+const fleetRows = new Map(); // key -> <tr>
+const dirtyRows = new Map(); // key -> row, drawn at the next frame
+let fleetFrame = 0;
+let fleetOrder = "";
+const rowKey = (r) => `${r.kind}/${r.id ?? ""}`;
+
 function renderFleet(rows) {
-  const body = $("#fleet tbody");
-  const html = rows.map((r) => {
+  const order = rows.map(rowKey).join(" ");
+  if (order !== fleetOrder) {
+    fleetOrder = order;
+    const keys = new Set(rows.map(rowKey));
+    for (const [key, tr] of fleetRows) if (!keys.has(key)) { tr.remove(); fleetRows.delete(key); }
+    const body = $("#fleet tbody");
+    for (const r of rows) body.appendChild(fleetRow(r));
+  }
+  queueRows(rows);
+  stats.fleet_updates++;
+}
+
+function fleetRow(r) {
+  const key = rowKey(r);
+  let tr = fleetRows.get(key);
+  if (!tr) {
+    tr = document.createElement("tr");
+    tr.dataset.kind = r.kind;
+    tr.dataset.id = r.id ?? "";
+    for (let i = 0; i < 9; i++) tr.appendChild(document.createElement("td"));
+    fleetRows.set(key, tr);
+  }
+  return tr;
+}
+
+function queueRows(rows) {
+  for (const r of rows) {
+    const key = rowKey(r);
+    const pushed = dirtyRows.get(key);
+    // A state arriving before the frame is newer, but the pushed row's stamps are still drawn.
+    if (pushed?.recv_ms !== undefined && r.recv_ms === undefined) {
+      dirtyRows.set(key, { ...r, recv_ms: pushed.recv_ms, source_ms: pushed.source_ms });
+    } else {
+      dirtyRows.set(key, r);
+    }
+  }
+  if (!fleetFrame) fleetFrame = requestAnimationFrame(drawFleet);
+}
+
+function drawFleet() {
+  fleetFrame = 0;
+  const now = Date.now();
+  for (const [key, r] of dirtyRows) {
+    const tr = fleetRows.get(key);
+    if (!tr) continue; // pushed before the first state listed it
     const offset = r.last && r.last.max_clock_offset_ms !== undefined ? `${r.last.max_clock_offset_ms.toFixed(1)} ms` : "-";
     const lost = r.stale ? (r.age_s > 10 * r.stale_after_s ? "LOST " : "STALE ") : "";
-    return `<tr class="${r.stale ? "stale" : ""}" data-kind="${r.kind}" data-id="${r.id ?? ""}">` +
-      `<td>${r.kind}</td><td>${r.id ?? "-"}</td><td>${r.processes.join(", ")}</td>` +
-      `<td>${lost}${r.age_s.toFixed(2)} s</td><td>${esc(r.state)}</td><td>${esc(r.failsafe)}</td>` +
-      `<td>${esc(r.task)}</td><td>${esc(r.autopilot)}</td><td>${offset}</td></tr>`;
-  }).join("");
-  body.innerHTML = html;
-  stats.fleet_updates++;
+    const texts = [r.kind, r.id ?? "-", r.processes.join(", "), `${lost}${r.age_s.toFixed(2)} s`, r.state ?? "",
+      r.failsafe ?? "", r.task ?? "", r.autopilot ?? "", offset];
+    texts.forEach((text, i) => {
+      const cell = tr.cells[i];
+      if (cell.textContent !== String(text)) cell.textContent = text;
+    });
+    tr.classList.toggle("stale", !!r.stale);
+    stats.row_updates[key] = (stats.row_updates[key] ?? 0) + 1;
+    if (r.source_ms !== undefined) note(stats.latencies_ms, now - r.source_ms);
+    if (r.recv_ms !== undefined) note(stats.server_latencies_ms, now - r.recv_ms);
+  }
+  dirtyRows.clear();
 }
 
 function esc(s) {
