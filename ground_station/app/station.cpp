@@ -134,19 +134,22 @@ void Station::on_status(cli::FleetKind kind, std::optional<std::uint32_t> id,
   heard_[{kind, id}] = {stamp_ns, now_ns};
 }
 
-// A row heard is on its way within push_coalesce_ms: the rows heard meanwhile (a burst, the
-// same row again) go in the same message, so a page gets at most one per window.
+// A row heard goes out at once when nothing went out in the last push_coalesce_ms, else at
+// the end of that window with every row heard meanwhile (a burst, the same row again): a page
+// gets at most one message per window, and a lone sample waits for none.
 void Station::push_rows() {
-  const auto window = std::chrono::duration_cast<std::chrono::nanoseconds>(
+  const auto window = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double, std::milli>(options_.push_coalesce_ms));
+  auto last_push = std::chrono::steady_clock::now() - window;
   std::unique_lock<std::mutex> lock(push_mutex_);
   while (!stopping_) {
     push_cv_.wait(lock, [&] { return stopping_ || !heard_.empty(); });
     if (stopping_) return;
-    if (window.count() > 0) push_cv_.wait_for(lock, window, [&] { return stopping_.load(); });
+    push_cv_.wait_until(lock, last_push + window, [&] { return stopping_.load(); });
     std::map<RowKey, Heard> heard;
     heard.swap(heard_);
     lock.unlock();
+    last_push = std::chrono::steady_clock::now();
     if (server_->stats().clients > 0) {
       const Json message{{"type", "rows"}, {"rows", rows_json(heard)}};
       server_->broadcast(message.dump(-1, ' ', false, Json::error_handler_t::replace));

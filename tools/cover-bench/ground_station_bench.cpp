@@ -9,6 +9,9 @@
 // process publishes UAV 1's status at 10 Hz stamped with CLOCK_REALTIME (the page compares
 // Date.now() with it, same host), and the station listens for UAVs 0..1. The station is
 // started here rather than by the launch's ground_station: true, for a free port and its pid.
+// Chromium composites the page in software, as it does without a usable GPU (this VM has
+// none); --gpu-compositing measures SwiftShader compositing it instead (as the browser test
+// runs): a GPU emulated on the CPU.
 #include <unistd.h>
 
 #include <algorithm>
@@ -86,6 +89,8 @@ struct Figures {
   std::size_t latency_samples = 0;
   double server_to_page_p50_ms = NAN;
   double server_to_page_p99_ms = NAN;
+  double arrival_p50_ms = NAN;  // the sample's stamp to the message's arrival in the page
+  double arrival_p99_ms = NAN;
   double states_hz = NAN;
   double pushes_hz = NAN;
 };
@@ -190,6 +195,9 @@ void read_page(const json& page, double server_cpu_s, Figures& f) {
   const auto server = page["server_latencies_ms"].get<std::vector<double>>();
   f.server_to_page_p50_ms = cover::bench::percentile(server, 0.50);
   f.server_to_page_p99_ms = cover::bench::percentile(server, 0.99);
+  const auto arrival = page.value("arrival_latencies_ms", std::vector<double>{});
+  f.arrival_p50_ms = cover::bench::percentile(arrival, 0.50);
+  f.arrival_p99_ms = cover::bench::percentile(arrival, 0.99);
   f.states_hz = page.value("states", 0) / window;
   f.pushes_hz = page.value("pushes", 0) / window;
 }
@@ -204,15 +212,18 @@ std::string read_address(cover::process::ChildProcess& station) {
 }
 
 // The page measured on the running station: the figures, or why not in `missing`.
-Figures measure(const std::string& url, pid_t station_pid, double seconds, const std::string& node,
-                const fs::path& dir, cover::bench::NotMeasured& missing) {
+Figures measure(const std::string& url, pid_t station_pid, double seconds, bool gpu_compositing,
+                const std::string& node, const fs::path& dir, cover::bench::NotMeasured& missing) {
   Figures f;
   cover::process::SpawnOptions options;
   options.capture_stdout = true;
   options.log_file = (dir / "bench_page.log").string();
-  options.extra_env = {"GS_URL=" + url, "BENCH_SECONDS=" + std::to_string(seconds),
-                       "CHROMIUM=" + kChromium, "WEB_DIR=" + kWebDir,
-                       "WAIT_ROWS=uav-agent/0 uav-agent/" + std::to_string(kProbeUav)};
+  options.extra_env = {"GS_URL=" + url,
+                       "BENCH_SECONDS=" + std::to_string(seconds),
+                       "CHROMIUM=" + kChromium,
+                       "WEB_DIR=" + kWebDir,
+                       "WAIT_ROWS=uav-agent/0 uav-agent/" + std::to_string(kProbeUav),
+                       std::string("GPU_COMPOSITING=") + (gpu_compositing ? "1" : "0")};
   cover::process::ChildProcess page({node, kBenchPage}, options);
   double server_cpu0 = NAN;
   std::string failure = "the page script ended without a report";
@@ -258,6 +269,8 @@ json figures_json(const Figures& f) {
           {"latency_samples", f.latency_samples},
           {"server_to_page_p50_ms", figure_json(f.server_to_page_p50_ms)},
           {"server_to_page_p99_ms", figure_json(f.server_to_page_p99_ms)},
+          {"arrival_p50_ms", figure_json(f.arrival_p50_ms)},
+          {"arrival_p99_ms", figure_json(f.arrival_p99_ms)},
           {"states_hz", figure_json(f.states_hz)},
           {"pushes_hz", figure_json(f.pushes_hz)}};
 }
@@ -291,6 +304,11 @@ void print_table(const Figures& f) {
                figure_text("%.1f ms", f.server_to_page_p99_ms))
                   .c_str(),
               "", "");
+  std::printf(
+      "%-44s %14s %10s %6s\n", "status sample -> message in the page, p50 / p99",
+      (figure_text("%.1f", f.arrival_p50_ms) + " / " + figure_text("%.1f ms", f.arrival_p99_ms))
+          .c_str(),
+      "", "");
   std::printf("(%s over %s: %zu probe samples; %s state and %s pushed messages a second)\n",
               "measured", figure_text("%.1f s", f.seconds).c_str(), f.latency_samples,
               figure_text("%.1f", f.states_hz).c_str(), figure_text("%.1f", f.pushes_hz).c_str());
@@ -302,9 +320,13 @@ int run(const std::vector<std::string>& args) {
       "chromium: row update rate, Chromium's and the station's CPU, status -> page latency"};
   double seconds = 30.0;
   bool as_json = false;
+  bool gpu_compositing = false;
   app.add_option("--seconds", seconds, "length of the measured window")
       ->check(CLI::Range(2.0, 3600.0))
       ->capture_default_str();
+  app.add_flag("--gpu-compositing", gpu_compositing,
+               "SwiftShader composites the page (as the browser test), not Chromium's software "
+               "compositor");
   app.add_flag("--json", as_json, "one JSON object");
   if (const int code = cover::bench::parse_args(app, args); code >= 0) return code;
 
@@ -338,7 +360,7 @@ int run(const std::vector<std::string>& args) {
                   ")");
     } else {
       Probe probe(claim.domain());
-      figures = measure(url, station.pid(), seconds, node, dir, missing);
+      figures = measure(url, station.pid(), seconds, gpu_compositing, node, dir, missing);
     }
     station.terminate(10s, SIGINT);
     launch.terminate(30s, SIGINT);
@@ -350,9 +372,12 @@ int run(const std::vector<std::string>& args) {
   }
   if (as_json) {
     json out = figures_json(figures);
+    out["compositing"] = gpu_compositing ? "swiftshader" : "software";
     out["not_measured"] = missing.reasons();
     std::cout << out.dump(2) << std::endl;
   } else {
+    std::printf("page composited by %s\n", gpu_compositing ? "SwiftShader (GPU emulated on the CPU)"
+                                                           : "Chromium's software compositor");
     print_table(figures);
   }
   return missing.exit_code("ground-station");

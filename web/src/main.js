@@ -7,10 +7,11 @@ const $ = (s) => document.querySelector(s);
 const token = new URLSearchParams(location.search).get("token") ?? "";
 // Read by the browser tests and cover-bench ground-station: state_latencies_ms from a state's
 // sent_ms; per pushed row drawn, latencies_ms from the sample's own wall-clock stamp and
-// server_latencies_ms from the station's receive time; row_updates: times each fleet row
-// was drawn ("uav-agent/0": n).
+// server_latencies_ms from the station's receive time; arrival_latencies_ms from the sample's
+// stamp to the message's arrival (before drawing); row_updates: times each fleet row was drawn
+// ("uav-agent/0": n).
 const stats = { states: 0, pushes: 0, state_latencies_ms: [], latencies_ms: [], server_latencies_ms: [],
-  fleet_updates: 0, row_updates: {}, first_state_ms: 0 };
+  arrival_latencies_ms: [], fleet_updates: 0, row_updates: {}, first_state_ms: 0 };
 window.__gs = stats;
 const kMaxLatencies = 5000;
 function note(list, value) {
@@ -34,7 +35,7 @@ function connect() {
   ws.onmessage = (e) => {
     const m = JSON.parse(e.data);
     if (m.type === "state") onState(m);
-    else if (m.type === "rows") { stats.pushes++; queueRows(m.rows); }
+    else if (m.type === "rows") onRows(m.rows);
     else if (m.type === "reply" && pending.has(m.id)) { pending.get(m.id)(m); pending.delete(m.id); }
   };
   $("#rights").textContent = token ? "commands allowed (token)" : "read only: open the address with its token to command";
@@ -107,6 +108,13 @@ function fleetRow(r) {
     fleetRows.set(key, tr);
   }
   return tr;
+}
+
+function onRows(rows) {
+  stats.pushes++;
+  const now = Date.now();
+  for (const r of rows) if (r.source_ms !== undefined) note(stats.arrival_latencies_ms, now - r.source_ms);
+  queueRows(rows);
 }
 
 function queueRows(rows) {

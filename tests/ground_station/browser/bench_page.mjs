@@ -42,26 +42,32 @@ function processes() {
   return all;
 }
 
-// CPU seconds of the browser's renderer and GPU processes (its descendants), by type.
-function chromiumCpu(browserPid) {
+// CPU seconds of the renderer and GPU processes of the browser this script started (its
+// descendants), by type.
+function chromiumCpu(rootPid) {
   const all = processes();
   const descends = (pid) => {
-    for (let p = pid, hops = 0; p > 1 && hops < 16; p = all.get(p)?.ppid ?? 0, hops++) if (p === browserPid) return true;
+    for (let p = pid, hops = 0; p > 1 && hops < 16; p = all.get(p)?.ppid ?? 0, hops++) if (p === rootPid) return true;
     return false;
   };
   const cpu = { renderer: 0, gpu: 0, renderers: 0, gpus: 0 };
   for (const [pid, p] of all) {
-    if (pid === browserPid || !descends(pid)) continue;
+    if (pid === rootPid || !descends(pid)) continue;
     if (p.type === "renderer") { cpu.renderer += p.cpu_s; cpu.renderers++; }
     if (p.type === "gpu-process") { cpu.gpu += p.cpu_s; cpu.gpus++; }
   }
   return cpu;
 }
 
+// WebGL on SwiftShader as in the browser test. The page is composited in software, as Chromium
+// does on a machine without a usable GPU, unless GPU_COMPOSITING=1: then SwiftShader composites
+// it too, a GPU emulated on the CPU (several times the cost: docs/benchmarks.md).
+const args = ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"];
+if (process.env.GPU_COMPOSITING !== "1") args.push("--disable-gpu-compositing");
 const browser = await chromium.launch({
   executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
   headless: true,
-  args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
+  args,
   env: { ...process.env, TMPDIR: chromiumTmp },
 });
 let step = "open the page";
@@ -75,12 +81,11 @@ try {
   }
   step = "warm-up";
   await page.waitForTimeout(2000); // the page's first draws and the JIT settle before the window
-  const pid = browser.process()?.pid;
-  if (!pid) throw new Error("no browser process to measure");
+  const pid = process.pid;
   step = "measure";
   await page.evaluate(() => {
     const s = window.__gs;
-    for (const list of [s.latencies_ms, s.server_latencies_ms, s.state_latencies_ms]) list.length = 0;
+    for (const list of [s.latencies_ms, s.server_latencies_ms, s.state_latencies_ms, s.arrival_latencies_ms]) list.length = 0;
     s.row_updates = {};
     s.states = 0;
     s.pushes = 0;
@@ -104,6 +109,7 @@ try {
     latencies_ms: stats.latencies_ms,
     server_latencies_ms: stats.server_latencies_ms,
     state_latencies_ms: stats.state_latencies_ms,
+    arrival_latencies_ms: stats.arrival_latencies_ms,
   }));
   await browser.close();
 } catch (e) {

@@ -53,8 +53,9 @@ struct StationParams {
               .at_most(50.0));
     visit("push_coalesce_ms", self.push_coalesce_ms,
           Field("ms",
-                "a status sample's row is pushed at most this long after it arrives; the rows "
-                "heard meanwhile go in the same message (a burst is one message)")
+                "a status sample's row is pushed at once, or at most this long after it "
+                "arrives when a message went out less than this ago; the rows heard meanwhile "
+                "go in the same message (at most one message per window)")
               .at_least(0.0)
               .at_most(100.0));
     visit("max_clients", self.max_clients,
