@@ -59,7 +59,7 @@ double number(const nlohmann::json& j, const char* key) {
 }
 
 TEST(CoverBenchGroundStation, ShortRunMeasuresEveryFigure) {
-  const BenchRun run = run_bench({"ground-station", "--seconds", "5", "--json"}, 240s);
+  const BenchRun run = run_bench({"ground-station", "--seconds", "5", "--json"}, 600s);
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   const auto out = nlohmann::json::parse(run.out, nullptr, false);
   ASSERT_TRUE(out.is_object()) << run.out;

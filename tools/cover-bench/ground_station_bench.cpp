@@ -227,7 +227,8 @@ Figures measure(const std::string& url, pid_t station_pid, double seconds, bool 
   cover::process::ChildProcess page({node, kBenchPage}, options);
   double server_cpu0 = NAN;
   std::string failure = "the page script ended without a report";
-  const auto timeout = std::chrono::milliseconds(static_cast<long>(1000 * seconds)) + 120s;
+  // Chromium's start, the page's first rows and the window: minutes on a loaded machine.
+  const auto timeout = std::chrono::milliseconds(static_cast<long>(1000 * seconds)) + 300s;
   while (const auto line = page.read_line(timeout)) {
     if (*line == "measuring") {
       server_cpu0 = cpu_seconds(station_pid);
@@ -240,7 +241,8 @@ Figures measure(const std::string& url, pid_t station_pid, double seconds, bool 
     }
     failure = *line;
   }
-  page.wait(60s);
+  // SIGTERM: playwright closes its browser before node exits.
+  if (!page.wait(60s)) page.terminate(30s);
   if (!std::isfinite(f.seconds))
     missing.add("every figure: " + failure + " (" + options.log_file + ")");
   return f;

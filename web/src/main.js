@@ -254,31 +254,49 @@ function renderRecorder(r) {
 $("#rec-start").onclick = async () => { $("#rec-status").textContent = (await request({ op: "record", action: "start" })).message; };
 $("#rec-stop").onclick = async () => { $("#rec-status").textContent = (await request({ op: "record", action: "stop" })).message; };
 
-// Live plots: the last 60 s of UAV 0's tracking error, thrust and solve time.
+// Live plots: the last 60 s of every UAV's tracking error, thrust and solve time, one series
+// per UAV; made again when a UAV appears (its history before is empty).
 const kPlotSamples = 600;
-const plotData = { t: [], tracking: [], thrust: [], solve: [] };
-function makePlot(el, label, unit, key) {
-  return new uPlot({ width: 420, height: 120, legend: { show: true }, scales: { x: { time: true } },
-    series: [{}, { label: `${label} (${unit})`, stroke: "#1f77b4" }] }, [[], []], $(el));
-}
-const plots = [
-  [makePlot("#plot-tracking", "tracking error", "m"), "tracking"],
-  [makePlot("#plot-thrust", "thrust", "m/s²"), "thrust"],
-  [makePlot("#plot-solve", "solve time", "ms"), "solve"],
+const kPlotColours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf"];
+const plotSpecs = [
+  ["#plot-tracking", "tracking error", "m", (u) => u.tracking_error_m],
+  ["#plot-thrust", "thrust", "m/s²", (u) => u.thrust_m_s2],
+  ["#plot-solve", "solve time", "ms", (u) => (u.solve_time_us !== undefined ? u.solve_time_us / 1000 : undefined)],
 ];
+let plotUavs = []; // UAV ids, in series order
+const plotTimes = [];
+let plotValues = plotSpecs.map(() => []); // per plot, per UAV: values aligned with plotTimes
+let plots = [];
+function makePlots(uavIds) {
+  for (const plot of plots) plot.destroy();
+  plots = plotSpecs.map(([el, label, unit]) => new uPlot({
+    width: 420, height: 120, legend: { show: true }, scales: { x: { time: true } },
+    series: [{}, ...uavIds.map((u, i) => ({ label: `UAV ${u} ${label} (${unit})`, stroke: kPlotColours[i % kPlotColours.length] }))],
+  }, [[], ...uavIds.map(() => [])], $(el)));
+}
+makePlots([]);
 let lastPlotMs = 0;
 function updatePlots(live) {
-  const u = live?.["0"];
-  if (!u) return;
-  plotData.t.push(Date.now() / 1000);
-  plotData.tracking.push(u.tracking_error_m ?? null);
-  plotData.thrust.push(u.thrust_m_s2 ?? null);
-  plotData.solve.push(u.solve_time_us !== undefined ? u.solve_time_us / 1000 : null);
-  if (plotData.t.length > kPlotSamples) for (const k in plotData) plotData[k].shift();
+  const ids = Object.keys(live ?? {}).sort((a, b) => Number(a) - Number(b));
+  if (ids.length === 0) return;
+  if (ids.join() !== plotUavs.join()) {
+    plotValues = plotSpecs.map((_, k) => ids.map((u) => {
+      const was = plotUavs.indexOf(u);
+      return was >= 0 ? plotValues[k][was] : plotTimes.map(() => null);
+    }));
+    plotUavs = ids;
+    makePlots(ids);
+  }
+  plotTimes.push(Date.now() / 1000);
+  plotSpecs.forEach(([, , , value], k) => ids.forEach((u, i) => plotValues[k][i].push(value(live[u]) ?? null)));
+  if (plotTimes.length > kPlotSamples) {
+    plotTimes.shift();
+    for (const perUav of plotValues) for (const values of perUav) values.shift();
+  }
   // Redrawn at 5 Hz: the samples keep the station's rate.
   if (performance.now() - lastPlotMs < 200) return;
   lastPlotMs = performance.now();
-  for (const [plot, key] of plots) plot.setData([plotData.t, plotData[key]]);
+  plots.forEach((plot, k) => plot.setData([plotTimes, ...plotValues[k]]));
 }
 
 // 3D view in a chosen UGV's frame G_k (x forward, z up): the grid, UGV k's deck at the

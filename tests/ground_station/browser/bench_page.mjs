@@ -73,7 +73,7 @@ const browser = await chromium.launch({
 let step = "open the page";
 try {
   const page = await browser.newPage({ viewport: { width: 1400, height: 1000 } });
-  await page.goto(process.env.GS_URL);
+  await page.goto(process.env.GS_URL, { timeout: 120000 * scale });
   for (const key of waitRows) {
     step = `row ${key} on the page`;
     const [kind, id] = key.split("/");
