@@ -1,9 +1,9 @@
-// cover-ground-station [--port 8080] [--bind 127.0.0.1] [--token-file F]: the operator's page in
-// a browser. Serves the page (web/, built into the build folder) and its WebSocket API: the
-// fleet as `cover fleet` lists it, the task manager's queue per UAV with each task's progress,
-// submit / abort, each UAV's autopilot and its commands with the autopilot's answer, the live
-// plots and 3D view, the recorder. A thin adapter: the API and its checks are
-// cover_ground_station_api, the server cover_ground_station_web.
+// cover-ground-station [--config config/ground_station.yaml] [--port 8080] [--bind 127.0.0.1]
+// [--token-file F]: the operator's page in a browser. Serves the page (web/, built into the build
+// folder) and its WebSocket API: the fleet as `cover fleet` lists it, the task manager's queue per
+// UAV with each task's progress, submit / abort, each UAV's autopilot and its commands with the
+// autopilot's answer, the live plots and 3D view, the recorder. A thin adapter: the API and its
+// checks are cover_ground_station_api, the server cover_ground_station_web.
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
@@ -13,10 +13,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "cover/config/config_error.hpp"
+#include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/dds_error.hpp"
 #include "cover/dds/vendor.hpp"
 #include "cover/ground_station/access.hpp"
+#include "cover/ground_station/station_params.hpp"
 #include "cover/startup/startup.hpp"
 #include "station.hpp"
 
@@ -25,22 +28,16 @@ namespace {
 namespace gs = cover::ground_station;
 
 constexpr const char* kExitCodes =
-    "Exit codes: 0 stopped by SIGINT/SIGTERM (its normal end); 1 an unexpected error; 2 usage\n"
-    "(a bind address other than loopback without --token-file, an unreadable token file, no\n"
-    "page folder); 3 DDS could not start; 4 the port cannot be listened on (in use?).\n"
+    "Exit codes: 0 stopped by SIGINT/SIGTERM (its normal end); 1 an unexpected error; 2 usage or\n"
+    "configuration error (a bind address other than loopback without --token-file, an\n"
+    "unreadable token file, a bad key in --config); 3 DDS could not start; 4 the port cannot be "
+    "listened on (in use?).\n"
     "Open the address it prints (with its token) in a browser.";
 
 struct CommandLine {
-  int port = 8080;
-  std::string bind = "127.0.0.1";
-  std::string token_file;
+  std::string config_file = cover::config::default_config_dir() + "/ground_station.yaml";
+  gs::StationParams flags;  // the flags given (the others are not read)
   std::string web_dir;
-  std::string record_dir = ".";
-  double state_rate_hz = 10.0;
-  int max_clients = 16;
-  int client_queue_kib = 1024;
-  double slow_client_timeout_s = 2.0;
-  cover::recording::FleetSize fleet;
   cover::dds::DdsCliOptions dds;
 };
 
@@ -82,66 +79,90 @@ std::vector<std::string> recorder_argv(const CommandLine& cli,
 }
 
 void add_options(CLI::App& app, CommandLine& cli) {
-  app.add_option("--port", cli.port, "TCP port of the page, 0: any free port (printed)")
-      ->check(CLI::Range(0, 65535))
+  auto& f = cli.flags;
+  app.add_option("--config", cli.config_file,
+                 "settings (ground_station: section); the flags below override its keys")
       ->capture_default_str();
-  app.add_option("--bind", cli.bind,
-                 "address to listen on; any but loopback needs --token-file (every request must "
-                 "then carry the token)")
-      ->capture_default_str();
-  app.add_option("--token-file", cli.token_file,
+  app.add_option("--port", f.port, "TCP port of the page, 0: any free port (ground_station.port)");
+  app.add_option("--bind", f.bind,
+                 "address to listen on; any but loopback needs --token-file (ground_station.bind)");
+  app.add_option("--token-file", f.token_file,
                  "the token (first line, >= 16 characters); without it a new token is made and "
-                 "printed once with the page's address");
+                 "printed once with the page's address (ground_station.token_file)");
   app.add_option("--web-dir", cli.web_dir, "the page's files (default: web/ of the build folder)");
-  app.add_option("--record-dir", cli.record_dir, "folder of the recordings started from the page")
-      ->capture_default_str();
-  app.add_option("--state-rate-hz", cli.state_rate_hz,
-                 "rate of the page's fleet, task and plot rows")
-      ->check(CLI::Range(1.0, 50.0))
-      ->capture_default_str();
-  app.add_option("--max-clients", cli.max_clients, "pages served at once")
-      ->check(CLI::Range(1, 256))
-      ->capture_default_str();
-  app.add_option("--client-queue-kib", cli.client_queue_kib,
-                 "KiB waiting for one page before its new messages are dropped")
-      ->check(CLI::Range(16, 65536))
-      ->capture_default_str();
-  app.add_option("--slow-client-timeout-s", cli.slow_client_timeout_s,
-                 "a page whose queue stays full this long (not reading) is disconnected")
-      ->check(CLI::Range(0.1, 60.0))
-      ->capture_default_str();
-  app.add_option("--uavs", cli.fleet.uavs, "UAV ids 0..N-1 to listen for")->capture_default_str();
-  app.add_option("--ugvs", cli.fleet.ugvs, "UGV ids 0..N-1 to listen for")->capture_default_str();
+  app.add_option("--record-dir", f.record_dir,
+                 "folder of the recordings started from the page (ground_station.record_dir)");
+  app.add_option("--state-rate-hz", f.state_rate_hz,
+                 "rate of the page's whole state (ground_station.state_rate_hz)");
+  app.add_option("--push-coalesce-ms", f.push_coalesce_ms,
+                 "a status sample's row is pushed within this (ground_station.push_coalesce_ms)");
+  app.add_option("--max-clients", f.max_clients,
+                 "pages served at once (ground_station.max_clients)");
+  app.add_option("--client-queue-kib", f.client_queue_kib,
+                 "KiB waiting for one page before its new messages are dropped "
+                 "(ground_station.client_queue_kib)");
+  app.add_option("--slow-client-timeout-s", f.slow_client_timeout_s,
+                 "a page whose queue stays full this long (not reading) is disconnected "
+                 "(ground_station.slow_client_timeout_s)");
+  app.add_option("--manager-query-period-s", f.manager_query_period_s,
+                 "how often the task manager's list is asked for "
+                 "(ground_station.manager_query_period_s)");
+  app.add_option("--uavs", f.uavs, "UAV ids 0..N-1 to listen for (ground_station.uavs)");
+  app.add_option("--ugvs", f.ugvs, "UGV ids 0..N-1 to listen for (ground_station.ugvs)");
   cli.dds.add_to(app);
 }
 
-void check_flags(const CLI::App&, const CommandLine& cli) {
-  if (!gs::is_loopback(cli.bind) && cli.token_file.empty()) {
-    throw CLI::ValidationError("--bind " + cli.bind,
-                               "any address but loopback needs --token-file: every request "
-                               "from the network must carry the token");
+// The file's settings, then each flag given on top of them, then the bounds.
+gs::StationParams load(const CLI::App& app, const CommandLine& cli) {
+  auto p = gs::StationParams::load_file(cli.config_file);
+  const auto& f = cli.flags;
+  auto given = [&](const char* flag) { return app.count(flag) > 0; };
+  if (given("--port")) p.port = f.port;
+  if (given("--bind")) p.bind = f.bind;
+  if (given("--token-file")) p.token_file = f.token_file;
+  if (given("--record-dir")) p.record_dir = f.record_dir;
+  if (given("--state-rate-hz")) p.state_rate_hz = f.state_rate_hz;
+  if (given("--push-coalesce-ms")) p.push_coalesce_ms = f.push_coalesce_ms;
+  if (given("--max-clients")) p.max_clients = f.max_clients;
+  if (given("--client-queue-kib")) p.client_queue_kib = f.client_queue_kib;
+  if (given("--slow-client-timeout-s")) p.slow_client_timeout_s = f.slow_client_timeout_s;
+  if (given("--manager-query-period-s")) p.manager_query_period_s = f.manager_query_period_s;
+  if (given("--uavs")) p.uavs = f.uavs;
+  if (given("--ugvs")) p.ugvs = f.ugvs;
+  p.validate();
+  if (!gs::is_loopback(p.bind) && p.token_file.empty()) {
+    throw cover::config::ConfigError("bind " + p.bind +
+                                     ": any address but loopback needs token_file "
+                                     "(--token-file): every request from the network must "
+                                     "carry the token");
   }
+  return p;
 }
 
-int serve(const CommandLine& cli) {
+int serve(const CLI::App& app, const CommandLine& cli) {
+  const gs::StationParams p = load(app, cli);
   gs::StationOptions options;
-  options.web.address = cli.bind;
-  options.web.port = static_cast<std::uint16_t>(cli.port);
+  options.web.address = p.bind;
+  options.web.port = static_cast<std::uint16_t>(p.port);
   options.web.static_dir = web_dir(cli);
-  options.web.max_clients = static_cast<std::size_t>(cli.max_clients);
-  options.web.client_queue_bytes = static_cast<std::size_t>(cli.client_queue_kib) * 1024;
-  options.web.slow_client_timeout_s = cli.slow_client_timeout_s;
+  options.web.max_clients = static_cast<std::size_t>(p.max_clients);
+  options.web.client_queue_bytes = static_cast<std::size_t>(p.client_queue_kib) * 1024;
+  options.web.slow_client_timeout_s = p.slow_client_timeout_s;
   try {
     options.web.access.token =
-        cli.token_file.empty() ? gs::make_token() : gs::read_token_file(cli.token_file);
+        p.token_file.empty() ? gs::make_token() : gs::read_token_file(p.token_file);
   } catch (const std::runtime_error& e) {
     std::cerr << "cover-ground-station: " << e.what() << "\n";
     return cover::startup::kExitUsage;
   }
-  options.web.access.token_required = !gs::is_loopback(cli.bind);
-  options.fleet = cli.fleet;
-  options.state_rate_hz = cli.state_rate_hz;
-  options.record_dir = cli.record_dir;
+  options.web.access.token_required = !gs::is_loopback(p.bind);
+  options.fleet.uavs = static_cast<std::uint32_t>(p.uavs);
+  options.fleet.ugvs = static_cast<std::uint32_t>(p.ugvs);
+  options.state_rate_hz = p.state_rate_hz;
+  options.push_coalesce_ms = p.push_coalesce_ms;
+  options.manager_query_period_s = p.manager_query_period_s;
+  options.command_timeout_s = p.command_timeout_s;
+  options.record_dir = p.record_dir;
   if (!std::filesystem::exists(options.web.static_dir + "/index.html")) {
     spdlog::warn("no page in {} (build the target ground_station_web): the API is served alone",
                  options.web.static_dir);
@@ -157,14 +178,15 @@ int serve(const CommandLine& cli) {
     std::cerr << "cover-ground-station: " << e.what() << "\n";
     return 4;
   }
-  const std::string host = cli.bind == "0.0.0.0" || cli.bind == "::" ? "HOST" : cli.bind;
+  const std::string host = p.bind == "0.0.0.0" || p.bind == "::" ? "HOST" : p.bind;
   // Printed once, on stdout: the only place the token is shown.
   std::cout << "ground station: open http://" << host << ":" << station->port()
             << "/?token=" << options.web.access.token << std::endl;
   spdlog::info(
-      "serving {} on {}:{} ({}), {} domain {}", options.web.static_dir, cli.bind, station->port(),
+      "serving {} on {}:{} ({}), {} domain {}, settings {}", options.web.static_dir, p.bind,
+      station->port(),
       options.web.access.token_required ? "token on every request" : "loopback: token for commands",
-      cover::dds::vendor_name(dds.vendor), dds.domain_id);
+      cover::dds::vendor_name(dds.vendor), dds.domain_id, cli.config_file);
   station->run();
   const auto stats = station->web_stats();
   spdlog::info("stopped: {} pages served, {} requests refused, {} slow pages dropped",
@@ -184,7 +206,7 @@ int main(int argc, char** argv) {
   program.exit_codes = kExitCodes;
   program.logger_name = [] { return std::string("ground_station"); };
   program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
-  program.check_flags = [&](const CLI::App& app) { check_flags(app, cli); };
   program.exits = {cover::startup::exit_on<cover::dds::DdsError>(3)};
-  return cover::startup::run_main(argc, argv, program, [&](const CLI::App&) { return serve(cli); });
+  return cover::startup::run_main(argc, argv, program,
+                                  [&](const CLI::App& app) { return serve(app, cli); });
 }

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 
 #include "cover/clock/clock.hpp"
@@ -28,6 +29,10 @@ constexpr std::size_t kMaxJobs = 32;
 constexpr std::size_t kMaxTasksShown = 50;
 // Points of a reference path sent to the page (the path is downsampled to this many).
 constexpr std::size_t kMaxPathPoints = 60;
+// A sample stamped within this of its arrival carries a wall-clock stamp (a field system, a
+// realtime process on this host): the page may measure its latency from it. A simulated
+// time (seconds since the run began) is not one.
+constexpr std::int64_t kWallClockStampNs = 60'000'000'000;
 
 Json xyz(const msg::Vector3& v) {
   return Json::array({v.x, v.y, v.z});
@@ -54,12 +59,25 @@ msg::FcCommandKind fc_kind(FcCommand c) {
   return msg::FcCommandKind::FC_COMMAND_LAND;
 }
 
+// The page shows each row's scalar fields; the bridge's parameter and stream lists (most
+// of a row's bytes) are `cover fc check`'s, not sent ten times a second.
+void drop_structured_fields(Json& row) {
+  auto& last = row["last"];
+  if (!last.is_object()) return;
+  for (auto it = last.begin(); it != last.end();) {
+    it = it->is_structured() ? last.erase(it) : std::next(it);
+  }
+}
+
 }  // namespace
 
 Station::Station(dds::Participant& participant, StationOptions options)
     : participant_(participant),
       options_(std::move(options)),
-      listener_(participant, options_.fleet, options_.manager_query_period_s) {
+      listener_(participant, options_.fleet, options_.manager_query_period_s,
+                [this](cli::FleetKind kind, std::optional<std::uint32_t> id, std::int64_t stamp) {
+                  on_status(kind, id, stamp);
+                }) {
   for (std::uint32_t u = 0; u < options_.fleet.uavs; ++u) {
     command_readers_.push_back(
         participant.make_reader(dds::topics::uav_command(u), [this, u](const msg::UavCommand& c) {
@@ -88,16 +106,74 @@ Station::Station(dds::Participant& participant, StationOptions options)
       options_.web, [this](std::uint64_t c, bool t, const std::string& m) { on_message(c, t, m); });
   worker_ = std::thread([this] { work(); });
   manager_thread_ = std::thread([this] { query_manager(); });
+  push_thread_ = std::thread([this] { push_rows(); });
 }
 
 Station::~Station() {
   stopping_ = true;
   jobs_cv_.notify_all();
+  {
+    std::lock_guard<std::mutex> lock(push_mutex_);
+    push_cv_.notify_all();
+  }
+  if (push_thread_.joinable()) push_thread_.join();
   if (worker_.joinable()) worker_.join();
   if (manager_thread_.joinable()) manager_thread_.join();
   server_->stop();
   std::lock_guard<std::mutex> lock(record_mutex_);
   if (recorder_) recorder_->terminate(5000ms, SIGINT);
+}
+
+// The simulator's clock (100 Hz) is no status: its row's age moves with the state rows.
+void Station::on_status(cli::FleetKind kind, std::optional<std::uint32_t> id,
+                        std::int64_t stamp_ns) {
+  if (kind == cli::FleetKind::Sim) return;
+  const std::int64_t now_ns = clock::system_ns();
+  std::lock_guard<std::mutex> lock(push_mutex_);
+  if (heard_.empty()) push_cv_.notify_one();
+  heard_[{kind, id}] = {stamp_ns, now_ns};
+}
+
+// A row heard goes out at once when nothing went out in the last push_coalesce_ms, else at
+// the end of that window with every row heard meanwhile (a burst, the same row again): a page
+// gets at most one message per window, and a lone sample waits for none.
+void Station::push_rows() {
+  const auto window = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double, std::milli>(options_.push_coalesce_ms));
+  auto last_push = std::chrono::steady_clock::now() - window;
+  std::unique_lock<std::mutex> lock(push_mutex_);
+  while (!stopping_) {
+    push_cv_.wait(lock, [&] { return stopping_ || !heard_.empty(); });
+    if (stopping_) return;
+    push_cv_.wait_until(lock, last_push + window, [&] { return stopping_.load(); });
+    std::map<RowKey, Heard> heard;
+    heard.swap(heard_);
+    lock.unlock();
+    last_push = std::chrono::steady_clock::now();
+    if (server_->stats().clients > 0) {
+      const Json message{{"type", "rows"}, {"rows", rows_json(heard)}};
+      server_->broadcast(message.dump(-1, ' ', false, Json::error_handler_t::replace));
+    }
+    lock.lock();
+  }
+}
+
+// The rows heard, as the state's fleet rows, each with the server's receive time and, when
+// it is a wall-clock time, the sample's own stamp (milliseconds since the epoch).
+Json Station::rows_json(const std::map<RowKey, Heard>& heard) {
+  Json out = Json::array();
+  for (const auto& row : listener_.rows()) {
+    const auto it = heard.find({row.kind, row.id});
+    if (it == heard.end()) continue;
+    Json j = cli::fleet_json({row})[0];
+    drop_structured_fields(j);
+    const Heard& h = it->second;
+    j["recv_ms"] = static_cast<double>(h.received_ns) / 1e6;
+    if (std::llabs(h.received_ns - h.source_ns) < kWallClockStampNs)
+      j["source_ms"] = static_cast<double>(h.source_ns) / 1e6;
+    out.push_back(std::move(j));
+  }
+  return out;
 }
 
 void Station::on_message(std::uint64_t client, bool has_token, const std::string& text) {
@@ -282,15 +358,7 @@ Json Station::state_json() {
   state["type"] = "state";
   state["sent_ms"] = static_cast<double>(clock::system_ns()) / 1e6;
   state["fleet"] = cli::fleet_json(listener_.rows());
-  // The page shows each row's scalar fields; the bridge's parameter and stream lists (most
-  // of a row's bytes) are `cover fc check`'s, not sent ten times a second.
-  for (auto& row : state["fleet"]) {
-    auto& last = row["last"];
-    if (!last.is_object()) continue;
-    for (auto it = last.begin(); it != last.end();) {
-      it = it->is_structured() ? last.erase(it) : std::next(it);
-    }
-  }
+  for (auto& row : state["fleet"]) drop_structured_fields(row);
   {
     std::lock_guard<std::mutex> lock(tasks_mutex_);
     state["tasks"] = tasks_;

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "cover/dds/participant.hpp"
@@ -26,7 +27,8 @@ namespace cover::ground_station {
 struct StationOptions {
   WebServerOptions web;
   recording::FleetSize fleet;
-  double state_rate_hz = 10.0;  // the page's fleet, task and live-plot rows
+  double state_rate_hz = 10.0;    // the page's fleet, task and live-plot rows
+  double push_coalesce_ms = 5.0;  // a status sample's row is pushed within this
   double manager_query_period_s = 0.5;
   double command_timeout_s = 5.0;        // a task manager's or an autopilot's answer
   std::vector<std::string> record_argv;  // `cover record` and its DDS flags (-o is added)
@@ -35,8 +37,9 @@ struct StationOptions {
 
 // The adapter between the page's API and the fleet: the fleet as `cover fleet` hears it,
 // the task manager's tasks, each UAV's live plot values and 3D poses, into one state
-// message broadcast at state_rate_hz; the page's requests into the task manager's and the
-// bridges' requests on a worker thread, each answered with what they answered.
+// message broadcast at state_rate_hz; each status sample's row pushed as it arrives (rows
+// heard within push_coalesce_ms in one message); the page's requests into the task manager's and
+// the bridges' requests on a worker thread, each answered with what they answered.
 class Station {
  public:
   Station(dds::Participant& participant, StationOptions options);
@@ -62,6 +65,16 @@ class Station {
     std::map<std::uint32_t, msg::RelativeState> relative;  // by UGV
   };
 
+  // A status row heard: when (CLOCK_REALTIME) and the sample's own stamp.
+  struct Heard {
+    std::int64_t source_ns = 0;
+    std::int64_t received_ns = 0;
+  };
+  using RowKey = std::pair<cli::FleetKind, std::optional<std::uint32_t>>;
+
+  void on_status(cli::FleetKind kind, std::optional<std::uint32_t> id, std::int64_t stamp_ns);
+  void push_rows();
+  nlohmann::json rows_json(const std::map<RowKey, Heard>& heard);
   void on_message(std::uint64_t client, bool has_token, const std::string& text);
   void work();
   void query_manager();
@@ -72,6 +85,12 @@ class Station {
 
   dds::Participant& participant_;
   StationOptions options_;
+  std::atomic<bool> stopping_{false};
+
+  // Before the listener: its readers call on_status() from their first sample on.
+  std::mutex push_mutex_;
+  std::condition_variable push_cv_;
+  std::map<RowKey, Heard> heard_;
   cli::FleetListener listener_;
 
   std::mutex live_mutex_;
@@ -92,11 +111,11 @@ class Station {
   std::mutex jobs_mutex_;
   std::condition_variable jobs_cv_;
   std::deque<Job> jobs_;
-  std::atomic<bool> stopping_{false};
 
   std::unique_ptr<WebServer> server_;  // after the state its handlers use
   std::thread worker_;
   std::thread manager_thread_;
+  std::thread push_thread_;
 };
 
 }  // namespace cover::ground_station

@@ -1,8 +1,10 @@
 // cover-ground-station as a real process, its API through bare sockets: --help and the exit
-// codes, the token on a network bind, the state rows' rate, malformed, oversized and
-// token-less requests answered with a reason while the process goes on.
+// codes, the token on a network bind, the state rows' rate, a status sample's row pushed as
+// it arrives, its settings file, malformed, oversized and token-less requests answered with
+// a reason while the process goes on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -12,7 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "cover/clock/clock.hpp"
 #include "cover/dds/domain_claim.hpp"
+#include "cover/dds/participant.hpp"
+#include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/test/scratch_dir.hpp"
 #include "cover/test/time_scale.hpp"
@@ -176,4 +181,61 @@ TEST(GroundStationProcess, PortInUseExitsFour) {
   const Outcome second = run({COVER_GROUND_STATION, "--port", std::to_string(first.port), "--dds",
                               "fastdds", "--domain", std::to_string(claim.domain())});
   EXPECT_EQ(second.exit_code, 4) << second.output;
+}
+
+// A status sample's row reaches the page as it arrives, not at the next state row (1 Hz
+// here): a "rows" message with the server's receive time and the sample's wall-clock stamp.
+TEST(GroundStationProcess, AStatusSampleIsPushedAsItArrives) {
+  auto claim = cover::dds::DomainClaim::claim_any(170, 174);
+  Station station(claim.domain(), {"--state-rate-hz", "1", "--uavs", "1", "--ugvs", "1"});
+  ASSERT_NE(station.port, 0) << "no address printed";
+  RawWs ws;
+  ASSERT_EQ(ws.get(station.port, "/ws", "", true), 101);
+  ASSERT_FALSE(ws.read_text(scaled(5000ms)).empty());  // the first state: the page is served
+  cover::dds::ParticipantOptions options;
+  options.domain_id = claim.domain();
+  options.vendor = cover::dds::Vendor::FastDds;
+  cover::dds::Participant participant(options);
+  auto writer = participant.make_writer(cover::dds::topics::uav_status(0));
+  ASSERT_TRUE(writer.wait_for_readers(1, scaled(10000ms)));
+  int pushed = 0;
+  double worst_ms = 0.0;
+  for (int i = 0; i < 5; ++i) {
+    cover::msg::UavStatus status;
+    status.uav_id = 0;
+    status.stamp_ns = cover::clock::system_ns();
+    status.task_id = "push-" + std::to_string(i);
+    ASSERT_TRUE(writer.write(status));
+    const auto deadline = std::chrono::steady_clock::now() + scaled(2000ms);
+    while (std::chrono::steady_clock::now() < deadline) {
+      const auto j = nlohmann::json::parse(ws.read_text(scaled(2000ms)), nullptr, false);
+      if (!j.is_object() || j.value("type", "") != "rows") continue;
+      const auto& row = j["rows"][0];
+      if (row["last"].value("task_id", "") != status.task_id) continue;
+      EXPECT_EQ(row["kind"], "uav-agent");
+      EXPECT_DOUBLE_EQ(row["source_ms"].get<double>(), static_cast<double>(status.stamp_ns) / 1e6);
+      EXPECT_GE(row["recv_ms"].get<double>(), row["source_ms"].get<double>());
+      worst_ms = std::max(worst_ms,
+                          static_cast<double>(cover::clock::system_ns() - status.stamp_ns) / 1e6);
+      ++pushed;
+      break;
+    }
+  }
+  EXPECT_EQ(pushed, 5);
+  // Well inside the 1 s between two state rows (a loaded machine included).
+  EXPECT_LT(worst_ms, 500.0 * cover::test::time_scale());
+}
+
+// config/ground_station.yaml's keys, a flag on top of them; a bad key exits 2 naming it.
+TEST(GroundStationProcess, ConfigKeysApplyAndBadOnesExitTwo) {
+  const std::string bad = cover::test::scratch_path("bad_station.yaml");
+  std::ofstream(bad) << "ground_station: {state_rate_hz: 500}\n";
+  const Outcome r = run({COVER_GROUND_STATION, "--config", bad, "--port", "0"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("ground_station.state_rate_hz"), std::string::npos) << r.output;
+  const std::string network = cover::test::scratch_path("network_station.yaml");
+  std::ofstream(network) << "ground_station: {bind: 0.0.0.0}\n";
+  const Outcome n = run({COVER_GROUND_STATION, "--config", network, "--port", "0"});
+  EXPECT_EQ(n.exit_code, 2) << n.output;
+  EXPECT_NE(n.output.find("token"), std::string::npos) << n.output;
 }

@@ -61,7 +61,7 @@ ORDER = [
     ["sim/fc", "sim/firmware", "sim/firmware_link", "sim/mocap", "sim"],
     ["sim/closed_loop"],
     # Processes and tools.
-    ["foxglove/params", "foxglove/core", "ground_station/core"],
+    ["foxglove/params", "foxglove/core", "ground_station/params", "ground_station/core"],
     ["tools/cover-launch", "tools/cover", "tools"],
     [
         "uav_agent/app",

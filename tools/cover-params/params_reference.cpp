@@ -8,6 +8,7 @@
 #include "cover/config/param_fields.hpp"
 #include "cover/fc_bridge/fc_bridge_params.hpp"
 #include "cover/foxglove/live_view_params.hpp"
+#include "cover/ground_station/station_params.hpp"
 #include "cover/mission/mission_params.hpp"
 #include "cover/mocap/relay_params.hpp"
 #include "cover/planner/planner_params.hpp"
@@ -138,6 +139,11 @@ std::vector<Section> sections() {
           "`config/foxglove_bridge.yaml`, section `foxglove`: the Foxglove WebSocket server "
           "(`docs/recording.md`). Read by `cover-foxglove-bridge` (`--config`); a flag given "
           "on its command line overrides its key."),
+      section<ground_station::StationParams>(
+          "Ground station", "ground_station/params/include/cover/ground_station/station_params.hpp",
+          "`config/ground_station.yaml`, section `ground_station`: the operator's page and its "
+          "WebSocket API (`docs/ground-station.md`). Read by `cover-ground-station` "
+          "(`--config`); a flag given on its command line overrides its key."),
   };
 }
 

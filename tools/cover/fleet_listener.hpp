@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "cover/clock/clock.hpp"
@@ -36,8 +37,17 @@ inline FleetKind kind_of(const msg::SimClock&) {
 // members: their callbacks use the view.
 class FleetListener {
  public:
-  FleetListener(dds::Participant& participant, const recording::FleetSize& size, double listen_s)
-      : participant_(participant), view_(listen_s), naming_grace_ns_(clock::s_to_ns(listen_s)) {
+  // Called on the vendor's receive thread once a status sample is in the view, with the
+  // row's kind, its id (none for the simulator) and the sample's own stamp_ns: keep it short.
+  using StatusHook =
+      std::function<void(FleetKind kind, std::optional<std::uint32_t> id, std::int64_t stamp_ns)>;
+
+  FleetListener(dds::Participant& participant, const recording::FleetSize& size, double listen_s,
+                StatusHook on_status = {})
+      : participant_(participant),
+        view_(listen_s),
+        naming_grace_ns_(clock::s_to_ns(listen_s)),
+        on_status_(std::move(on_status)) {
     recording::for_each_fleet_topic_of<msg::UavStatus>(size, [&](const auto& t) { listen(t); });
     recording::for_each_fleet_topic_of<msg::FcState>(size, [&](const auto& t) { listen(t); });
     recording::for_each_fleet_topic_of<msg::UgvStatus>(size, [&](const auto& t) { listen(t); });
@@ -105,13 +115,17 @@ class FleetListener {
     listened_for_.insert(info ? info->pattern : topic.name());
     auto& readers = std::get<std::vector<dds::Reader<T>>>(readers_);
     const auto id = static_cast<std::uint32_t>(readers.size());
-    readers.push_back(participant_.make_reader(topic, [this](const T& sample) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      view_.heard(sample, dds::to_json(sample), clock::monotonic_ns());
-    }));
     const FleetKind kind = kind_of(T{});
-    matched_.push_back({kind, kind == FleetKind::Sim ? std::nullopt : std::optional(id),
-                        [&readers, id] { return readers[id].matched_writers() > 0; }});
+    const auto row_id = kind == FleetKind::Sim ? std::nullopt : std::optional(id);
+    readers.push_back(participant_.make_reader(topic, [this, kind, row_id](const T& sample) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        view_.heard(sample, dds::to_json(sample), clock::monotonic_ns());
+      }
+      if (on_status_) on_status_(kind, row_id, sample.stamp_ns);
+    }));
+    matched_.push_back(
+        {kind, row_id, [&readers, id] { return readers[id].matched_writers() > 0; }});
   }
   void heard_peers(std::initializer_list<std::string> names) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -124,6 +138,7 @@ class FleetListener {
   mutable std::mutex mutex_;
   FleetView view_;
   std::int64_t naming_grace_ns_;
+  StatusHook on_status_;
   std::set<std::string> listened_for_;
   std::vector<Matched> matched_;
   std::tuple<std::vector<dds::Reader<msg::UavStatus>>, std::vector<dds::Reader<msg::FcState>>,

@@ -5,8 +5,19 @@ import uPlot from "uplot";
 
 const $ = (s) => document.querySelector(s);
 const token = new URLSearchParams(location.search).get("token") ?? "";
-const stats = { states: 0, latencies_ms: [], fleet_updates: 0, first_state_ms: 0 };
-window.__gs = stats; // read by the browser tests and cover-bench ground-station
+// Read by the browser tests and cover-bench ground-station: state_latencies_ms from a state's
+// sent_ms; per pushed row drawn, latencies_ms from the sample's own wall-clock stamp and
+// server_latencies_ms from the station's receive time; arrival_latencies_ms from the sample's
+// stamp to the message's arrival (before drawing); row_updates: times each fleet row was drawn
+// ("uav-agent/0": n).
+const stats = { states: 0, pushes: 0, state_latencies_ms: [], latencies_ms: [], server_latencies_ms: [],
+  arrival_latencies_ms: [], fleet_updates: 0, row_updates: {}, first_state_ms: 0 };
+window.__gs = stats;
+const kMaxLatencies = 5000;
+function note(list, value) {
+  list.push(value);
+  if (list.length > kMaxLatencies) list.shift();
+}
 
 let ws;
 let nextId = 1;
@@ -24,6 +35,7 @@ function connect() {
   ws.onmessage = (e) => {
     const m = JSON.parse(e.data);
     if (m.type === "state") onState(m);
+    else if (m.type === "rows") onRows(m.rows);
     else if (m.type === "reply" && pending.has(m.id)) { pending.get(m.id)(m); pending.delete(m.id); }
   };
   $("#rights").textContent = token ? "commands allowed (token)" : "read only: open the address with its token to command";
@@ -52,8 +64,7 @@ const short = (s) => (typeof s === "string" ? s.replace(/^[A-Z]+_(?:[A-Z]+_)?/, 
 
 function onState(m) {
   stats.states++;
-  stats.latencies_ms.push(Date.now() - m.sent_ms);
-  if (stats.latencies_ms.length > 2000) stats.latencies_ms.shift();
+  note(stats.state_latencies_ms, Date.now() - m.sent_ms);
   if (!stats.first_state_ms) stats.first_state_ms = Date.now();
   lastState = m;
   renderFleet(m.fleet);
@@ -64,18 +75,82 @@ function onState(m) {
   updateScene(m.live, m.fleet);
 }
 
+// The fleet table: one element per row ("kind/id"), its cells written only when their text
+// changed, at the next animation frame. A state lists every row (their order, ages, staleness);
+// a pushed row is one whose status just arrived.
+const fleetRows = new Map(); // key -> <tr>
+const dirtyRows = new Map(); // key -> row, drawn at the next frame
+let fleetFrame = 0;
+let fleetOrder = "";
+const rowKey = (r) => `${r.kind}/${r.id ?? ""}`;
+
 function renderFleet(rows) {
-  const body = $("#fleet tbody");
-  const html = rows.map((r) => {
+  const order = rows.map(rowKey).join(" ");
+  if (order !== fleetOrder) {
+    fleetOrder = order;
+    const keys = new Set(rows.map(rowKey));
+    for (const [key, tr] of fleetRows) if (!keys.has(key)) { tr.remove(); fleetRows.delete(key); }
+    const body = $("#fleet tbody");
+    for (const r of rows) body.appendChild(fleetRow(r));
+  }
+  queueRows(rows);
+  stats.fleet_updates++;
+}
+
+function fleetRow(r) {
+  const key = rowKey(r);
+  let tr = fleetRows.get(key);
+  if (!tr) {
+    tr = document.createElement("tr");
+    tr.dataset.kind = r.kind;
+    tr.dataset.id = r.id ?? "";
+    for (let i = 0; i < 9; i++) tr.appendChild(document.createElement("td"));
+    fleetRows.set(key, tr);
+  }
+  return tr;
+}
+
+function onRows(rows) {
+  stats.pushes++;
+  const now = Date.now();
+  for (const r of rows) if (r.source_ms !== undefined) note(stats.arrival_latencies_ms, now - r.source_ms);
+  queueRows(rows);
+}
+
+function queueRows(rows) {
+  for (const r of rows) {
+    const key = rowKey(r);
+    const pushed = dirtyRows.get(key);
+    // A state arriving before the frame is newer, but the pushed row's stamps are still drawn.
+    if (pushed?.recv_ms !== undefined && r.recv_ms === undefined) {
+      dirtyRows.set(key, { ...r, recv_ms: pushed.recv_ms, source_ms: pushed.source_ms });
+    } else {
+      dirtyRows.set(key, r);
+    }
+  }
+  if (!fleetFrame) fleetFrame = requestAnimationFrame(drawFleet);
+}
+
+function drawFleet() {
+  fleetFrame = 0;
+  const now = Date.now();
+  for (const [key, r] of dirtyRows) {
+    const tr = fleetRows.get(key);
+    if (!tr) continue; // pushed before the first state listed it
     const offset = r.last && r.last.max_clock_offset_ms !== undefined ? `${r.last.max_clock_offset_ms.toFixed(1)} ms` : "-";
     const lost = r.stale ? (r.age_s > 10 * r.stale_after_s ? "LOST " : "STALE ") : "";
-    return `<tr class="${r.stale ? "stale" : ""}" data-kind="${r.kind}" data-id="${r.id ?? ""}">` +
-      `<td>${r.kind}</td><td>${r.id ?? "-"}</td><td>${r.processes.join(", ")}</td>` +
-      `<td>${lost}${r.age_s.toFixed(2)} s</td><td>${esc(r.state)}</td><td>${esc(r.failsafe)}</td>` +
-      `<td>${esc(r.task)}</td><td>${esc(r.autopilot)}</td><td>${offset}</td></tr>`;
-  }).join("");
-  body.innerHTML = html;
-  stats.fleet_updates++;
+    const texts = [r.kind, r.id ?? "-", r.processes.join(", "), `${lost}${r.age_s.toFixed(2)} s`, r.state ?? "",
+      r.failsafe ?? "", r.task ?? "", r.autopilot ?? "", offset];
+    texts.forEach((text, i) => {
+      const cell = tr.cells[i];
+      if (cell.textContent !== String(text)) cell.textContent = text;
+    });
+    tr.classList.toggle("stale", !!r.stale);
+    stats.row_updates[key] = (stats.row_updates[key] ?? 0) + 1;
+    if (r.source_ms !== undefined) note(stats.latencies_ms, now - r.source_ms);
+    if (r.recv_ms !== undefined) note(stats.server_latencies_ms, now - r.recv_ms);
+  }
+  dirtyRows.clear();
 }
 
 function esc(s) {
@@ -179,31 +254,49 @@ function renderRecorder(r) {
 $("#rec-start").onclick = async () => { $("#rec-status").textContent = (await request({ op: "record", action: "start" })).message; };
 $("#rec-stop").onclick = async () => { $("#rec-status").textContent = (await request({ op: "record", action: "stop" })).message; };
 
-// Live plots: the last 60 s of UAV 0's tracking error, thrust and solve time.
+// Live plots: the last 60 s of every UAV's tracking error, thrust and solve time, one series
+// per UAV; made again when a UAV appears (its history before is empty).
 const kPlotSamples = 600;
-const plotData = { t: [], tracking: [], thrust: [], solve: [] };
-function makePlot(el, label, unit, key) {
-  return new uPlot({ width: 420, height: 120, legend: { show: true }, scales: { x: { time: true } },
-    series: [{}, { label: `${label} (${unit})`, stroke: "#1f77b4" }] }, [[], []], $(el));
-}
-const plots = [
-  [makePlot("#plot-tracking", "tracking error", "m"), "tracking"],
-  [makePlot("#plot-thrust", "thrust", "m/s²"), "thrust"],
-  [makePlot("#plot-solve", "solve time", "ms"), "solve"],
+const kPlotColours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf"];
+const plotSpecs = [
+  ["#plot-tracking", "tracking error", "m", (u) => u.tracking_error_m],
+  ["#plot-thrust", "thrust", "m/s²", (u) => u.thrust_m_s2],
+  ["#plot-solve", "solve time", "ms", (u) => (u.solve_time_us !== undefined ? u.solve_time_us / 1000 : undefined)],
 ];
+let plotUavs = []; // UAV ids, in series order
+const plotTimes = [];
+let plotValues = plotSpecs.map(() => []); // per plot, per UAV: values aligned with plotTimes
+let plots = [];
+function makePlots(uavIds) {
+  for (const plot of plots) plot.destroy();
+  plots = plotSpecs.map(([el, label, unit]) => new uPlot({
+    width: 420, height: 120, legend: { show: true }, scales: { x: { time: true } },
+    series: [{}, ...uavIds.map((u, i) => ({ label: `UAV ${u} ${label} (${unit})`, stroke: kPlotColours[i % kPlotColours.length] }))],
+  }, [[], ...uavIds.map(() => [])], $(el)));
+}
+makePlots([]);
 let lastPlotMs = 0;
 function updatePlots(live) {
-  const u = live?.["0"];
-  if (!u) return;
-  plotData.t.push(Date.now() / 1000);
-  plotData.tracking.push(u.tracking_error_m ?? null);
-  plotData.thrust.push(u.thrust_m_s2 ?? null);
-  plotData.solve.push(u.solve_time_us !== undefined ? u.solve_time_us / 1000 : null);
-  if (plotData.t.length > kPlotSamples) for (const k in plotData) plotData[k].shift();
+  const ids = Object.keys(live ?? {}).sort((a, b) => Number(a) - Number(b));
+  if (ids.length === 0) return;
+  if (ids.join() !== plotUavs.join()) {
+    plotValues = plotSpecs.map((_, k) => ids.map((u) => {
+      const was = plotUavs.indexOf(u);
+      return was >= 0 ? plotValues[k][was] : plotTimes.map(() => null);
+    }));
+    plotUavs = ids;
+    makePlots(ids);
+  }
+  plotTimes.push(Date.now() / 1000);
+  plotSpecs.forEach(([, , , value], k) => ids.forEach((u, i) => plotValues[k][i].push(value(live[u]) ?? null)));
+  if (plotTimes.length > kPlotSamples) {
+    plotTimes.shift();
+    for (const perUav of plotValues) for (const values of perUav) values.shift();
+  }
   // Redrawn at 5 Hz: the samples keep the station's rate.
   if (performance.now() - lastPlotMs < 200) return;
   lastPlotMs = performance.now();
-  for (const [plot, key] of plots) plot.setData([plotData.t, plotData[key]]);
+  plots.forEach((plot, k) => plot.setData([plotTimes, ...plotValues[k]]));
 }
 
 // 3D view in a chosen UGV's frame G_k (x forward, z up): the grid, UGV k's deck at the
