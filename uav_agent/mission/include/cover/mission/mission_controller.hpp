@@ -60,6 +60,10 @@ class MissionController {
   // that the next step's measurement -> command is the feedback phase (real-time
   // iteration). A no-op after a step that flew no SAMPC command. Allocation-free.
   void prepare_next_step();
+  // Between prepare_next_step and the next step: runs the waiting preparation's feedback on
+  // the predicted state and discards it (Sampc::rehearse_feedback), so that the step's
+  // feedback finds its data and code in the caches. Changes no result.
+  void rehearse_feedback() { sampc_.rehearse_feedback(); }
 
   // The wall time from the step taking its measurements to its command (the host measures
   // it around feeding the inputs and step()): reported in the status of this step.
