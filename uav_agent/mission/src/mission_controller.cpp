@@ -139,6 +139,7 @@ bool MissionController::emergency_step(int reference, double now_s) {
 }
 
 const ControllerOutput& MissionController::step(double now_s) {
+  rehearsal_due_ = false;
   // A host that did not call prepare_next_step still gets the last step's bookkeeping.
   if (sampc_stepped_) finish_sampc_step();
   output_.command.release_payload = false;
@@ -525,6 +526,7 @@ void MissionController::prepare_next_step() {
   sampc_.prepare(sampc_input_);
   prepared_for_s_ = next_s;
   prepared_epoch_ = reference_epoch_;
+  rehearsal_due_ = true;
   output_.status.solve_cpu_us += thread_cpu_us() - cpu_before_us;
 }
 
