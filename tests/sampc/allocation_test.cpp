@@ -42,13 +42,15 @@ TEST(SampcAllocation, TheControlLoopDoesNotAllocate) {
     errors += is_error(out.status) ? 1 : 0;
   }
   // The flying loop's real-time iteration: prepare on the state predicted from the last
-  // command, then the feedback on the measurement (MissionController::prepare_next_step).
+  // command, then the feedback on the measurement (MissionController::prepare_next_step),
+  // rehearsed just before it as the realtime agent does.
   int prepared_ahead = 0;
   for (int i = 0; i < 20; ++i) {
     SampcInput predicted = in;
     predicted.uav_state = mpc.predicted_state(params.control_period_s);
     mpc.prepare(predicted);
     prepared_ahead += mpc.prepared() ? 1 : 0;
+    mpc.rehearse_feedback();
     in.uav_state(0) -= 0.01;
     const SampcOutput out = mpc.feedback(in);
     errors += is_error(out.status) ? 1 : 0;

@@ -219,6 +219,37 @@ TEST(Sampc, PrepareFeedbackSplitEqualsSolve) {
   EXPECT_LT((via_solve.command - via_split.command).norm(), 0.05);
 }
 
+// The realtime agent rehearses the prepared feedback just before its measurement arrives
+// (to warm the caches): the feedback after it, and the plan, must be bit for bit the same.
+TEST(Sampc, RehearsingTheFeedbackChangesNothing) {
+  const SampcParams params;
+  for (const unsigned seed : {5u, 6u, 7u, 8u}) {
+    std::mt19937 rng(seed);
+    const SampcInput in = random_problem(rng, seed % 2 ? Stage::Transition : Stage::Final);
+    Sampc plain(params), rehearsed(params);
+    rehearsed.rehearse_feedback();  // nothing prepared yet: a no-op
+    EXPECT_FALSE(rehearsed.prepared());
+    SampcInput next = in;
+    for (int step = 0; step < 5; ++step) {
+      plain.prepare(next);
+      rehearsed.prepare(next);
+      rehearsed.rehearse_feedback();
+      rehearsed.rehearse_feedback();
+      EXPECT_TRUE(rehearsed.prepared());
+      next.uav_state.head<3>() += Vector3d(0.03, -0.05, 0.02);
+      const SampcOutput a = plain.feedback(next);
+      const SampcOutput b = rehearsed.feedback(next);
+      EXPECT_EQ(a.status, b.status) << seed;
+      EXPECT_EQ(a.qp_iterations, b.qp_iterations) << seed;
+      EXPECT_EQ((a.command - b.command).cwiseAbs().maxCoeff(), 0.0) << seed << " step " << step;
+      for (int k = 0; k <= params.horizon_steps; ++k) {
+        EXPECT_EQ((plain.planned_state(k) - rehearsed.planned_state(k)).cwiseAbs().maxCoeff(), 0.0)
+            << seed << " node " << k;
+      }
+    }
+  }
+}
+
 TEST(Sampc, ClosedLoopTracksAPointFromAnOffset) {
   const SampcParams params;
   Sampc mpc(params);

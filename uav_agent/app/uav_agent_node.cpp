@@ -189,8 +189,7 @@ void UavAgentNode::run_realtime() {
       reader = inputs_.relative_reader(controller->stage_machine().reference_ugv());
     }
     if (reader) {
-      if (reader->wait_for_sample(clock::to_milliseconds(kStaleStepPeriods * period_s), seen))
-        seen = reader->received_count();
+      if (wait_for_relative_state(*reader, seen, period_s)) seen = reader->received_count();
     } else {
       process::ShutdownSignal::wait_for(clock::to_milliseconds(period_s));
     }
@@ -201,6 +200,33 @@ void UavAgentNode::run_realtime() {
       publish_status(last_step_s_);  // no simulator time yet: the heartbeat still goes out
     }
   }
+}
+
+// Waits up to 1.5 control periods for a relative state beyond `seen`; on the way, at
+// rehearsal_lead_s before the one due (a period after the last), rehearses the feedback.
+bool UavAgentNode::wait_for_relative_state(dds::Reader<msg::RelativeState>& reader,
+                                           std::uint64_t seen, double period_s) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](double s) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  };
+  const auto start = Clock::now();
+  const auto give_up = start + seconds(kStaleStepPeriods * period_s);
+  bool arrived = false;
+  if (options_.rehearsal_lead_s > 0.0 && last_state_arrival_) {
+    const auto rehearse_at = *last_state_arrival_ + seconds(period_s - options_.rehearsal_lead_s);
+    if (rehearse_at > start && rehearse_at < give_up) {
+      arrived = reader.wait_for_sample_until(rehearse_at, seen);
+      if (!arrived) loop_.rehearse();
+    }
+  }
+  if (!arrived) arrived = reader.wait_for_sample_until(give_up, seen);
+  if (arrived) {
+    last_state_arrival_ = Clock::now();
+  } else {
+    last_state_arrival_.reset();
+  }
+  return arrived;
 }
 
 void UavAgentNode::step(double now_s) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -31,6 +32,13 @@ struct AgentOptions {
   double silence_warning_s = 2.0;
   // Lockstep: before answering the first tick, wait this long for the inputs' publishers.
   double connect_timeout_s = 20.0;
+  // Realtime: wake this long before the next relative state is due (a control period after
+  // the last) to rehearse the step's feedback (UavLoop::rehearse): after 10 ms asleep the
+  // feedback otherwise runs on caches the other processes emptied. 0 (default): no
+  // rehearsal. 0.5e-3 halved measurement -> command (docs/benchmarks.md) but
+  // Faults.UgvAgentKilledPutsTheUavInItsFailsafeAndItLands then failed 3 of 4 runs (0 of 4
+  // without), cause not found: off until it is.
+  double rehearsal_lead_s = 0.0;
   wire::IntakeLimits intake;  // config/intake.yaml
   // A flight-controller bridge flies this UAV (--fc-bridge): tasks wait for its autopilot
   // even before its first state is heard. Without it, a bridge heard on cover/uav/<u>/fc
@@ -53,6 +61,8 @@ class UavAgentNode {
  private:
   void run_lockstep();
   void run_realtime();
+  bool wait_for_relative_state(dds::Reader<msg::RelativeState>& reader, std::uint64_t seen,
+                               double period_s);
   void wait_for_inputs(const msg::SimClock& tick);
   void step(double now_s);
   void take_requests(double now_s);
@@ -86,6 +96,8 @@ class UavAgentNode {
   double last_step_s_ = 0.0;  // time of the last control step (the status stamp between steps)
   std::uint64_t answers_repeated_ = 0;  // lockstep ticks answered again (a lost answer)
   std::int64_t previous_tick_ns_ = -1;  // lockstep: the tick stepped last (its command flew)
+  // Realtime: when the last relative state woke the loop (the next is due a period later).
+  std::optional<std::chrono::steady_clock::time_point> last_state_arrival_;
   // Where a lockstep run's wall time goes (logged at the end): waiting for the simulator's
   // tick, for that tick's inputs, and the step (of which waiting for a plan due at it).
   struct LockstepTimes {

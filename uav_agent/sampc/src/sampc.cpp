@@ -386,6 +386,11 @@ bool Sampc::prepared() const {
   return ws_->prepared;
 }
 
+void Sampc::rehearse_feedback() {
+  if (!ws_->prepared) return;
+  ws_->qp.solve_prepared(VectorX::Zero(), ws_->params.max_qp_iterations);
+}
+
 model::UavState Sampc::predicted_state(double dt_s) const {
   const Workspace& ws = *ws_;
   return normalised(model::uav_rk4_step(ws.x[0], ws.last_command, ws.ugv[0], dt_s));

@@ -299,6 +299,13 @@ class FastWriter final : public WriterBackend {
     apply_common(profile, qos);
     // A 100 ms heartbeat (default 3 s) stops the loss of early reliable samples.
     qos.reliable_writer_qos().times.heartbeatPeriod = to_duration(0.1);
+    // Every reliable sample sent restarts a nack-suppression timer per matched reader; with
+    // the default duration 0 that timer fires at once, a wake-up of the event thread per
+    // sample and reader. While a timer is pending a restart is a no-op, so with 20 ms it
+    // wakes at most once per 20 ms (lockstep ticks 0.2-0.5 ms apart). A reader's request
+    // for a sample younger than that waits for the next heartbeat (<= 100 ms): keep-last-1
+    // topics have sent a newer one by then.
+    qos.reliable_writer_qos().times.nackSupressionDuration = to_duration(0.02);
     writer_ = core_->publisher()->create_datawriter(core_->topic(type, topic), qos);
     if (!writer_) {
       throw DdsError("Fast DDS: cannot create a writer on '" + topic +

@@ -66,8 +66,11 @@ class Reader {
     }
     // Waits until more than `seen` samples arrived; false on timeout.
     bool wait_beyond(std::uint64_t seen, std::chrono::milliseconds timeout) {
+      return wait_beyond_until(seen, std::chrono::steady_clock::now() + timeout);
+    }
+    bool wait_beyond_until(std::uint64_t seen, std::chrono::steady_clock::time_point deadline) {
       std::unique_lock<std::mutex> lock(mutex_);
-      return changed_.wait_for(lock, timeout, [&] { return count_ > seen; });
+      return changed_.wait_until(lock, deadline, [&] { return count_ > seen; });
     }
 
    private:
@@ -96,6 +99,11 @@ class Reader {
   // Waits until a sample beyond the first `already_seen` arrives.
   bool wait_for_sample(std::chrono::milliseconds timeout, std::uint64_t already_seen = 0) {
     return state_ && state_->wait_beyond(already_seen, timeout);
+  }
+  // The same until a point in time (finer than a millisecond).
+  bool wait_for_sample_until(std::chrono::steady_clock::time_point deadline,
+                             std::uint64_t already_seen = 0) {
+    return state_ && state_->wait_beyond_until(already_seen, deadline);
   }
 
   std::size_t matched_writers() const { return backend_ ? backend_->matched_writers() : 0; }

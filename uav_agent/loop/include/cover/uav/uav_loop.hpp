@@ -44,6 +44,11 @@ class UavLoop {
   // (the command out) SAMPC's preparation of the next step, so that a measurement waits for
   // the feedback phase only (MissionController::prepare_next_step).
   const mission::ControllerOutput& step(double now_s, UavInputs& inputs, CommandOutput& output);
+  // Just before the next step's measurement is due: warms the caches for its feedback
+  // (MissionController::rehearse_feedback). Changes no result; a no-op without a task.
+  void rehearse() {
+    if (controller_) controller_->rehearse_feedback();
+  }
 
   bool has_task() const { return controller_.has_value(); }
   // The task being flown (or the last one); nullptr before the first.

@@ -60,6 +60,13 @@ class MissionController {
   // that the next step's measurement -> command is the feedback phase (real-time
   // iteration). A no-op after a step that flew no SAMPC command. Allocation-free.
   void prepare_next_step();
+  // Between prepare_next_step and the next step: runs the waiting preparation's feedback on
+  // the predicted state and discards it (Sampc::rehearse_feedback), so that the step's
+  // feedback finds its data and code in the caches. Changes no result. Only while SAMPC
+  // flies: after a step of the failsafe ladder nothing is prepared for the next.
+  void rehearse_feedback() {
+    if (rehearsal_due_) sampc_.rehearse_feedback();
+  }
 
   // The wall time from the step taking its measurements to its command (the host measures
   // it around feeding the inputs and step()): reported in the status of this step.
@@ -182,6 +189,7 @@ class MissionController {
   std::uint64_t reference_epoch_ = 0;
   std::uint64_t prepared_epoch_ = 0;
   double prepared_for_s_ = -1.0;  // the step time the waiting preparation is for, < 0: none
+  bool rehearsal_due_ = false;    // prepare_next_step prepared SAMPC for the coming step
   bool sampc_stepped_ = false;    // this step's command is SAMPC's: prepare_next_step works
   double sampc_step_s_ = 0.0;     // that step's time
   model::Input sampc_command_ = model::hover_input();  // and its command

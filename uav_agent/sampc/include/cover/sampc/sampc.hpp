@@ -64,6 +64,12 @@ class Sampc {
   // A factorisation waits for its feedback (prepare() ran, and no reset, frame switch or
   // mode switch since): feedback() then runs the forward pass only.
   bool prepared() const;
+  // Runs the prepared QP once on the predicted state and discards the result, so that the
+  // factorisation and the feedback's code are in the caches when the measurement arrives:
+  // a realtime host calls it just before. The next feedback() is the same with or without
+  // it (the QP starts each solve afresh; a factorisation depends on its active set only).
+  // No-op when nothing is prepared.
+  void rehearse_feedback();
   // The state expected `dt_s` after the last feedback's measurement: the plan's node 0
   // flown for dt_s on the command handed out (RK4 at the UGV motion of that feedback). What
   // the RTI preparation linearises at before the next measurement arrives.
