@@ -184,7 +184,9 @@ void SimNode::publish_tick(const std::vector<std::uint32_t>& awaited) {
           wire::to_msg(world.relative_sensor().latest(k), static_cast<std::uint32_t>(u),
                        static_cast<std::uint32_t>(k));
       relative_stamp_ns = m.stamp_ns;
-      relative_writers_[u][k].write(m);
+      // UAV u's agent reads the states of its task's UGVs only: N UAVs x M UGVs samples a
+      // tick, most read by no one, were the simulator's cost growing as N^2.
+      if (relative_writers_[u][k].matched_readers() > 0) relative_writers_[u][k].write(m);
     }
   }
   if (relative_stamp_ns >= 0) {
