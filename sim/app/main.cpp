@@ -145,6 +145,15 @@ nlohmann::json result_json(cover::sim::Fleet& fleet, const cover::sim::SimNode& 
   out["seed"] = fleet.scenario().world.seed;
   out["clock"] = cli.clock;
   out["speed_factor"] = node.wall_time_s() > 0.0 ? fleet.time_s() / node.wall_time_s() : 0.0;
+  // What the agents' answers cost the simulator: every command and trace it received.
+  const std::uint64_t samples = node.samples_received();
+  out["agent_samples"] = {
+      {"received", samples},
+      {"per_wall_s",
+       node.wall_time_s() > 0.0 ? static_cast<double>(samples) / node.wall_time_s() : 0.0},
+      {"per_tick", fleet.tick() > 0 ? static_cast<double>(samples) / fleet.tick() : 0.0},
+      {"ticks_published_again", node.republished_ticks()},
+      {"answers_awaited_again", node.awaited_answers()}};
   if (fleet.uav_count() > 1) out["uavs"] = uavs;
   const auto& latency = node.latency_ms();
   if (!latency.empty()) {

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -19,9 +20,14 @@ namespace {
 
 using namespace std::chrono_literals;
 
-// Short against the agents' step (~0.1 ms; a stage plan up to a few ms), long against a
-// loopback round trip: a lost tick costs at most this.
-constexpr std::chrono::milliseconds kRepublishPeriod{20};
+// The first wait before a tick is published again: short against the agents' step
+// (~0.1 ms; a stage plan up to a few ms), long against a loopback round trip, so that a
+// tick lost at start-up costs at most this. Each further wait doubles up to the longest:
+// an agent that is only slow (a loaded host, a fleet of 16 on 2 cores) is not sent the
+// tick 50 times a second, and DDS's own repair of a lost reliable sample (a 100 ms
+// heartbeat) has the time to work.
+constexpr std::chrono::milliseconds kFirstRepublish{20};
+constexpr std::chrono::milliseconds kLongestRepublish{320};
 
 }  // namespace
 
@@ -103,7 +109,8 @@ SimExit SimNode::run() {
   if (autopilot_links_) autopilot_links_->stop();
   wall_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (republished_ticks_ > 0) {
-    spdlog::info("{} tick(s) published again before every agent answered", republished_ticks_);
+    spdlog::info("{} tick(s) published again before every agent answered, awaiting {} answer(s)",
+                 republished_ticks_, awaited_answers_);
   }
   return exit;
 }
@@ -157,7 +164,7 @@ bool SimNode::relative_withheld(double t_s) {
   return withheld;
 }
 
-void SimNode::publish_tick() {
+void SimNode::publish_tick(const std::vector<std::uint32_t>& awaited) {
   const double t = fleet_.time_s();
   // The world first: the UGV agents wake on it and publish their IMU, which the UAV agent
   // awaits, while the relative states and the tick are still being written.
@@ -168,12 +175,18 @@ void SimNode::publish_tick() {
   for (int u = 0; u < fleet_.uav_count() && !withheld && !mocap_; ++u) {
     const World& world = fleet_.world(u);
     if (!world.relative_sensor().has_measurement()) continue;
+    // Published again: only the UAVs still awaited may have lost theirs.
+    if (!awaited.empty() && std::find(awaited.begin(), awaited.end(), u) == awaited.end()) {
+      continue;
+    }
     for (int k = 0; k < world.ugv_count(); ++k) {
       const msg::RelativeState m =
           wire::to_msg(world.relative_sensor().latest(k), static_cast<std::uint32_t>(u),
                        static_cast<std::uint32_t>(k));
       relative_stamp_ns = m.stamp_ns;
-      relative_writers_[u][k].write(m);
+      // UAV u's agent reads the states of its task's UGVs only: N UAVs x M UGVs samples a
+      // tick, most read by no one, were the simulator's cost growing as N^2.
+      if (relative_writers_[u][k].matched_readers() > 0) relative_writers_[u][k].write(m);
     }
   }
   if (relative_stamp_ns >= 0) {
@@ -191,6 +204,7 @@ void SimNode::publish_tick() {
   tick.imu_stamp_ns =
       fleet_.latest_imu_stamp_s() >= 0.0 ? wire::to_stamp_ns(fleet_.latest_imu_stamp_s()) : -1;
   tick.relative_stamp_ns = relative_stamp_ns;
+  tick.awaited = awaited;
   clock_writer_.write(tick);
 }
 
@@ -223,6 +237,14 @@ bool SimNode::answered(const Mailbox& box, std::int64_t tick_ns) const {
   return box.command && box.command->stamp_ns == tick_ns && traced;
 }
 
+std::vector<std::uint32_t> SimNode::unanswered(std::int64_t tick_ns) const {
+  std::vector<std::uint32_t> out;
+  for (int u = 0; u < fleet_.uav_count(); ++u) {
+    if (!answered(mailboxes_[u], tick_ns)) out.push_back(static_cast<std::uint32_t>(u));
+  }
+  return out;
+}
+
 SimNode::TickWait SimNode::wait_for_commands(std::int64_t tick_ns) {
   std::unique_lock<std::mutex> lock(mutex_);
   awaited_tick_ns_ = tick_ns;
@@ -230,26 +252,39 @@ SimNode::TickWait SimNode::wait_for_commands(std::int64_t tick_ns) {
   // while after the writer matched it (discovery is not symmetric in time).
   const double timeout_s = fleet_.tick() == 0 ? params_.startup_timeout_s : params_.stall_timeout_s;
   const auto deadline = std::chrono::steady_clock::now() + clock::to_milliseconds(timeout_s);
-  for (int u = 0; u < fleet_.uav_count(); ++u) {
-    // A tick (or its relative states) can be lost: to a reader that matched just after it
-    // was written, or to best-effort delivery. Publish it again until answered; the
-    // agents step each tick once.
-    while (!arrived_.wait_for(lock, kRepublishPeriod, [&] {
-      return answered(mailboxes_[u], tick_ns);
-    }) && std::chrono::steady_clock::now() < deadline) {
-      if (process::ShutdownSignal::requested()) return TickWait::Interrupted;
-      lock.unlock();
-      publish_tick();
-      republish_mavlink();
-      ++republished_ticks_;
-      lock.lock();
+  auto wait = kFirstRepublish;
+  // A tick (or its relative states) can be lost: to a reader that matched just after it
+  // was written, or to best-effort delivery. Publish it again until answered, naming the
+  // UAVs still awaited: only they answer again (the others' answers arrived), and the
+  // agents step each tick once.
+  for (;;) {
+    for (int u = 0; u < fleet_.uav_count(); ++u) {
+      arrived_.wait_until(lock, std::min(deadline, std::chrono::steady_clock::now() + wait),
+                          [&] { return answered(mailboxes_[u], tick_ns); });
+      if (!answered(mailboxes_[u], tick_ns)) break;
     }
-    if (!answered(mailboxes_[u], tick_ns)) {
-      log_stall(u, mailboxes_[u], tick_ns, timeout_s);
+    const std::vector<std::uint32_t> awaited = unanswered(tick_ns);
+    if (awaited.empty()) return TickWait::Answered;
+    if (process::ShutdownSignal::requested()) return TickWait::Interrupted;
+    if (std::chrono::steady_clock::now() >= deadline) {
+      log_stall(static_cast<int>(awaited.front()), mailboxes_[awaited.front()], tick_ns, timeout_s);
       return TickWait::Stalled;
     }
+    lock.unlock();
+    publish_tick(awaited);
+    republish_mavlink();
+    lock.lock();
+    ++republished_ticks_;
+    awaited_answers_ += awaited.size();
+    wait = std::min(2 * wait, kLongestRepublish);
   }
-  return TickWait::Answered;
+}
+
+std::uint64_t SimNode::samples_received() const {
+  std::uint64_t n = 0;
+  for (const auto& r : command_readers_) n += r.received_count();
+  for (const auto& r : trace_readers_) n += r.received_count();
+  return n;
 }
 
 void SimNode::log_stall(int u, const Mailbox& box, std::int64_t tick_ns, double timeout_s) const {

@@ -82,6 +82,12 @@ class SimNode {
   // What UAV `uav`'s link saw (autopilots only, after run()).
   const AutopilotLinks* autopilot_links() const { return autopilot_links_.get(); }
   double wall_time_s() const { return wall_time_s_; }
+  // Lockstep: ticks published again (some agent's answer missing), and the answers awaited
+  // by those publications (each an agent asked to answer again).
+  std::uint64_t republished_ticks() const { return republished_ticks_; }
+  std::uint64_t awaited_answers() const { return awaited_answers_; }
+  // Samples the agents sent the simulator (commands and traces), all received.
+  std::uint64_t samples_received() const;
   // The last task status message per UAV (the stage machine's one-line status).
   std::string task_message(int uav) const;
 
@@ -105,7 +111,10 @@ class SimNode {
   bool run_over() const;
   SimExit run_lockstep();
   SimExit run_realtime();
-  void publish_tick();
+  // `awaited` empty: the tick's first publication; otherwise published again for these
+  // UAVs, whose answers are missing (only their relative states are written again).
+  void publish_tick(const std::vector<std::uint32_t>& awaited = {});
+  std::vector<std::uint32_t> unanswered(std::int64_t tick_ns) const;  // mutex_ held
   bool relative_withheld(double t_s);
   enum class TickWait { Answered, Stalled, Interrupted };
   TickWait wait_for_commands(std::int64_t tick_ns);
@@ -153,6 +162,7 @@ class SimNode {
   SensorLatency latency_;
   double wall_time_s_ = 0.0;
   std::uint64_t republished_ticks_ = 0;
+  std::uint64_t awaited_answers_ = 0;
   bool in_relative_gap_ = false;
 
   // Autopilots: the simulated time the reader threads stamp frames with (under mutex_).

@@ -57,8 +57,9 @@ TEST(Qos, NamedProfilesSetEveryPolicy) {
 }
 
 TEST(Qos, UnknownProfileAndBadValuesAreErrors) {
-  EXPECT_NE(message_of([] { qos_profile("fast"); }).find("sensor, command, state or request"),
-            std::string::npos);
+  EXPECT_NE(
+      message_of([] { qos_profile("fast"); }).find("sensor, command, state, request or exchange"),
+      std::string::npos);
   QosProfile bad = sensor_qos();
   bad.history_depth = 0;
   EXPECT_THROW(bad.validate(), DdsError);

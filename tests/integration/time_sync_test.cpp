@@ -14,7 +14,9 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <string>
 #include <thread>
@@ -284,6 +286,82 @@ void task_manager_shows_the_hold() {
 
 TEST(TimeAcrossHosts, TheTaskManagerShowsWhyTheAgentHoldsTheTask) {
   task_manager_shows_the_hold();
+}
+
+// The process part of "host/process".
+std::string process_of(const std::string& peer) {
+  return peer.substr(peer.rfind('/') + 1);
+}
+
+// The clock exchange is addressed: a UAV agent asks the simulator, its autopilot's bridge
+// and the UGVs of its task, not every UGV of the fleet; a UGV agent asks back only the UAV
+// agents that ask it; a UGV nobody asks answers nobody. Four UGVs, one UAV flying between
+// the first two; what goes over cover/time/* is read by a station on the domain.
+void only_the_task_peers_are_asked() {
+  SimSystem system(kDomain, "tsaddr",
+                   {"--scenario", "fleet", "--uavs", "2", "--ugvs", "4", "--standing"});
+  for (int k = 2; k < 4; ++k) {
+    system.ugvs().push_back(system.spawn(
+        {bin("cover-ugv-agent"), "--id", std::to_string(k), "--run-id", system.run_id()},
+        "ugv" + std::to_string(k)));
+  }
+  cover::dds::ParticipantOptions options;
+  options.domain_id = system.domain();
+  cover::dds::Participant station(options);
+  std::mutex mutex;
+  std::map<std::string, std::set<std::string>> asked;     // requester -> responders named
+  std::map<std::string, std::set<std::string>> answered;  // requester -> who answered
+  auto requests = station.make_reader(cover::dds::topics::time_request(),
+                                      [&](const cover::msg::TimeSyncRequest& r) {
+                                        std::lock_guard<std::mutex> lock(mutex);
+                                        auto& named = asked[process_of(r.requester)];
+                                        named.insert(r.responders.begin(), r.responders.end());
+                                        if (r.responders.empty()) named.insert("<everyone>");
+                                      });
+  auto replies = station.make_reader(
+      cover::dds::topics::time_reply(), [&](const cover::msg::TimeSyncReply& r) {
+        std::lock_guard<std::mutex> lock(mutex);
+        answered[process_of(r.requester)].insert(process_of(r.responder));
+      });
+  auto uav =
+      system.spawn({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "4",
+                    "--task", std::string(COVER_CONFIG_DIR) + "/tasks/fleet/uav0.yaml"},
+                   "uav");
+  const std::set<std::string> uav_peers{"cover-sim", "cover-mocap-relay*", "cover-fc-bridge-0",
+                                        "cover-ugv-agent-0", "cover-ugv-agent-1"};
+  const std::set<std::string> uav_answerers{"cover-sim", "cover-ugv-agent-0", "cover-ugv-agent-1"};
+  auto copy = [&](auto& map, const std::string& key) {
+    std::lock_guard<std::mutex> lock(mutex);
+    return map[key];
+  };
+  // Both of its UGVs ask it back once it asked them (their bursts answered).
+  const bool settled = wait_until(
+      [&] {
+        return copy(answered, "cover-uav-agent-0") == uav_answerers &&
+               copy(answered, "cover-ugv-agent-0") == std::set<std::string>{"cover-uav-agent-0"} &&
+               copy(answered, "cover-ugv-agent-1") == std::set<std::string>{"cover-uav-agent-0"};
+      },
+      30s);
+  // A window of requests at 1 Hz after the bursts: what is asked stays what was asked.
+  std::this_thread::sleep_for(scaled(1500ms));  // observing that nothing else comes: not a sync
+  EXPECT_TRUE(settled);
+  EXPECT_EQ(copy(asked, "cover-uav-agent-0"), uav_peers);
+  EXPECT_EQ(copy(answered, "cover-uav-agent-0"), uav_answerers);
+  EXPECT_EQ(copy(asked, "cover-ugv-agent-0"), std::set<std::string>{"cover-uav-agent-0"});
+  EXPECT_EQ(copy(asked, "cover-ugv-agent-1"), std::set<std::string>{"cover-uav-agent-0"});
+  // UGVs 2 and 3: asked by no one, so they ask no one, and no one hears from them.
+  for (const std::string k : {"cover-ugv-agent-2", "cover-ugv-agent-3"}) {
+    std::lock_guard<std::mutex> lock(mutex);
+    EXPECT_EQ(asked.count(k), 0u) << k;
+    for (const auto& [requester, who] : answered) EXPECT_EQ(who.count(k), 0u) << requester;
+  }
+  EXPECT_EQ(uav->terminate(scaled(10s), SIGINT), 0);
+  system.stop(scaled(10s));
+  EXPECT_FALSE(std::filesystem::exists(system.segment_path())) << system.segment_path();
+}
+
+TEST(TimeAcrossHosts, AUavAgentAsksOnlyItsTaskPeersAndTheyAskItBack) {
+  only_the_task_peers_are_asked();
 }
 
 }  // namespace

@@ -9,7 +9,10 @@
 #include <cstdlib>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -226,6 +229,62 @@ TEST(TimeSyncProcess, ForgedRepliesAndMalformedRequestsAreRefused) {
   }
   EXPECT_FALSE(monitor.limit_reason());
   EXPECT_EQ(child->terminate(), 0);  // the responder survived the malformed requests
+}
+
+// Requests are addressed: a responder answers only the requests that name it (or name no
+// one), so a fleet's P processes do not each answer every asker. A station on the domain
+// reads every reply on cover/time/reply.
+TEST(TimeSyncProcess, AResponderAnswersOnlyTheRequestsThatNameIt) {
+  Fixture f;
+  dds::Participant participant(f.options(dds::Vendor::FastDds));
+  std::mutex mutex;
+  std::map<std::string, std::set<std::string>> answered;  // requester -> responders heard
+  auto replies =
+      participant.make_reader(dds::topics::time_reply(), [&](const msg::TimeSyncReply& r) {
+        std::lock_guard<std::mutex> lock(mutex);
+        answered[r.requester].insert(r.responder);
+      });
+  auto heard = [&](const std::string& requester) {
+    std::lock_guard<std::mutex> lock(mutex);
+    return answered[requester];
+  };
+  auto sim = f.peer("fastdds", "cover-sim");
+  auto ugv = f.peer("cyclone", "cover-ugv-agent-3");
+  OffsetMonitor monitor(participant, fast_monitor({"cover-sim"}));
+  ASSERT_TRUE(settled(monitor, "/cover-sim", 20s));
+  // 16 burst requests and 1.5 s at 5 Hz: had the UGV agent answered any, it would show.
+  const std::set<std::string> only_sim = heard(monitor.name());
+  ASSERT_EQ(only_sim.size(), 1u);
+  EXPECT_EQ(only_sim.begin()->substr(only_sim.begin()->rfind('/')), "/cover-sim");
+  EXPECT_EQ(monitor.offsets().size(), 1u);
+
+  // The same UGV agent answers a monitor that asks everyone: it was up and able to.
+  MonitorOptions everyone = fast_monitor({});
+  everyone.process = "time-sync-test-all";
+  OffsetMonitor all(participant, everyone);
+  ASSERT_TRUE(settled(all, "/cover-ugv-agent-3", 20s));
+  EXPECT_TRUE(settled(all, "/cover-sim", 5s));
+
+  // Asked from now on: the UGV agent only; the simulator's estimate is dropped at once.
+  monitor.set_peers({"cover-ugv-agent-3"});
+  for (const PeerOffset& p : monitor.offsets())
+    EXPECT_EQ(p.peer.find("/cover-sim"), std::string::npos);
+  ASSERT_TRUE(settled(monitor, "/cover-ugv-agent-3", 20s));
+  EXPECT_EQ(monitor.offsets().size(), 1u);
+
+  // A monitor waiting for its peers asks no one until one is added.
+  MonitorOptions waiting = fast_monitor({});
+  waiting.process = "time-sync-test-waiting";
+  waiting.wait_for_peers = true;
+  OffsetMonitor idle(participant, waiting);
+  std::this_thread::sleep_for(scaled(500ms));  // a window in which nothing may be sent
+  EXPECT_EQ(idle.requests_sent(), 0u);
+  EXPECT_TRUE(heard(idle.name()).empty());
+  idle.add_peer("cover-sim");
+  ASSERT_TRUE(settled(idle, "/cover-sim", 20s));
+  EXPECT_EQ(heard(idle.name()).size(), 1u);
+  EXPECT_EQ(sim->terminate(), 0);
+  EXPECT_EQ(ugv->terminate(), 0);
 }
 
 }  // namespace

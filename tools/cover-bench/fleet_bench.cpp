@@ -1,12 +1,15 @@
 // cover-bench fleet: what each vehicle costs as the fleet grows. config/launch/fleet16.yaml
 // flown (lockstep by default) with 1, 2, 4, 8, 16 UAVs, each over its pair of UGVs
 // (--var uavs=N --var ugvs=max(N, 2)): the CPU time of each process per simulated second
-// (UAV agents, UGV agents, the simulator; the sum), each process's peak memory, the
-// lockstep real-time factor, and whether every task succeeded with its landing error.
-// --svg writes the cost against fleet size as a plot.
+// and per wall second (UAV agents, UGV agents, the simulator, the task manager; the sum),
+// each process's peak memory, the real-time factor, the agents' samples the simulator
+// received a wall second, the relative state -> command latency (realtime), the host's
+// load average, and whether every task succeeded with its landing error. --svg writes the
+// cost against fleet size as a plot.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -39,8 +42,20 @@ struct FleetRow {
   double sim_s = 0.0;
   double speed_factor = 0.0;  // simulated s per wall s
   double worst_landing_m = 0.0;
-  RoleCost uav, ugv, sim;
+  double samples_per_wall_s = -1.0;  // agents' commands and traces into the simulator
+  double latency_p50_ms = -1.0, latency_p99_ms = -1.0;  // realtime only
+  double load_average = -1.0;                           // 1 min, at the run's end
+  RoleCost uav, ugv, sim, manager;
+  double wall_s() const { return speed_factor > 0.0 ? sim_s / speed_factor : 0.0; }
 };
+
+// The host's 1-minute load average: other work on the same cores skews every figure.
+double load_average() {
+  std::ifstream in("/proc/loadavg");
+  double one = -1.0;
+  in >> one;
+  return one;
+}
 
 std::string role_of(const std::string& name) {
   if (name.rfind("uav", 0) == 0) return "uav";
@@ -52,6 +67,13 @@ bool read_row(const json& report, FleetRow& row) {
   if (!report.is_object() || !report.contains("processes")) return false;
   row.success = report.value("success", false);
   row.speed_factor = report.value("speed_factor", 0.0);
+  if (report.contains("agent_samples")) {
+    row.samples_per_wall_s = report["agent_samples"].value("per_wall_s", -1.0);
+  }
+  if (report.contains("latency_ms")) {
+    row.latency_p50_ms = report["latency_ms"].value("p50", -1.0);
+    row.latency_p99_ms = report["latency_ms"].value("p99", -1.0);
+  }
   const json& uavs = report.contains("uavs") ? report["uavs"] : json::array({report});
   for (const json& u : uavs) {
     row.sim_s = std::max(row.sim_s, u.value("duration_s", 0.0));
@@ -62,10 +84,11 @@ bool read_row(const json& report, FleetRow& row) {
   for (const json& p : report["processes"]) {
     if (!p["cpu_s"].is_number()) continue;
     const std::string role = role_of(p.value("name", ""));
-    RoleCost* cost = role == "uav"   ? &row.uav
-                     : role == "ugv" ? &row.ugv
-                     : role == "sim" ? &row.sim
-                                     : nullptr;
+    RoleCost* cost = role == "uav"            ? &row.uav
+                     : role == "ugv"          ? &row.ugv
+                     : role == "sim"          ? &row.sim
+                     : role == "task_manager" ? &row.manager
+                                              : nullptr;
     if (cost == nullptr) continue;
     ++cost->processes;
     cost->cpu_s += p["cpu_s"].get<double>();
@@ -74,7 +97,7 @@ bool read_row(const json& report, FleetRow& row) {
     }
   }
   return row.sim_s > 0.0 && row.uav.processes == row.uavs && row.ugv.processes == row.ugvs &&
-         row.sim.processes == 1;
+         row.sim.processes == 1 && row.manager.processes == 1;
 }
 
 // CPU seconds per simulated second of one process of the role (its share of a core at
@@ -83,28 +106,41 @@ double per_process(const RoleCost& cost, double sim_s) {
   return cost.processes > 0 ? cost.cpu_s / cost.processes / sim_s : 0.0;
 }
 
+double total_cpu_s(const FleetRow& r) {
+  return r.uav.cpu_s + r.ugv.cpu_s + r.sim.cpu_s + r.manager.cpu_s;
+}
+
 json row_json(const FleetRow& r) {
   const auto role = [&](const RoleCost& c) {
     return json{{"processes", c.processes},
                 {"cpu_per_process_per_sim_s", per_process(c, r.sim_s)},
+                {"cpu_per_process_per_wall_s", per_process(c, r.wall_s())},
                 {"cpu_total_per_sim_s", c.cpu_s / r.sim_s},
                 {"max_rss_mib", c.max_rss_mib}};
   };
+  const auto or_null = [](double v) { return v >= 0.0 ? json(v) : json(nullptr); };
   return {{"uavs", r.uavs},
           {"ugvs", r.ugvs},
           {"success", r.success},
           {"simulated_s", r.sim_s},
           {"realtime_factor", r.speed_factor},
+          {"wall_s", r.wall_s()},
           {"worst_landing_error_m", r.worst_landing_m},
-          {"cpu_total_per_sim_s", (r.uav.cpu_s + r.ugv.cpu_s + r.sim.cpu_s) / r.sim_s},
+          {"cpu_total_per_sim_s", total_cpu_s(r) / r.sim_s},
+          {"cpu_total_per_wall_s", total_cpu_s(r) / r.wall_s()},
+          {"agent_samples_per_wall_s", or_null(r.samples_per_wall_s)},
+          {"latency_p50_ms", or_null(r.latency_p50_ms)},
+          {"latency_p99_ms", or_null(r.latency_p99_ms)},
+          {"load_average", or_null(r.load_average)},
           {"uav_agent", role(r.uav)},
           {"ugv_agent", role(r.ugv)},
-          {"simulator", role(r.sim)}};
+          {"simulator", role(r.sim)},
+          {"task_manager", role(r.manager)}};
 }
 
 // Cost against fleet size: one polyline per series, x = UAVs (log2 spacing), y = CPU
 // seconds per simulated second.
-std::string svg_plot(const std::vector<FleetRow>& rows) {
+std::string svg_plot(const std::vector<FleetRow>& rows, const std::string& clock) {
   struct Series {
     std::string name, colour;
     double (*value)(const FleetRow&);
@@ -115,9 +151,9 @@ std::string svg_plot(const std::vector<FleetRow>& rows) {
       {"UGV agent (each)", "#2ca02c",
        [](const FleetRow& r) { return per_process(r.ugv, r.sim_s); }},
       {"simulator", "#d62728", [](const FleetRow& r) { return r.sim.cpu_s / r.sim_s; }},
-      {"whole fleet / N", "#9467bd", [](const FleetRow& r) {
-         return (r.uav.cpu_s + r.ugv.cpu_s + r.sim.cpu_s) / r.sim_s / r.uavs;
-       }}};
+      {"task manager", "#ff7f0e", [](const FleetRow& r) { return r.manager.cpu_s / r.sim_s; }},
+      {"whole fleet / N", "#9467bd",
+       [](const FleetRow& r) { return total_cpu_s(r) / r.sim_s / r.uavs; }}};
   double y_max = 0.0;
   for (const auto& s : series)
     for (const auto& r : rows) y_max = std::max(y_max, s.value(r));
@@ -131,7 +167,7 @@ std::string svg_plot(const std::vector<FleetRow>& rows) {
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" "
          "fill=\"white\"/>\n<text x=\""
       << left << "\" y=\"22\" font-size=\"14\">cover-bench fleet: CPU s per simulated s "
-      << "against fleet size (lockstep)</text>\n";
+      << "against fleet size (" << clock << ")</text>\n";
   svg << "<line x1=\"" << left << "\" y1=\"" << py(0) << "\" x2=\"" << w - right << "\" y2=\""
       << py(0) << "\" stroke=\"black\"/>\n<line x1=\"" << left << "\" y1=\"" << top << "\" x2=\""
       << left << "\" y2=\"" << py(0) << "\" stroke=\"black\"/>\n";
@@ -166,19 +202,28 @@ std::string svg_plot(const std::vector<FleetRow>& rows) {
 }
 
 void print_table(const std::vector<FleetRow>& rows) {
-  std::printf("%5s %5s %8s %8s %10s %10s %10s %10s %9s %9s %9s %8s\n", "UAVs", "UGVs", "ok", "RTF",
-              "uav cpu", "ugv cpu", "sim cpu", "total/N", "uav MiB", "ugv MiB", "sim MiB",
-              "land cm");
+  std::printf(
+      "%4s %4s %3s %6s %8s %8s %8s %8s %8s | %8s %8s %8s %8s | %5s %5s %5s %5s %8s %7s "
+      "%7s %6s %5s\n",
+      "UAVs", "UGVs", "ok", "RTF", "uav", "ugv", "sim", "tm", "total/N", "uav/w", "ugv/w", "sim/w",
+      "tm/w", "uavM", "ugvM", "simM", "tmM", "smp/s", "p50ms", "p99ms", "landcm", "load");
   for (const auto& r : rows) {
-    std::printf("%5d %5d %8s %8.2f %10.4f %10.4f %10.4f %10.4f %9.1f %9.1f %9.1f %8.2f\n", r.uavs,
-                r.ugvs, r.success ? "yes" : "NO", r.speed_factor, per_process(r.uav, r.sim_s),
-                per_process(r.ugv, r.sim_s), r.sim.cpu_s / r.sim_s,
-                (r.uav.cpu_s + r.ugv.cpu_s + r.sim.cpu_s) / r.sim_s / r.uavs, r.uav.max_rss_mib,
-                r.ugv.max_rss_mib, r.sim.max_rss_mib, 100.0 * r.worst_landing_m);
+    const double w = r.wall_s();
+    std::printf(
+        "%4d %4d %3s %6.2f %8.4f %8.4f %8.4f %8.4f %8.4f | %8.4f %8.4f %8.4f %8.4f | %5.1f "
+        "%5.1f %5.1f %5.1f %8.0f %7.2f %7.2f %6.2f %5.1f\n",
+        r.uavs, r.ugvs, r.success ? "yes" : "NO", r.speed_factor, per_process(r.uav, r.sim_s),
+        per_process(r.ugv, r.sim_s), r.sim.cpu_s / r.sim_s, r.manager.cpu_s / r.sim_s,
+        total_cpu_s(r) / r.sim_s / r.uavs, per_process(r.uav, w), per_process(r.ugv, w),
+        r.sim.cpu_s / w, r.manager.cpu_s / w, r.uav.max_rss_mib, r.ugv.max_rss_mib,
+        r.sim.max_rss_mib, r.manager.max_rss_mib, r.samples_per_wall_s, r.latency_p50_ms,
+        r.latency_p99_ms, 100.0 * r.worst_landing_m, r.load_average);
   }
   std::printf(
-      "(cpu: CPU seconds per simulated second, per process of the role; total/N: the "
-      "whole fleet's per UAV)\n");
+      "(CPU seconds per simulated second (left) and per wall second (/w), per process of the "
+      "role; total/N: the whole fleet's per UAV; M: peak RSS MiB; smp/s: agents' samples into "
+      "the simulator per wall second; p50/p99: relative state -> command latency, realtime; "
+      "load: 1-min load average at the run's end)\n");
 }
 
 int run(const std::vector<std::string>& args) {
@@ -218,6 +263,7 @@ int run(const std::vector<std::string>& args) {
         {"--clock", clock, "--dds", "*=" + dds, "--var", "uavs=" + std::to_string(row.uavs),
          "--var", "ugvs=" + std::to_string(row.ugvs)},
         claim.domain(), "fleet", std::chrono::minutes(20));
+    row.load_average = load_average();
     if (!read_row(report, row)) {
       missing.add(std::to_string(n) + " UAVs: the launch gave no complete report");
       continue;
@@ -225,7 +271,16 @@ int run(const std::vector<std::string>& args) {
     std::cerr << "cover-bench fleet: " << n << " UAV(s) done, RTF " << row.speed_factor << "\n";
     rows.push_back(row);
   }
-  if (!rows.empty() && !svg_file.empty()) std::ofstream(svg_file) << svg_plot(rows);
+  if (!rows.empty() && !svg_file.empty()) {
+    const std::filesystem::path svg_path(svg_file);
+    if (svg_path.has_parent_path()) std::filesystem::create_directories(svg_path.parent_path());
+    std::ofstream svg(svg_path);
+    svg << svg_plot(rows, clock);
+    if (!svg) {
+      std::cerr << "cover-bench fleet: cannot write " << svg_file << "\n";
+      return 2;
+    }
+  }
   const bool all_succeeded =
       std::all_of(rows.begin(), rows.end(), [](const FleetRow& r) { return r.success; });
   if (as_json) {

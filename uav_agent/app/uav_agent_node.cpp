@@ -46,12 +46,23 @@ std::string failsafe_event(const mission::ControllerStatus& s, mission::Failsafe
 }
 
 // The processes whose samples a UAV agent takes: its relative states (the simulator or
-// a mocap relay), the UGVs' IMUs, its autopilot's state.
+// a mocap relay), its autopilot's state, and the IMUs of its task's UGVs (every UGV's
+// before it has a task, so that a task's UGVs are measured before it arrives).
+std::vector<std::string> clock_peers(std::uint32_t uav_id, const mission::Task* task) {
+  std::vector<std::string> peers{"cover-sim", "cover-mocap-relay*",
+                                 "cover-fc-bridge-" + std::to_string(uav_id)};
+  if (task == nullptr) {
+    peers.push_back("cover-ugv-agent-*");
+  } else {
+    for (const int k : task->ugvs()) peers.push_back("cover-ugv-agent-" + std::to_string(k));
+  }
+  return peers;
+}
+
 time_sync::MonitorOptions monitor_options(const AgentOptions& options) {
   time_sync::MonitorOptions m;
   m.process = "cover-uav-agent-" + std::to_string(options.uav_id);
-  m.peers = {"cover-sim", "cover-mocap-relay*", "cover-ugv-agent-*",
-             "cover-fc-bridge-" + std::to_string(options.uav_id)};
+  m.peers = clock_peers(options.uav_id, options.task ? &*options.task : nullptr);
   m.params = options.time_sync;
   return m;
 }
@@ -73,7 +84,7 @@ UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
       fc_gate_(participant, options_.uav_id, options_.fc_bridge, options_.fc_stale_after_s),
       clock_responder_(participant, "cover-uav-agent-" + std::to_string(options_.uav_id)),
       clock_offsets_(participant, monitor_options(options_)),
-      clock_(participant, options_.clock) {
+      clock_(participant, options_.clock, static_cast<int>(options_.uav_id)) {
   if (options_.task) accept(*options_.task, 0.0);
 }
 
@@ -321,6 +332,7 @@ void UavAgentNode::start(const mission::Task& task, double now_s) {
   }
   spdlog::info("accepted {}", decision.reason);
   inputs_.subscribe(task.ugvs());
+  clock_offsets_.set_peers(clock_peers(options_.uav_id, &task));
   reported_key_.clear();
 }
 

@@ -19,6 +19,7 @@
 #include "cover/startup/startup.hpp"
 #include "cover/time_sync/clock_responder.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
+#include "cover/time_sync/peer_name.hpp"
 #include "cover/vocabulary/fleet_size.hpp"
 #include "imu_publisher.hpp"
 #include "source_factory.hpp"
@@ -119,9 +120,15 @@ int run(const CommandLine& cli) {
   // The UAV agents take this UGV's IMU: they measure this host's clock, and this agent
   // logs its offset to them (docs/time.md).
   const std::string process = "cover-ugv-agent-" + std::to_string(cli.source.ugv_id);
-  cover::time_sync::ClockResponder clock_responder(participant, process);
-  cover::time_sync::OffsetMonitor clock_offsets(participant,
-                                                {process, {"cover-uav-agent-*"}, time_sync});
+  // It asks the clocks of the UAV agents that ask its own (those that take its IMU), not
+  // every UAV agent of the fleet.
+  cover::time_sync::OffsetMonitor clock_offsets(participant, {process, {}, time_sync, true});
+  cover::time_sync::ClockResponder clock_responder(
+      participant, process, [&clock_offsets](const std::string& asker) {
+        if (cover::time_sync::peer_matches(asker, {"cover-uav-agent-*"})) {
+          clock_offsets.add_peer(asker.substr(asker.rfind('/') + 1));
+        }
+      });
   ImuPublisher publisher(participant, static_cast<std::uint32_t>(cli.source.ugv_id));
   std::unique_ptr<ImuSource> source;
   try {

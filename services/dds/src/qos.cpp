@@ -38,8 +38,12 @@ QosProfile request_qos() {
   return {"request", Reliability::Reliable, Durability::Volatile, 64, 0.0};
 }
 
+QosProfile exchange_qos() {
+  return {"exchange", Reliability::BestEffort, Durability::Volatile, 64, 0.0};
+}
+
 std::vector<std::string> qos_profile_names() {
-  return {"sensor", "command", "state", "request"};
+  return {"sensor", "command", "state", "request", "exchange"};
 }
 
 QosProfile qos_profile(std::string_view name) {
@@ -47,8 +51,9 @@ QosProfile qos_profile(std::string_view name) {
   if (name == "command") return command_qos();
   if (name == "state") return state_qos();
   if (name == "request") return request_qos();
+  if (name == "exchange") return exchange_qos();
   throw DdsError("unknown QoS profile '" + std::string(name) +
-                 "' (expected sensor, command, state or request)");
+                 "' (expected sensor, command, state, request or exchange)");
 }
 
 }  // namespace cover::dds

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "cover/clock/clock.hpp"
 
 namespace cover::sim_clock {
@@ -17,7 +19,8 @@ std::optional<ClockMode> parse_clock_mode(const std::string& text) {
   return std::nullopt;
 }
 
-AgentClock::AgentClock(dds::Participant& participant, ClockMode mode) : mode_(mode) {
+AgentClock::AgentClock(dds::Participant& participant, ClockMode mode, int uav_id)
+    : mode_(mode), uav_id_(uav_id) {
   if (mode_ == ClockMode::System) return;
   reader_ = participant.make_reader(dds::topics::sim_clock(),
                                     [this](const msg::SimClock& tick) { on_tick(tick); });
@@ -31,6 +34,12 @@ void AgentClock::on_tick(const msg::SimClock& tick) {
     last_tick_monotonic_ns_ = clock::monotonic_ns();
   }
   arrived_.notify_all();
+}
+
+bool AgentClock::awaits_others(const msg::SimClock& tick) const {
+  if (uav_id_ < 0 || tick.awaited.empty()) return false;
+  return std::find(tick.awaited.begin(), tick.awaited.end(), static_cast<std::uint32_t>(uav_id_)) ==
+         tick.awaited.end();
 }
 
 void AgentClock::queue_lockstep(const msg::SimClock& tick) {
@@ -48,6 +57,10 @@ void AgentClock::queue_lockstep(const msg::SimClock& tick) {
     }
   }
   const bool again = last_tick_ && tick.tick == last_tick_->tick;
+  if (again && awaits_others(tick)) {
+    ++not_awaited_;
+    return;
+  }
   // A tick already waiting to be answered needs no second entry.
   if (again && !ticks_.empty() && ticks_.back().tick.tick == tick.tick) return;
   ticks_.push_back({tick, again});
@@ -59,6 +72,11 @@ std::optional<LockstepTick> AgentClock::next_tick(std::chrono::milliseconds time
   LockstepTick tick = ticks_.front();
   ticks_.pop_front();
   return tick;
+}
+
+std::uint64_t AgentClock::not_awaited() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return not_awaited_;
 }
 
 std::optional<double> AgentClock::now_s() const {

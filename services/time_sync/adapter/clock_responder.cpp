@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <random>
+#include <utility>
 
 #include "cover/clock/clock.hpp"
 #include "cover/time_sync/peer_name.hpp"
@@ -12,7 +13,7 @@ namespace cover::time_sync {
 namespace {
 // Peer names are host/process: longer is not a COVER process (and not logged verbatim).
 constexpr std::size_t kMaxNameBytes = 256;
-constexpr std::size_t kMaxAskersLogged = 64;
+constexpr std::size_t kMaxAskers = 256;  // a fleet's processes, with room
 
 std::uint64_t new_session() {
   std::random_device random;
@@ -23,9 +24,11 @@ std::uint64_t new_session() {
 }
 }  // namespace
 
-ClockResponder::ClockResponder(dds::Participant& participant, const std::string& process)
+ClockResponder::ClockResponder(dds::Participant& participant, const std::string& process,
+                               AskerCallback on_new_asker)
     : name_(peer_name(process)),
       session_(new_session()),
+      on_new_asker_(std::move(on_new_asker)),
       writer_(participant.make_writer(dds::topics::time_reply())) {
   const std::int64_t offset_ns = clock::test_clock_offset_ns();
   if (offset_ns != 0) {
@@ -45,6 +48,10 @@ void ClockResponder::on_request(const msg::TimeSyncRequest& request) {
     ++refused_;
     return;
   }
+  if (!peer_matches(name_, request.responders)) {
+    ++not_addressed_;
+    return;
+  }
   msg::TimeSyncReply reply;
   reply.requester = request.requester;
   reply.responder = name_;
@@ -52,12 +59,16 @@ void ClockResponder::on_request(const msg::TimeSyncRequest& request) {
   reply.request_id = request.request_id;
   reply.t1_ns = request.t1_ns;
   reply.t2_ns = t2_ns;
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (askers_.size() < kMaxAskersLogged && askers_.insert(request.requester).second) {
-    spdlog::info("{} asks this process's clock", request.requester);
+  bool new_asker = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    new_asker = askers_.size() < kMaxAskers && askers_.insert(request.requester).second;
+    reply.t3_ns = clock::system_ns();
+    if (writer_.write(reply)) ++answered_;
   }
-  reply.t3_ns = clock::system_ns();
-  if (writer_.write(reply)) ++answered_;
+  if (!new_asker) return;
+  spdlog::info("{} asks this process's clock", request.requester);
+  if (on_new_asker_) on_new_asker_(request.requester);
 }
 
 }  // namespace cover::time_sync

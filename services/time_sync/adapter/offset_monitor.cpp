@@ -67,6 +67,9 @@ void OffsetMonitor::send_request() {
   request.requester = name_;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (options_.peers.empty() && options_.wait_for_peers) return;  // nobody to ask yet
+    request.responders = options_.peers;
+    ++sent_;
     request.request_id = next_request_id_++;
     request.t1_ns = clock::system_ns();
     outstanding_.emplace_back(request.request_id, request.t1_ns);
@@ -78,10 +81,10 @@ void OffsetMonitor::send_request() {
 void OffsetMonitor::on_reply(const msg::TimeSyncReply& reply) {
   const std::int64_t t4_ns = clock::system_ns();
   if (reply.requester != name_) return;  // another process's exchange
-  if (reply.responder.size() > kMaxNameBytes || !peer_matches(reply.responder, options_.peers)) {
-    return;
-  }
+  if (reply.responder.size() > kMaxNameBytes) return;
   std::lock_guard<std::mutex> lock(mutex_);
+  // A reply to a request sent before set_peers dropped its responder.
+  if (!peer_matches(reply.responder, options_.peers)) return;
   bool ours = false;
   for (const auto& [id, t1_ns] : outstanding_) {
     if (id == reply.request_id && t1_ns == reply.t1_ns) ours = true;
@@ -92,10 +95,44 @@ void OffsetMonitor::on_reply(const msg::TimeSyncReply& reply) {
     ++refused_;
     return;
   }
-  if (!peers_.add(reply.responder, reply.responder_session, *sample)) {
-    burst_left_ = options_.params.burst_count;
-    wake_.notify_all();
+  if (!peers_.add(reply.responder, reply.responder_session, *sample)) start_burst_locked();
+}
+
+void OffsetMonitor::start_burst_locked() {
+  burst_left_ = options_.params.burst_count;
+  wake_.notify_all();
+}
+
+void OffsetMonitor::set_peers(std::vector<std::string> peers) {
+  std::vector<std::string> gone;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (peers == options_.peers) return;
+    options_.peers = std::move(peers);
+    gone = peers_.forget_unless(
+        [this](const std::string& peer) { return peer_matches(peer, options_.peers); });
+    start_burst_locked();
   }
+  for (const std::string& peer : gone) spdlog::info("clock of {} no longer asked", peer);
+}
+
+void OffsetMonitor::add_peer(const std::string& process) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const std::string& p : options_.peers) {
+    if (p == process) return;
+  }
+  options_.peers.push_back(process);
+  start_burst_locked();
+}
+
+std::vector<std::string> OffsetMonitor::peers() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return options_.peers;
+}
+
+std::uint64_t OffsetMonitor::requests_sent() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return sent_;
 }
 
 void OffsetMonitor::log_changes(std::int64_t now_ns) {

@@ -35,11 +35,15 @@ struct QosProfile {
 //  state   : reliable, transient-local, keep-last 8 (tasks, task and UAV status,
 //            references: a late joiner gets the latest);
 //  request : reliable, volatile, keep-last 64 (requests to the task manager and its
-//            replies: a burst from several stations is queued, none overwritten).
+//            replies: a burst from several stations is queued, none overwritten);
+//  exchange: best-effort, volatile, keep-last 64 (the clock exchange: a lost request or
+//            reply is a lost sample, as NTP's over UDP; reliable, every one of a fleet's
+//            askers and answerers would heartbeat and acknowledge every other).
 QosProfile sensor_qos();
 QosProfile command_qos();
 QosProfile state_qos();
 QosProfile request_qos();
+QosProfile exchange_qos();
 
 // Looks a profile up by name; throws DdsError listing the known names.
 QosProfile qos_profile(std::string_view name);

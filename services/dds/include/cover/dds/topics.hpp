@@ -70,11 +70,11 @@ inline constexpr std::tuple kCatalog{
                                   "fc_bridge -> ground station",
                                   "the autopilot's answer to one request, by request id"},
     TopicDescriptor<msg::TimeSyncRequest>{
-        "cover/time/request", &request_qos, "1 Hz per asker",
+        "cover/time/request", &exchange_qos, "1 Hz per asker",
         "uav_agent, ugv_agent, task_manager -> sim, agents, fc_bridge",
         "clock request (t1) of the four-timestamp offset exchange (docs/time.md)"},
     TopicDescriptor<msg::TimeSyncReply>{
-        "cover/time/reply", &request_qos, "on request",
+        "cover/time/reply", &exchange_qos, "on request",
         "sim, agents, fc_bridge -> uav_agent, ugv_agent, task_manager",
         "a peer's receive (t2) and send (t3) times for one clock request"},
 };

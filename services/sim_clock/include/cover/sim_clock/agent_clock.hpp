@@ -21,9 +21,11 @@ enum class ClockMode { Lockstep, Realtime, System };
 std::optional<ClockMode> parse_clock_mode(const std::string& text);
 
 // A lockstep tick as the agent takes it. The simulator publishes a tick again until
-// every agent has answered it, so an agent meets the tick it just answered again when
-// its answer was lost (written before its command writer matched the simulator's
-// reader): it then answers again, without stepping twice.
+// every agent has answered it, naming the UAVs whose answers it misses: an agent meets
+// the tick it just answered again when its answer was lost (written before its command
+// writer matched the simulator's reader): it then answers again, without stepping twice.
+// A tick published again for other UAVs is not given to it at all (its answer arrived:
+// writing it again would only add to what the simulator must read).
 struct LockstepTick {
   msg::SimClock tick;
   bool answered_before = false;
@@ -31,7 +33,8 @@ struct LockstepTick {
 
 class AgentClock {
  public:
-  AgentClock(dds::Participant& participant, ClockMode mode);
+  // `uav_id`: the UAV whose agent this is, -1: none (every tick published again is taken).
+  AgentClock(dds::Participant& participant, ClockMode mode, int uav_id = -1);
 
   ClockMode mode() const { return mode_; }
   // Lockstep: the next tick to act on (a new one, or the last one published again),
@@ -40,12 +43,18 @@ class AgentClock {
   // Now on the clock the measurements are stamped with, s; nullopt before the simulator's
   // first tick (realtime) .
   std::optional<double> now_s() const;
+  // Ticks published again for other UAVs only, not taken.
+  std::uint64_t not_awaited() const;
 
  private:
   void on_tick(const msg::SimClock& tick);
   void queue_lockstep(const msg::SimClock& tick);  // mutex_ held
+  // A tick published again that names other UAVs' answers as missing, not this one's.
+  bool awaits_others(const msg::SimClock& tick) const;
 
   ClockMode mode_;
+  int uav_id_;
+  std::uint64_t not_awaited_ = 0;
   mutable std::mutex mutex_;
   std::condition_variable arrived_;
   std::deque<LockstepTick> ticks_;

@@ -27,6 +27,20 @@ class PeerOffsets {
   bool add(const std::string& peer, std::uint64_t session, const OffsetSample& sample);
   // Forgets peers silent at `now_ns`; returns their names.
   std::vector<std::string> forget_silent(std::int64_t now_ns);
+  // Forgets the peers `keep` says no to (no longer asked); returns their names.
+  template <typename Keep>
+  std::vector<std::string> forget_unless(Keep keep) {
+    std::vector<std::string> gone;
+    for (auto it = peers_.begin(); it != peers_.end();) {
+      if (keep(it->first)) {
+        ++it;
+      } else {
+        gone.push_back(it->first);
+        it = peers_.erase(it);
+      }
+    }
+    return gone;
+  }
 
   // Every known peer's estimate at `now_ns`, by name.
   std::vector<PeerOffset> all(std::int64_t now_ns) const;
