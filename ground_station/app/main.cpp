@@ -17,6 +17,7 @@
 #include "cover/dds/dds_error.hpp"
 #include "cover/dds/vendor.hpp"
 #include "cover/ground_station/access.hpp"
+#include "cover/shm/segment_name.hpp"
 #include "cover/startup/startup.hpp"
 #include "station.hpp"
 
@@ -36,6 +37,7 @@ struct CommandLine {
   std::string token_file;
   std::string web_dir;
   std::string record_dir = ".";
+  std::string sim_run_id = "default";
   double state_rate_hz = 10.0;
   int max_clients = 16;
   int client_queue_kib = 1024;
@@ -95,6 +97,10 @@ void add_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--web-dir", cli.web_dir, "the page's files (default: web/ of the build folder)");
   app.add_option("--record-dir", cli.record_dir, "folder of the recordings started from the page")
       ->capture_default_str();
+  app.add_option("--run-id", cli.sim_run_id,
+                 "the simulator run whose world poses give the page its world frame (segment "
+                 "/cover_sim_d<domain>_<run-id> on this host, as the UGV agents')")
+      ->capture_default_str();
   app.add_option("--state-rate-hz", cli.state_rate_hz,
                  "rate of the page's fleet, task and plot rows")
       ->check(CLI::Range(1.0, 50.0))
@@ -116,6 +122,11 @@ void add_options(CLI::App& app, CommandLine& cli) {
 }
 
 void check_flags(const CLI::App&, const CommandLine& cli) {
+  try {
+    cover::shm::segment_name(0, cli.sim_run_id);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("--run-id", e.what());
+  }
   if (!gs::is_loopback(cli.bind) && cli.token_file.empty()) {
     throw CLI::ValidationError("--bind " + cli.bind,
                                "any address but loopback needs --token-file: every request "
@@ -148,6 +159,8 @@ int serve(const CommandLine& cli) {
   }
   const auto dds = cli.dds.resolve("cover-ground-station");
   options.record_argv = recorder_argv(cli, dds);
+  options.dds_domain = dds.domain_id;
+  options.sim_run_id = cli.sim_run_id;
   cover::dds::Participant participant(dds);
   std::unique_ptr<gs::Station> station;
   try {

@@ -59,7 +59,8 @@ msg::FcCommandKind fc_kind(FcCommand c) {
 Station::Station(dds::Participant& participant, StationOptions options)
     : participant_(participant),
       options_(std::move(options)),
-      listener_(participant, options_.fleet, options_.manager_query_period_s) {
+      listener_(participant, options_.fleet, options_.manager_query_period_s),
+      world_(options_.dds_domain, options_.sim_run_id) {
   for (std::uint32_t u = 0; u < options_.fleet.uavs; ++u) {
     command_readers_.push_back(
         participant.make_reader(dds::topics::uav_command(u), [this, u](const msg::UavCommand& c) {
@@ -297,6 +298,7 @@ Json Station::state_json() {
     state["manager"] = manager_note_;
   }
   state["live"] = live_json();
+  state["world"] = world_.json();
   {
     std::lock_guard<std::mutex> lock(record_mutex_);
     if (recorder_ && recorder_->wait(0ms)) recorder_.reset();

@@ -20,6 +20,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/recording/fleet_topics.hpp"
 #include "fleet_listener.hpp"
+#include "sim_world.hpp"
 
 namespace cover::ground_station {
 
@@ -31,6 +32,8 @@ struct StationOptions {
   double command_timeout_s = 5.0;        // a task manager's or an autopilot's answer
   std::vector<std::string> record_argv;  // `cover record` and its DDS flags (-o is added)
   std::string record_dir = ".";
+  int dds_domain = 0;  // with sim_run_id: the simulator's world segment
+  std::string sim_run_id = "default";
 };
 
 // The adapter between the page's API and the fleet: the fleet as `cover fleet` hears it,
@@ -73,6 +76,7 @@ class Station {
   dds::Participant& participant_;
   StationOptions options_;
   cli::FleetListener listener_;
+  SimWorld world_;  // read by run()'s thread only
 
   std::mutex live_mutex_;
   std::map<std::uint32_t, Live> live_;

@@ -1,0 +1,81 @@
+// The recorder and the 3D view's frames from the page, against the running system
+// browser_test.cpp started (the simulator's standing world in real time, both UGV agents,
+// the UAV agent, the station reading the simulator's world): start a recording, see its file and its size
+// grow, stop it (the test then reads the file as MCAP); the world frame and each UGV's
+// frame drawn, switching frames changes the picture. Prints "recording <file>" for the test.
+//   GS_URL=... SCREENSHOTS=DIR CHROMIUM=... WEB_DIR=<source>/web node recorder_view_test.mjs
+import { canvasPixels, run, s, until, waitForDrawnCanvas, waitForRows } from "./harness.mjs";
+
+// The fraction of two pictures' 16x16 cells whose mean brightness differs by more than 4 of
+// 255: the vehicles and the grid are a few percent of the canvas, most of it background.
+function difference(a, b) {
+  let changed = 0;
+  for (let i = 0; i < a.cells.length; ++i) if (Math.abs(a.cells[i] - b.cells[i]) > 4) changed++;
+  return changed / a.cells.length;
+}
+
+await run(async ({ page, shot, ok, step }) => {
+  let now;
+  step((now = "rows listed"));
+  await page.goto(process.env.GS_URL, { timeout: s(30000) });
+  await waitForRows(page, ["sim", "ugv-agent", "uav-agent"]);
+  ok(now);
+
+  step((now = "recording started from the page, its file shown and its size growing"));
+  const status = page.locator("#rec-status");
+  await page.click("#rec-start");
+  await page.waitForSelector('#rec-status[data-running="true"]', { timeout: s(30000) });
+  const file = await status.getAttribute("data-file");
+  if (!file.endsWith(".mcap")) throw new Error(`no recording file shown: ${await status.textContent()}`);
+  const sizes = [];
+  await until(page, () => {
+    const el = document.querySelector("#rec-status");
+    const bytes = Number(el.dataset.bytes);
+    window.__recSizes = [...new Set([...(window.__recSizes ?? []), bytes])].filter((b) => b > 0);
+    return el.textContent.includes(el.dataset.file) && window.__recSizes.length >= 3;
+  }, null, s(60000), "the recording's size growing (3 sizes)");
+  sizes.push(...(await page.evaluate(() => window.__recSizes)));
+  await shot("recording");
+  ok(`${now}: ${file}, sizes seen ${sizes.join(" ")} bytes`);
+
+  step((now = "recording stopped from the page"));
+  await page.click("#rec-stop");
+  await page.waitForSelector('#rec-status[data-running="false"]', { timeout: s(30000) });
+  await page.locator("#rec-status").filter({ hasText: /^stopped: / }).waitFor({ timeout: s(30000) });
+  await shot("recording-stopped");
+  console.log(`recording ${file}`);
+  ok(`${now}: ${await status.textContent()}`);
+
+  step((now = "the world frame offered and drawn"));
+  await page.waitForSelector('#frame option[value="world"]', { state: "attached", timeout: s(30000) });
+  await page.selectOption("#frame", "world");
+  const world = await waitForDrawnCanvas(page, s(30000));
+  await shot("view3d-world", page.locator("#view3d"));
+  // What the world's own motion changes between two pictures of one frame: the frame switch
+  // must change much more than that.
+  await page.waitForTimeout(600);
+  const motion = difference(world, await canvasPixels(page));
+  ok(`${now}: ${(100 * world.fraction).toFixed(1)} % of its pixels drawn, ${world.colors} colours, ` +
+     `motion alone changes ${(100 * motion).toFixed(1)} % of its cells`);
+
+  step((now = "switching to UGV 1's frame changes the picture"));
+  await page.selectOption("#frame", "ugv:1");
+  const deadline = Date.now() + s(30000);
+  let ugv;
+  let diff = 0;
+  // The new frame is drawn within a draw period (0.2 s) of the choice.
+  for (;;) {
+    ugv = await canvasPixels(page);
+    diff = difference(world, ugv);
+    if (diff > Math.max(0.02, 3 * motion) && ugv.fraction > 0.01) break;
+    if (Date.now() > deadline) throw new Error(`the picture did not change: ${(100 * diff).toFixed(1)} % of its cells`);
+    await page.waitForTimeout(200);
+  }
+  await shot("view3d-ugv1", page.locator("#view3d"));
+  ok(`${now}: ${(100 * diff).toFixed(1)} % of its cells changed, ${(100 * ugv.fraction).toFixed(1)} % drawn`);
+
+  step((now = "back to the world frame"));
+  await page.selectOption("#frame", "world");
+  const back = await waitForDrawnCanvas(page, s(30000));
+  ok(`${now}: ${(100 * back.fraction).toFixed(1)} % drawn`);
+});

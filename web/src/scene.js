@@ -1,0 +1,169 @@
+// The page's 3D view: UGVs with their decks, UAVs and their reference paths on a grid, in
+// the world frame or a chosen UGV's frame G_k (x forward, z up).
+// With a simulator on the station's host the station sends its world poses ("world"): every
+// vehicle is placed in the world, and a UGV's frame is the world seen from that UGV. A real
+// fleet has no world truth: the UGV frames only, each UAV where its relative state puts it.
+import * as THREE from "three";
+
+const kBackground = 0x0d1117;
+const kDeckColor = 0x2e7d32;
+const kFrameDeckColor = 0x66bb6a;  // the deck of the UGV whose frame is shown
+const kUavColor = 0xffa726;
+const kPathColor = 0x58a6ff;
+const kGridSizeM = 100;           // 1 m cells: a scenario's UGVs stay within it
+const kCameraOffset = new THREE.Vector3(-4, -5, 3.5);
+// Drawn when the state changes (the station's rate), not every animation frame, and at most
+// 5 frames a second: software WebGL (SwiftShader, no GPU) takes ~0.1 s a frame, and the page
+// must leave the ground station's computer to the fleet.
+const kDrawPeriodMs = 200;
+
+// The pose of UGV k in the world (its frame G_k): translation, then yaw about z.
+function ugvMatrix(ugv) {
+  const [x, y, z] = ugv.position_m;
+  return new THREE.Matrix4().makeRotationZ(ugv.yaw_rad).setPosition(x, y, z);
+}
+
+export function createScene(canvas, select) {
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(kBackground);
+  const camera = new THREE.PerspectiveCamera(50, canvas.width / canvas.height, 0.05, 400);
+  camera.up.set(0, 0, 1);
+  const grid = new THREE.GridHelper(kGridSizeM, kGridSizeM, 0x3d4a57, 0x26303a);
+  grid.rotation.x = Math.PI / 2;
+  const sun = new THREE.DirectionalLight(0xffffff, 0.9);
+  sun.position.set(3, -2, 6);
+  // `root` holds the vehicles in world coordinates (or G_k's without a world); its matrix
+  // takes them into the shown frame.
+  const root = new THREE.Group();
+  root.matrixAutoUpdate = false;
+  scene.add(grid, new THREE.AxesHelper(1), new THREE.AmbientLight(0xffffff, 0.6), sun, root);
+
+  const decks = {};
+  const uavs = {};
+  const paths = {};
+  let frame = "world";
+  let last = null;
+
+  function deck(k) {
+    if (!decks[k]) {
+      decks[k] = new THREE.Mesh(new THREE.BoxGeometry(1.0, 0.8, 0.1),
+        new THREE.MeshLambertMaterial({ color: kDeckColor }));
+      decks[k].matrixAutoUpdate = false;
+      root.add(decks[k]);
+    }
+    return decks[k];
+  }
+  function uav(u) {
+    if (!uavs[u]) {
+      uavs[u] = new THREE.Mesh(new THREE.SphereGeometry(0.15, 16, 12),
+        new THREE.MeshLambertMaterial({ color: kUavColor }));
+      root.add(uavs[u]);
+    }
+    return uavs[u];
+  }
+  function setPath(u, points, matrix) {
+    if (paths[u]) { root.remove(paths[u]); paths[u].geometry.dispose(); delete paths[u]; }
+    if (!points) return;
+    const g = new THREE.BufferGeometry().setFromPoints(
+      points.map((q) => new THREE.Vector3(q[0], q[1], q[2]).applyMatrix4(matrix)));
+    paths[u] = new THREE.Line(g, new THREE.LineBasicMaterial({ color: kPathColor }));
+    root.add(paths[u]);
+  }
+  // The deck's top is G_k's z = 0, where a UAV lands.
+  function placeDeck(k, matrix) {
+    const d = deck(k);
+    d.matrix.copy(matrix).multiply(new THREE.Matrix4().makeTranslation(0, 0, -0.05));
+    d.material.color.setHex(frame === `ugv:${k}` ? kFrameDeckColor : kDeckColor);
+    d.visible = true;
+  }
+
+  // Everything in world coordinates; the shown frame is the world or G_k.
+  function placeInWorld(live, world) {
+    const poses = world.ugvs.map(ugvMatrix);
+    poses.forEach((m, k) => placeDeck(k, m));
+    world.uavs.forEach((s, u) => uav(u).position.set(...s.position_m));
+    for (const u in uavs) uavs[u].visible = u < world.uavs.length;
+    for (const [u, l] of Object.entries(live ?? {})) {
+      const ref = l.reference;
+      setPath(u, ref && poses[ref.ugv] ? ref.points : null, poses[ref?.ugv] ?? new THREE.Matrix4());
+    }
+    const k = frame.startsWith("ugv:") ? Number(frame.slice(4)) : -1;
+    if (poses[k]) {
+      root.matrix.copy(poses[k]).invert();
+      return { target: new THREE.Vector3(0, 0, 0.5), distance: 1 };
+    }
+    root.matrix.identity();
+    // The world seen from above the fleet's middle, far enough back to hold every vehicle.
+    const box = new THREE.Box3();
+    for (const m of poses) box.expandByPoint(new THREE.Vector3().setFromMatrixPosition(m));
+    for (const s of world.uavs) box.expandByPoint(new THREE.Vector3(...s.position_m));
+    const target = box.isEmpty() ? new THREE.Vector3() : box.getCenter(new THREE.Vector3());
+    const extent = box.isEmpty() ? 0 : box.getSize(new THREE.Vector3()).length();
+    return { target, distance: Math.max(1.5, extent / 5) };
+  }
+
+  // No world: G_k's own view, its deck at the origin and each UAV by its relative state.
+  function placeInUgvFrame(live) {
+    root.matrix.identity();
+    const k = Number(frame.slice(4));
+    for (const j in decks) decks[j].visible = false;
+    placeDeck(k, new THREE.Matrix4());
+    for (const [u, l] of Object.entries(live ?? {})) {
+      const p = l.relative?.[String(k)];
+      uav(u).visible = !!p;
+      if (p) uavs[u].position.set(p[0], p[1], p[2]);
+      setPath(u, l.reference && l.reference.ugv === k ? l.reference.points : null, new THREE.Matrix4());
+    }
+    return { target: new THREE.Vector3(0, 0, 0.5), distance: 1 };
+  }
+
+  function offerFrames(ugvIds, hasWorld) {
+    const values = [...(hasWorld ? ["world"] : []), ...ugvIds.map((k) => `ugv:${k}`)];
+    if ([...select.options].map((o) => o.value).join() !== values.join()) {
+      select.innerHTML = values.map((v) =>
+        `<option value="${v}">${v === "world" ? "world frame" : `frame of UGV ${v.slice(4)}`}</option>`).join("");
+    }
+    if (!values.includes(frame) && values.length) frame = values[0];
+    select.value = frame;
+  }
+
+  function place() {
+    if (!last) return;
+    const { live, fleet, world } = last;
+    const ugvIds = world ? world.ugvs.map((_, k) => k)
+      : fleet.filter((r) => r.kind === "ugv-agent" && r.id !== null).map((r) => r.id);
+    offerFrames(ugvIds, !!world);
+    if (!world && !frame.startsWith("ugv:")) return;
+    const view = world ? placeInWorld(live, world) : placeInUgvFrame(live);
+    root.matrixWorldNeedsUpdate = true;
+    grid.position.set(Math.round(view.target.x), Math.round(view.target.y), 0);
+    camera.position.copy(view.target).addScaledVector(kCameraOffset, view.distance);
+    camera.lookAt(view.target);
+  }
+
+  let drawPending = false;
+  let lastDrawMs = 0;
+  function draw() {
+    if (drawPending) return;
+    drawPending = true;
+    setTimeout(() => requestAnimationFrame(() => {
+      drawPending = false;
+      lastDrawMs = performance.now();
+      place();
+      renderer.render(scene, camera);
+    }), Math.max(0, lastDrawMs + kDrawPeriodMs - performance.now()));
+  }
+
+  select.onchange = (e) => { frame = e.target.value; draw(); };
+  camera.position.copy(kCameraOffset);
+  camera.lookAt(0, 0, 0.5);
+  draw();
+  return {
+    update(live, fleet, world) {
+      last = { live, fleet, world };
+      draw();
+    },
+    frame: () => frame,
+  };
+}
