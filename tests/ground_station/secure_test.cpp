@@ -2,10 +2,11 @@
 // (`cover security init`): the simulator with a simulated PX4, both UGV agents, the UAV
 // agent, the flight-controller bridge and the task manager, each with its own identity.
 //  - The station as ground-station-0 reads the fleet, submits a task, and arms the UAV.
-//  - A station whose identity may read everything a ground station reads but not publish
-//    cover/fc/request (ground-station-1's permissions narrowed and re-signed by the fleet's
-//    own CA: a viewer's station) reads the fleet too, and its arm is refused: the
-//    autopilot stays disarmed until ground-station-0 arms it.
+//  - A station whose identity may read everything a ground station reads but publish
+//    nothing that moves a vehicle (ground-station-1's permissions narrowed and re-signed by
+//    the fleet's own CA: a viewer's station) reads the fleet too; its arm and its task are
+//    refused: the autopilot stays disarmed until ground-station-0 arms it, the task manager
+//    lists only ground-station-0's task.
 // The stations' API through a bare WebSocket (raw_ws.hpp).
 #include <gtest/gtest.h>
 
@@ -57,19 +58,30 @@ fs::path make_fleet() {
   return init.wait(scaled(60000ms)).value_or(-1) == 0 ? dir : fs::path();
 }
 
-// ground-station-1 without cover/fc/request among what it may publish, signed again by the
-// fleet's CA: a valid identity of the fleet that may not command an autopilot.
+// ground-station-1 without what moves a vehicle among what it may publish
+// (cover/fc/request: arm, offboard, land, disarm; cover/manager/request: submit, abort;
+// cover/task/abort), signed again by the fleet's CA: a valid identity of the fleet, a
+// viewer's station.
 void narrow_to_viewer(const fs::path& fleet) {
   const fs::path identity = fleet / "identities" / "ground-station-1";
   std::string xml = read_text(identity / "permissions.xml");
-  const std::string grant = "<topic>cover/fc/request</topic>";
   const auto publish = xml.find("<publish>");
-  const auto at = xml.find(grant, publish);
   ASSERT_NE(publish, std::string::npos) << xml;
-  ASSERT_NE(at, std::string::npos) << xml;
-  ASSERT_LT(at, xml.find("</publish>", publish)) << "cover/fc/request is not published by it";
-  xml.erase(at, grant.size());
-  ASSERT_EQ(xml.find(grant, publish), std::string::npos) << "granted twice";
+  for (const std::string topic :
+       {"cover/fc/request", "cover/manager/request", "cover/task/abort"}) {
+    const std::string grant = "<topic>" + topic + "</topic>";
+    const auto at = xml.find(grant, publish);
+    ASSERT_NE(at, std::string::npos) << topic << " not granted: " << xml;
+    ASSERT_LT(at, xml.find("</publish>", publish)) << topic << " is not published by it";
+    xml.erase(at, grant.size());
+    ASSERT_EQ(xml.find(grant, publish), std::string::npos) << topic << " granted twice";
+  }
+  // Nothing left to publish: no <publish> rule at all (an empty <topics> is not valid XML
+  // of the permissions schema).
+  const auto end = xml.find("</publish>", publish) + std::string("</publish>").size();
+  if (xml.substr(publish, end - publish).find("<topic>") == std::string::npos) {
+    xml.erase(publish, end - publish);
+  }
   std::ofstream(identity / "permissions.xml") << xml;
   const std::string command =
       "openssl smime -sign -in '" + (identity / "permissions.xml").string() + "' -text -out '" +
@@ -146,8 +158,9 @@ class StationClient {
   bool connected_ = false;
 };
 
-// The fleet's rows a page lists: every process of the system, not stale.
-bool lists_the_fleet(const Json& state) {
+// The fleet's rows a page lists: every process of the system, not stale (the task
+// manager's row comes from its answers: a station that may not ask it has none).
+int fresh_rows(const Json& state) {
   int fresh = 0;
   for (const auto& row : state["fleet"]) {
     if (row.value("stale", true)) continue;
@@ -156,7 +169,13 @@ bool lists_the_fleet(const Json& state) {
         kind == "task-manager")
       ++fresh;
   }
-  return fresh == 6;  // two UGV agents
+  return fresh;
+}
+bool lists_the_fleet(const Json& state) {
+  return fresh_rows(state) == 6;  // two UGV agents
+}
+bool lists_the_vehicles(const Json& state) {
+  return fresh_rows(state) == 5;  // all but the task manager
 }
 
 // UAV 0's autopilot armed, as its bridge's row reports it; nullopt without the row.
@@ -224,27 +243,21 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
   ASSERT_TRUE(operator_station.connected()) << cover::test::scratch_path("station0.log");
   ASSERT_TRUE(viewer_station.connected()) << cover::test::scratch_path("station1.log");
 
-  // Both read the whole fleet through the handshake and their read permissions.
+  // Both read the fleet through the handshake and their read permissions; the viewer's page
+  // says why it has no task list.
   EXPECT_TRUE(operator_station.wait_for(lists_the_fleet, 90000ms))
       << operator_station.state(scaled(2000ms)).dump(1);
-  EXPECT_TRUE(viewer_station.wait_for(lists_the_fleet, 90000ms))
+  EXPECT_TRUE(viewer_station.wait_for(lists_the_vehicles, 90000ms))
+      << viewer_station.state(scaled(2000ms)).dump(1);
+  EXPECT_TRUE(viewer_station.wait_for(
+      [](const Json& s) {
+        return s.value("manager", "").find("cover/manager/request") != std::string::npos;
+      },
+      10000ms))
       << viewer_station.state(scaled(2000ms)).dump(1);
   ASSERT_TRUE(operator_station.wait_for([](const Json& s) { return armed(s) == false; }, 30000ms))
       << "no disarmed autopilot to start from";
 
-  // The viewer's arm: its participant may not write cover/fc/request, so the request is
-  // refused before it leaves; the autopilot stays disarmed.
-  const Json refused =
-      viewer_station.call({{"op", "fc"}, {"id", "v1"}, {"uav_id", 0}, {"command", "arm"}});
-  ASSERT_TRUE(refused.is_object()) << "no reply to the viewer's arm";
-  EXPECT_FALSE(refused["ok"].get<bool>()) << refused;
-  std::cout << "viewer's arm: " << refused["message"].get<std::string>() << std::endl;
-  // Armed would show within a state row or two (10 Hz) of an accepted arm: 3 s of rows
-  // (scaled) with the autopilot disarmed in each.
-  EXPECT_FALSE(operator_station.wait_for([](const Json& s) { return armed(s) == true; }, 3000ms))
-      << "the viewer's arm reached the autopilot";
-
-  // The operator's station, as ground-station-0: a task submitted, then the arm accepted.
   const Json task = {{"task_id", "secure-1"},
                      {"uav_id", 0},
                      {"processes",
@@ -256,17 +269,41 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
                         {"final_action", "land"},
                         {"vmax_m_s", 1.0},
                         {"amax_m_s2", 2.0}}}}};
+  Json viewer_task = task;
+  viewer_task["task_id"] = "viewer-1";
+  // The viewer's arm and submit: its participant may not write cover/fc/request nor
+  // cover/manager/request, so each request is refused before it leaves; the autopilot stays
+  // disarmed, the task manager never hears of the task.
+  const Json refused =
+      viewer_station.call({{"op", "fc"}, {"id", "v1"}, {"uav_id", 0}, {"command", "arm"}});
+  ASSERT_TRUE(refused.is_object()) << "no reply to the viewer's arm";
+  EXPECT_FALSE(refused["ok"].get<bool>()) << refused;
+  std::cout << "viewer's arm: " << refused["message"].get<std::string>() << std::endl;
+  const Json viewer_submit =
+      viewer_station.call({{"op", "submit"}, {"id", "v2"}, {"task", viewer_task}});
+  ASSERT_TRUE(viewer_submit.is_object()) << "no reply to the viewer's submit";
+  EXPECT_FALSE(viewer_submit["ok"].get<bool>()) << viewer_submit;
+  std::cout << "viewer's submit: " << viewer_submit["message"].get<std::string>() << std::endl;
+  // Armed would show within a state row or two (10 Hz) of an accepted arm: 3 s of rows
+  // (scaled) with the autopilot disarmed in each.
+  EXPECT_FALSE(operator_station.wait_for([](const Json& s) { return armed(s) == true; }, 3000ms))
+      << "the viewer's arm reached the autopilot";
+
+  // The operator's station, as ground-station-0: a task submitted, then the arm accepted.
   const Json submitted = operator_station.call({{"op", "submit"}, {"id", "s1"}, {"task", task}});
   ASSERT_TRUE(submitted.is_object()) << "no reply to the submit";
   EXPECT_TRUE(submitted["ok"].get<bool>()) << submitted;
   EXPECT_TRUE(operator_station.wait_for(
       [](const Json& s) {
-        for (const auto& t : s["tasks"])
-          if (t.value("task_id", "") == "secure-1") return true;
-        return false;
+        bool listed = false;
+        for (const auto& t : s["tasks"]) {
+          if (t.value("task_id", "") == "viewer-1") return false;
+          listed = listed || t.value("task_id", "") == "secure-1";
+        }
+        return listed;
       },
       30000ms))
-      << "the task manager does not list the submitted task";
+      << "the task manager does not list the submitted task (or lists the viewer's)";
   const Json arm =
       operator_station.call({{"op", "fc"}, {"id", "a1"}, {"uav_id", 0}, {"command", "arm"}});
   ASSERT_TRUE(arm.is_object()) << "no reply to the operator's arm";
