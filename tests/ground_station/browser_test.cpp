@@ -134,7 +134,8 @@ TEST(GroundStationBrowser, OperatorFliesAbortsArmsLandsAndSeesAKilledAgent) {
   auto manager =
       system.spawn({bin("cover-task-manager"), "--db", cover::test::scratch_path("tasks.db")},
                    "manager", "fastdds");
-  auto station = start_station(system, kDomain);
+  // The simulator's world: the page opens in the world frame (README's screenshot).
+  auto station = start_station(system, kDomain, {"--run-id", system.run_id()});
   ASSERT_FALSE(station.url.empty())
       << "the station printed no address; " << system.log_path("station");
 

@@ -178,6 +178,27 @@ bool lists_the_vehicles(const Json& state) {
   return fresh_rows(state) == 5;  // all but the task manager
 }
 
+// Fast DDS 2.9 can leave a secure pair of participants without data for good on a loaded
+// machine (docs/security.md, known weaknesses: seen here under load average 34, a station
+// hearing the UAV agent and bridge but never the simulator or the UGV agents); what recovers
+// it is a new participant. A station that does not list what `lists` asks within 45 s
+// (scaled) is started once more, and then must within 90 s.
+template <typename Condition>
+std::unique_ptr<StationClient> listing_station(const fs::path& fleet, const std::string& identity,
+                                               Condition lists) {
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const std::string log = identity + "_" + std::to_string(attempt) + ".log";
+    auto station = std::make_unique<StationClient>(fleet, identity, log);
+    if (station->connected() && station->wait_for(lists, attempt == 0 ? 45000ms : 90000ms)) {
+      return station;
+    }
+    std::cout << identity << ": not listing the fleet (" << cover::test::scratch_path(log)
+              << "): " << (attempt == 0 ? "a new participant" : "giving up") << std::endl;
+    if (station->connected()) std::cout << station->state(scaled(2000ms)).dump() << std::endl;
+  }
+  return nullptr;
+}
+
 // UAV 0's autopilot armed, as its bridge's row reports it; nullopt without the row.
 std::optional<bool> armed(const Json& state) {
   for (const auto& row : state["fleet"]) {
@@ -238,17 +259,14 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
                 secure("task-manager"),
             "manager"));
 
-  StationClient operator_station(fleet, "ground-station-0", "station0.log");
-  StationClient viewer_station(fleet, "ground-station-1", "station1.log");
-  ASSERT_TRUE(operator_station.connected()) << cover::test::scratch_path("station0.log");
-  ASSERT_TRUE(viewer_station.connected()) << cover::test::scratch_path("station1.log");
-
   // Both read the fleet through the handshake and their read permissions; the viewer's page
   // says why it has no task list.
-  EXPECT_TRUE(operator_station.wait_for(lists_the_fleet, 90000ms))
-      << operator_station.state(scaled(2000ms)).dump(1);
-  EXPECT_TRUE(viewer_station.wait_for(lists_the_vehicles, 90000ms))
-      << viewer_station.state(scaled(2000ms)).dump(1);
+  const auto operator_ptr = listing_station(fleet, "ground-station-0", lists_the_fleet);
+  ASSERT_NE(operator_ptr, nullptr) << "the operator's station does not list the fleet";
+  const auto viewer_ptr = listing_station(fleet, "ground-station-1", lists_the_vehicles);
+  ASSERT_NE(viewer_ptr, nullptr) << "the viewer's station does not list the vehicles";
+  StationClient& operator_station = *operator_ptr;
+  StationClient& viewer_station = *viewer_ptr;
   EXPECT_TRUE(viewer_station.wait_for(
       [](const Json& s) {
         return s.value("manager", "").find("cover/manager/request") != std::string::npos;

@@ -10,7 +10,7 @@ const kDeckColor = 0x2e7d32;
 const kFrameDeckColor = 0x66bb6a;  // the deck of the UGV whose frame is shown
 const kUavColor = 0xffa726;
 const kPathColor = 0x58a6ff;
-const kGridSizeM = 100;           // 1 m cells: a scenario's UGVs stay within it
+const kGridSizeM = 60;            // 1 m cells, under the view's target; its far part fogged
 const kCameraOffset = new THREE.Vector3(-4, -5, 3.5);
 // Drawn when the state changes (the station's rate), not every animation frame, and at most
 // 5 frames a second: software WebGL (SwiftShader, no GPU) takes ~0.1 s a frame, and the page
@@ -23,14 +23,30 @@ function ugvMatrix(ugv) {
   return new THREE.Matrix4().makeRotationZ(ugv.yaw_rad).setPosition(x, y, z);
 }
 
+// A square grid of 1 m cells in the xy plane, drawn as 2 m pieces: SwiftShader (software
+// WebGL, no GPU) drops whole lines that reach far behind the camera (THREE.GridHelper's lines
+// span the grid), which left a grid of 40 m or more with no lines near the camera.
+function makeGrid(sizeM) {
+  const h = sizeM / 2;
+  const piece = 2;
+  const p = [];
+  for (let k = -h; k <= h; k += 1) {
+    for (let a = -h; a < h; a += piece) p.push(a, k, 0, a + piece, k, 0, k, a, 0, k, a + piece, 0);
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute("position", new THREE.Float32BufferAttribute(p, 3));
+  return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0x3a4654 }));
+}
+
 export function createScene(canvas, select) {
   const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(kBackground);
+  // The grid fades out past the vehicles (its far edge would draw a band along the horizon).
+  scene.fog = new THREE.Fog(kBackground, 10, 25);
   const camera = new THREE.PerspectiveCamera(50, canvas.width / canvas.height, 0.05, 400);
   camera.up.set(0, 0, 1);
-  const grid = new THREE.GridHelper(kGridSizeM, kGridSizeM, 0x3d4a57, 0x26303a);
-  grid.rotation.x = Math.PI / 2;
+  const grid = makeGrid(kGridSizeM);
   const sun = new THREE.DirectionalLight(0xffffff, 0.9);
   sun.position.set(3, -2, 6);
   // `root` holds the vehicles in world coordinates (or G_k's without a world); its matrix
@@ -99,8 +115,12 @@ export function createScene(canvas, select) {
     for (const m of poses) box.expandByPoint(new THREE.Vector3().setFromMatrixPosition(m));
     for (const s of world.uavs) box.expandByPoint(new THREE.Vector3(...s.position_m));
     const target = box.isEmpty() ? new THREE.Vector3() : box.getCenter(new THREE.Vector3());
+    // Whole metres: the camera steps with the fleet a grid cell at a time, so the grid stands
+    // still on the screen and only the vehicles move (a frame redrawn 5 times a second).
+    target.set(Math.round(target.x), Math.round(target.y), 0.5);
     const extent = box.isEmpty() ? 0 : box.getSize(new THREE.Vector3()).length();
-    return { target, distance: Math.max(1.5, extent / 5) };
+    // Stepped too (halves of the camera offset): a picture changes when the fleet does.
+    return { target, distance: Math.max(1, Math.ceil(extent / 3) / 2) };
   }
 
   // No world: G_k's own view, its deck at the origin and each UAV by its relative state.
@@ -137,8 +157,11 @@ export function createScene(canvas, select) {
     if (!world && !frame.startsWith("ugv:")) return;
     const view = world ? placeInWorld(live, world) : placeInUgvFrame(live);
     root.matrixWorldNeedsUpdate = true;
-    grid.position.set(Math.round(view.target.x), Math.round(view.target.y), 0);
+    // Moved by whole 10 m: its 1 m lines stay where they are in the shown frame.
+    grid.position.set(10 * Math.round(view.target.x / 10), 10 * Math.round(view.target.y / 10), 0);
     camera.position.copy(view.target).addScaledVector(kCameraOffset, view.distance);
+    scene.fog.near = 1.5 * kCameraOffset.length() * view.distance;
+    scene.fog.far = scene.fog.near + 25;
     camera.lookAt(view.target);
   }
 

@@ -101,36 +101,46 @@ export async function waitForRows(page, kinds, ugvs = 2) {
     ugvs, s(30000), `${ugvs} UGV agents' rows`);
 }
 
-// The 3D canvas's pixels, read in the page: the fraction not background, the number of
-// colours, and a coarse fingerprint (mean colour per 16x16 cell) to compare two pictures.
-export function canvasPixels(page) {
-  return page.evaluate(() => {
+// The 3D canvas's pixels, read in the page: the fraction not background and the number of
+// colours; kept in the page under `name` (if given) for pixelDifference.
+export function canvasPixels(page, name = "") {
+  return page.evaluate((name) => {
     const c = document.querySelector("#view3d");
     const copy = document.createElement("canvas");
     copy.width = c.width; copy.height = c.height;
     const g = copy.getContext("2d");
     g.drawImage(c, 0, 0);
     const px = g.getImageData(0, 0, c.width, c.height).data;
+    if (name) (window.__snapshots ??= {})[name] = px;
     let lit = 0;
     const colors = new Set();
-    const cell = 16;
-    const cols = Math.ceil(c.width / cell);
-    const cells = new Array(cols * Math.ceil(c.height / cell)).fill(0);
     for (let i = 0; i < px.length; i += 4) {
       if (Math.abs(px[i] - 13) + Math.abs(px[i + 1] - 17) + Math.abs(px[i + 2] - 23) > 30) lit++;
       colors.add((px[i] << 16) | (px[i + 1] << 8) | px[i + 2]);
-      const p = i / 4;
-      cells[Math.floor(p / c.width / cell) * cols + Math.floor((p % c.width) / cell)] += px[i] + px[i + 1] + px[i + 2];
     }
-    return { fraction: lit / (c.width * c.height), colors: colors.size, cells: cells.map((v) => v / (3 * cell * cell)) };
-  });
+    return { fraction: lit / (c.width * c.height), colors: colors.size };
+  }, name);
+}
+
+// The fraction of pixels that differ (by more than 48 over the three channels) between two
+// pictures kept by canvasPixels.
+export function pixelDifference(page, a, b) {
+  return page.evaluate(([a, b]) => {
+    const p = window.__snapshots[a];
+    const q = window.__snapshots[b];
+    let changed = 0;
+    for (let i = 0; i < p.length; i += 4) {
+      if (Math.abs(p[i] - q[i]) + Math.abs(p[i + 1] - q[i + 1]) + Math.abs(p[i + 2] - q[i + 2]) > 48) changed++;
+    }
+    return changed / (p.length / 4);
+  }, [a, b]);
 }
 
 // Waits until the canvas is drawn: more than 1 % of its pixels off the background, > 8 colours.
-export async function waitForDrawnCanvas(page, timeoutMs) {
+export async function waitForDrawnCanvas(page, timeoutMs, name = "") {
   const deadline = Date.now() + timeoutMs;
   for (;;) {
-    const p = await canvasPixels(page);
+    const p = await canvasPixels(page, name);
     if (p.fraction > 0.01 && p.colors > 8) return p;
     if (Date.now() > deadline) throw new Error(`canvas blank: ${(100 * p.fraction).toFixed(2)} % drawn, ${p.colors} colours`);
     await page.waitForTimeout(200);

@@ -4,15 +4,7 @@
 // grow, stop it (the test then reads the file as MCAP); the world frame and each UGV's
 // frame drawn, switching frames changes the picture. Prints "recording <file>" for the test.
 //   GS_URL=... SCREENSHOTS=DIR CHROMIUM=... WEB_DIR=<source>/web node recorder_view_test.mjs
-import { canvasPixels, run, s, until, waitForDrawnCanvas, waitForRows } from "./harness.mjs";
-
-// The fraction of two pictures' 16x16 cells whose mean brightness differs by more than 4 of
-// 255: the vehicles and the grid are a few percent of the canvas, most of it background.
-function difference(a, b) {
-  let changed = 0;
-  for (let i = 0; i < a.cells.length; ++i) if (Math.abs(a.cells[i] - b.cells[i]) > 4) changed++;
-  return changed / a.cells.length;
-}
+import { canvasPixels, pixelDifference, run, s, until, waitForDrawnCanvas, waitForRows } from "./harness.mjs";
 
 await run(async ({ page, shot, ok, step }) => {
   let now;
@@ -49,14 +41,15 @@ await run(async ({ page, shot, ok, step }) => {
   step((now = "the world frame offered and drawn"));
   await page.waitForSelector('#frame option[value="world"]', { state: "attached", timeout: s(30000) });
   await page.selectOption("#frame", "world");
-  const world = await waitForDrawnCanvas(page, s(30000));
+  const world = await waitForDrawnCanvas(page, s(30000), "world");
   await shot("view3d-world", page.locator("#view3d"));
   // What the world's own motion changes between two pictures of one frame: the frame switch
   // must change much more than that.
   await page.waitForTimeout(600);
-  const motion = difference(world, await canvasPixels(page));
+  await canvasPixels(page, "world-later");
+  const motion = await pixelDifference(page, "world", "world-later");
   ok(`${now}: ${(100 * world.fraction).toFixed(1)} % of its pixels drawn, ${world.colors} colours, ` +
-     `motion alone changes ${(100 * motion).toFixed(1)} % of its cells`);
+     `motion alone changes ${(100 * motion).toFixed(1)} % of its pixels`);
 
   step((now = "switching to UGV 1's frame changes the picture"));
   await page.selectOption("#frame", "ugv:1");
@@ -65,14 +58,14 @@ await run(async ({ page, shot, ok, step }) => {
   let diff = 0;
   // The new frame is drawn within a draw period (0.2 s) of the choice.
   for (;;) {
-    ugv = await canvasPixels(page);
-    diff = difference(world, ugv);
+    ugv = await canvasPixels(page, "ugv");
+    diff = await pixelDifference(page, "world", "ugv");
     if (diff > Math.max(0.02, 3 * motion) && ugv.fraction > 0.01) break;
-    if (Date.now() > deadline) throw new Error(`the picture did not change: ${(100 * diff).toFixed(1)} % of its cells`);
+    if (Date.now() > deadline) throw new Error(`the picture did not change: ${(100 * diff).toFixed(1)} % of its pixels`);
     await page.waitForTimeout(200);
   }
   await shot("view3d-ugv1", page.locator("#view3d"));
-  ok(`${now}: ${(100 * diff).toFixed(1)} % of its cells changed, ${(100 * ugv.fraction).toFixed(1)} % drawn`);
+  ok(`${now}: ${(100 * diff).toFixed(1)} % of its pixels changed, ${(100 * ugv.fraction).toFixed(1)} % drawn`);
 
   step((now = "back to the world frame"));
   await page.selectOption("#frame", "world");
