@@ -253,19 +253,20 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
                                                            "--ugv-count", "2", "--fc-bridge"} +
                                       secure("uav-agent-0"),
                                   "uav"));
-  fleet_processes.push_back(
-      spawn(std::vector<std::string>{bin("cover-task-manager"), "--uavs", "1", "--ugvs", "2",
-                                     "--db", cover::test::scratch_path("tasks.db")} +
-                secure("task-manager"),
-            "manager"));
+  const auto start_manager = [&](const std::string& log) {
+    return spawn(std::vector<std::string>{bin("cover-task-manager"), "--uavs", "1", "--ugvs", "2",
+                                          "--db", cover::test::scratch_path("tasks.db")} +
+                     secure("task-manager"),
+                 log);
+  };
+  fleet_processes.push_back(start_manager("manager"));
 
   // Both read the fleet through the handshake and their read permissions; the viewer's page
   // says why it has no task list.
-  const auto operator_ptr = listing_station(fleet, "ground-station-0", lists_the_fleet);
+  auto operator_ptr = listing_station(fleet, "ground-station-0", lists_the_fleet);
   ASSERT_NE(operator_ptr, nullptr) << "the operator's station does not list the fleet";
   const auto viewer_ptr = listing_station(fleet, "ground-station-1", lists_the_vehicles);
   ASSERT_NE(viewer_ptr, nullptr) << "the viewer's station does not list the vehicles";
-  StationClient& operator_station = *operator_ptr;
   StationClient& viewer_station = *viewer_ptr;
   EXPECT_TRUE(viewer_station.wait_for(
       [](const Json& s) {
@@ -273,7 +274,7 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
       },
       10000ms))
       << viewer_station.state(scaled(2000ms)).dump(1);
-  ASSERT_TRUE(operator_station.wait_for([](const Json& s) { return armed(s) == false; }, 30000ms))
+  ASSERT_TRUE(operator_ptr->wait_for([](const Json& s) { return armed(s) == false; }, 30000ms))
       << "no disarmed autopilot to start from";
 
   const Json task = {{"task_id", "secure-1"},
@@ -304,14 +305,35 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
   std::cout << "viewer's submit: " << viewer_submit["message"].get<std::string>() << std::endl;
   // Armed would show within a state row or two (10 Hz) of an accepted arm: 3 s of rows
   // (scaled) with the autopilot disarmed in each.
-  EXPECT_FALSE(operator_station.wait_for([](const Json& s) { return armed(s) == true; }, 3000ms))
+  EXPECT_FALSE(operator_ptr->wait_for([](const Json& s) { return armed(s) == true; }, 3000ms))
       << "the viewer's arm reached the autopilot";
 
   // The operator's station, as ground-station-0: a task submitted, then the arm accepted.
-  const Json submitted = operator_station.call({{"op", "submit"}, {"id", "s1"}, {"task", task}});
+  Json submitted = operator_ptr->call({{"op", "submit"}, {"id", "s1"}, {"task", task}});
   ASSERT_TRUE(submitted.is_object()) << "no reply to the submit";
+  // The manager answered, so the submission was delivered. The secure pair stall again (seen
+  // under load): a manager that never heard a UGV, or a station whose request writer never
+  // reached the manager, is replaced by a new participant, as docs/security.md says, and
+  // the task submitted once more.
+  const std::string first_answer = submitted.value("message", "");
+  if (!submitted["ok"].get<bool>() &&
+      (first_answer.find("is not publishing") != std::string::npos ||
+       first_answer.find("no task manager reachable") != std::string::npos)) {
+    std::cout << "submit: " << first_answer << ": a new participant" << std::endl;
+    if (first_answer.find("is not publishing") != std::string::npos) {
+      fleet_processes.back()->terminate(scaled(5000ms), SIGINT);
+      fleet_processes.back() = start_manager("manager_1");
+      EXPECT_TRUE(operator_ptr->wait_for(lists_the_fleet, 90000ms));
+    } else {
+      operator_ptr.reset();
+      operator_ptr = listing_station(fleet, "ground-station-0", lists_the_fleet);
+      ASSERT_NE(operator_ptr, nullptr) << "the operator's station does not list the fleet";
+    }
+    submitted = operator_ptr->call({{"op", "submit"}, {"id", "s2"}, {"task", task}});
+    ASSERT_TRUE(submitted.is_object()) << "no reply to the second submit";
+  }
   EXPECT_TRUE(submitted["ok"].get<bool>()) << submitted;
-  EXPECT_TRUE(operator_station.wait_for(
+  EXPECT_TRUE(operator_ptr->wait_for(
       [](const Json& s) {
         bool listed = false;
         for (const auto& t : s["tasks"]) {
@@ -323,13 +345,13 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
       30000ms))
       << "the task manager does not list the submitted task (or lists the viewer's)";
   const Json arm =
-      operator_station.call({{"op", "fc"}, {"id", "a1"}, {"uav_id", 0}, {"command", "arm"}});
+      operator_ptr->call({{"op", "fc"}, {"id", "a1"}, {"uav_id", 0}, {"command", "arm"}});
   ASSERT_TRUE(arm.is_object()) << "no reply to the operator's arm";
   EXPECT_TRUE(arm["ok"].get<bool>()) << arm;
-  EXPECT_TRUE(operator_station.wait_for([](const Json& s) { return armed(s) == true; }, 30000ms))
+  EXPECT_TRUE(operator_ptr->wait_for([](const Json& s) { return armed(s) == true; }, 30000ms))
       << "the operator's accepted arm did not arm the autopilot";
 
-  for (auto* station : {&operator_station, &viewer_station}) {
+  for (auto* station : {operator_ptr.get(), viewer_ptr.get()}) {
     station->process().terminate(scaled(5000ms), SIGINT);
     EXPECT_EQ(station->process().exit_code().value_or(-1), 0);
   }

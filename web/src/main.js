@@ -215,5 +215,5 @@ function updatePlots(live) {
 }
 
 // The 3D view (scene.js), in the world frame or a chosen UGV's.
-const view = createScene($("#view3d"), $("#frame"));
+const view = createScene($("#view3d"), $("#frame"), stats);
 connect();

@@ -38,7 +38,9 @@ function makeGrid(sizeM) {
   return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0x3a4654 }));
 }
 
-export function createScene(canvas, select) {
+// `stats.view` (the browser tests read it): the frame of the last picture drawn and how
+// many were drawn.
+export function createScene(canvas, select, stats = {}) {
   const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(kBackground);
@@ -175,6 +177,7 @@ export function createScene(canvas, select) {
       lastDrawMs = performance.now();
       place();
       renderer.render(scene, camera);
+      stats.view = { frame, draws: (stats.view?.draws ?? 0) + 1 };
     }), Math.max(0, lastDrawMs + kDrawPeriodMs - performance.now()));
   }
 

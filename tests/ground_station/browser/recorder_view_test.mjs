@@ -6,6 +6,14 @@
 //   GS_URL=... SCREENSHOTS=DIR CHROMIUM=... WEB_DIR=<source>/web node recorder_view_test.mjs
 import { canvasPixels, pixelDifference, run, s, until, waitForDrawnCanvas, waitForRows } from "./harness.mjs";
 
+// Chooses `frame` on the page and waits until two pictures of it were drawn since.
+async function showFrame(page, frame) {
+  const before = await page.evaluate(() => window.__gs.view?.draws ?? 0);
+  await page.selectOption("#frame", frame);
+  await until(page, ([f, n]) => window.__gs.view?.frame === f && window.__gs.view.draws >= n + 2,
+    [frame, before], s(30000), `two pictures drawn in ${frame}`);
+}
+
 await run(async ({ page, shot, ok, step }) => {
   let now;
   step((now = "rows listed"));
@@ -40,7 +48,7 @@ await run(async ({ page, shot, ok, step }) => {
 
   step((now = "the world frame offered and drawn"));
   await page.waitForSelector('#frame option[value="world"]', { state: "attached", timeout: s(30000) });
-  await page.selectOption("#frame", "world");
+  await showFrame(page, "world");
   const world = await waitForDrawnCanvas(page, s(30000), "world");
   await shot("view3d-world", page.locator("#view3d"));
   // What the world's own motion changes between two pictures of one frame: the frame switch
@@ -52,7 +60,7 @@ await run(async ({ page, shot, ok, step }) => {
      `motion alone changes ${(100 * motion).toFixed(1)} % of its pixels`);
 
   step((now = "switching to UGV 1's frame changes the picture"));
-  await page.selectOption("#frame", "ugv:1");
+  await showFrame(page, "ugv:1");
   const deadline = Date.now() + s(30000);
   let ugv;
   let diff = 0;
@@ -68,7 +76,7 @@ await run(async ({ page, shot, ok, step }) => {
   ok(`${now}: ${(100 * diff).toFixed(1)} % of its pixels changed, ${(100 * ugv.fraction).toFixed(1)} % drawn`);
 
   step((now = "back to the world frame"));
-  await page.selectOption("#frame", "world");
+  await showFrame(page, "world");
   const back = await waitForDrawnCanvas(page, s(30000));
   ok(`${now}: ${(100 * back.fraction).toFixed(1)} % drawn`);
 });
