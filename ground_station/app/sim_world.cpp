@@ -13,6 +13,8 @@ namespace {
 // A missing segment is looked for again this often: opening is a failed shm_open, cheap,
 // but not at the page's 10 Hz for a fleet that has no simulator.
 constexpr std::chrono::seconds kReopenPeriod{1};
+// The last world stands in for failed reads this long; older, the world is gone.
+constexpr std::chrono::seconds kLastWorldValid{2};
 
 nlohmann::json xyz(const sim::Vec3& v) {
   return nlohmann::json::array({v.x, v.y, v.z});
@@ -40,7 +42,10 @@ bool SimWorld::reader_ready() {
 }
 
 nlohmann::json SimWorld::json() {
-  if (!reader_ready() || !reader_->read(*copy_)) return nullptr;
+  if (!reader_ready()) return nullptr;
+  const auto now = std::chrono::steady_clock::now();
+  if (!reader_->read(*copy_)) return now - last_read_ < kLastWorldValid ? last_ : nullptr;
+  last_read_ = now;
   const sim::SharedWorld& w = *copy_;
   nlohmann::json ugvs = nlohmann::json::array();
   for (int k = 0; k < std::clamp(w.ugv_count, 0, sim::kMaxUgvs); ++k) {
@@ -52,7 +57,8 @@ nlohmann::json SimWorld::json() {
     uavs.push_back({{"position_m", xyz(s.position_m)},
                     {"attitude_wxyz", {s.attitude.w, s.attitude.x, s.attitude.y, s.attitude.z}}});
   }
-  return {{"time_s", w.time_s}, {"ugvs", std::move(ugvs)}, {"uavs", std::move(uavs)}};
+  last_ = {{"time_s", w.time_s}, {"ugvs", std::move(ugvs)}, {"uavs", std::move(uavs)}};
+  return last_;
 }
 
 }  // namespace cover::ground_station

@@ -34,6 +34,12 @@ class SimWorld {
   std::optional<shm::SeqlockReader<sim::SharedWorld>> reader_;
   std::unique_ptr<sim::SharedWorld> copy_ = std::make_unique<sim::SharedWorld>();
   std::chrono::steady_clock::time_point next_open_{};
+  // The last world read, sent again when a read fails: the simulator rewrites its whole
+  // segment (IMU rings included) hundreds of times a second, and a loaded reader's copy can
+  // overlap a write every time it tries (SeqlockReader::kMaxCopies); the page would lose its
+  // world frame for that state row.
+  nlohmann::json last_;
+  std::chrono::steady_clock::time_point last_read_{};
 };
 
 }  // namespace cover::ground_station

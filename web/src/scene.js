@@ -60,7 +60,8 @@ export function createScene(canvas, select, stats = {}) {
   const decks = {};
   const uavs = {};
   const paths = {};
-  let frame = "world";
+  let frame = "world";  // the operator's choice
+  let shown = "world";  // what is drawn: the choice, or the first frame offered while it is not
   let last = null;
 
   function deck(k) {
@@ -92,7 +93,7 @@ export function createScene(canvas, select, stats = {}) {
   function placeDeck(k, matrix) {
     const d = deck(k);
     d.matrix.copy(matrix).multiply(new THREE.Matrix4().makeTranslation(0, 0, -0.05));
-    d.material.color.setHex(frame === `ugv:${k}` ? kFrameDeckColor : kDeckColor);
+    d.material.color.setHex(shown === `ugv:${k}` ? kFrameDeckColor : kDeckColor);
     d.visible = true;
   }
 
@@ -106,7 +107,7 @@ export function createScene(canvas, select, stats = {}) {
       const ref = l.reference;
       setPath(u, ref && poses[ref.ugv] ? ref.points : null, poses[ref?.ugv] ?? new THREE.Matrix4());
     }
-    const k = frame.startsWith("ugv:") ? Number(frame.slice(4)) : -1;
+    const k = shown.startsWith("ugv:") ? Number(shown.slice(4)) : -1;
     if (poses[k]) {
       root.matrix.copy(poses[k]).invert();
       return { target: new THREE.Vector3(0, 0, 0.5), distance: 1 };
@@ -128,7 +129,7 @@ export function createScene(canvas, select, stats = {}) {
   // No world: G_k's own view, its deck at the origin and each UAV by its relative state.
   function placeInUgvFrame(live) {
     root.matrix.identity();
-    const k = Number(frame.slice(4));
+    const k = Number(shown.slice(4));
     for (const j in decks) decks[j].visible = false;
     placeDeck(k, new THREE.Matrix4());
     for (const [u, l] of Object.entries(live ?? {})) {
@@ -146,8 +147,8 @@ export function createScene(canvas, select, stats = {}) {
       select.innerHTML = values.map((v) =>
         `<option value="${v}">${v === "world" ? "world frame" : `frame of UGV ${v.slice(4)}`}</option>`).join("");
     }
-    if (!values.includes(frame) && values.length) frame = values[0];
-    select.value = frame;
+    shown = values.includes(frame) || !values.length ? frame : values[0];
+    select.value = shown;
   }
 
   function place() {
@@ -156,7 +157,7 @@ export function createScene(canvas, select, stats = {}) {
     const ugvIds = world ? world.ugvs.map((_, k) => k)
       : fleet.filter((r) => r.kind === "ugv-agent" && r.id !== null).map((r) => r.id);
     offerFrames(ugvIds, !!world);
-    if (!world && !frame.startsWith("ugv:")) return;
+    if (!world && !shown.startsWith("ugv:")) return;
     const view = world ? placeInWorld(live, world) : placeInUgvFrame(live);
     root.matrixWorldNeedsUpdate = true;
     // Moved by whole 10 m: its 1 m lines stay where they are in the shown frame.
@@ -177,7 +178,7 @@ export function createScene(canvas, select, stats = {}) {
       lastDrawMs = performance.now();
       place();
       renderer.render(scene, camera);
-      stats.view = { frame, draws: (stats.view?.draws ?? 0) + 1 };
+      stats.view = { frame: shown, draws: (stats.view?.draws ?? 0) + 1 };
     }), Math.max(0, lastDrawMs + kDrawPeriodMs - performance.now()));
   }
 
