@@ -114,11 +114,20 @@ export function canvasPixels(page, name = "") {
     if (name) (window.__snapshots ??= {})[name] = px;
     let lit = 0;
     const colors = new Set();
+    // The shown frame's deck is drawn light green (scene.js kFrameDeckColor), the others dark.
+    const deck = { pixels: 0, x: 0, y: 0 };
     for (let i = 0; i < px.length; i += 4) {
       if (Math.abs(px[i] - 13) + Math.abs(px[i + 1] - 17) + Math.abs(px[i + 2] - 23) > 30) lit++;
       colors.add((px[i] << 16) | (px[i + 1] << 8) | px[i + 2]);
+      if (px[i + 1] > 100 && px[i + 1] > px[i] + 30 && px[i + 1] > px[i + 2] + 30) {
+        deck.pixels++;
+        deck.x += (i / 4) % c.width;
+        deck.y += Math.floor(i / 4 / c.width);
+      }
     }
-    return { fraction: lit / (c.width * c.height), colors: colors.size };
+    const n = c.width * c.height;
+    return { fraction: lit / n, colors: colors.size, frameDeck: deck.pixels / n,
+             frameDeckAt: deck.pixels ? [deck.x / deck.pixels / c.width, deck.y / deck.pixels / c.height] : null };
   }, name);
 }
 
