@@ -20,6 +20,7 @@
 #include "cover/dds/vendor.hpp"
 #include "cover/ground_station/access.hpp"
 #include "cover/ground_station/station_params.hpp"
+#include "cover/shm/segment_name.hpp"
 #include "cover/startup/startup.hpp"
 #include "station.hpp"
 
@@ -38,6 +39,7 @@ struct CommandLine {
   std::string config_file = cover::config::default_config_dir() + "/ground_station.yaml";
   gs::StationParams flags;  // the flags given (the others are not read)
   std::string web_dir;
+  std::string sim_run_id = "default";
   cover::dds::DdsCliOptions dds;
 };
 
@@ -107,6 +109,10 @@ void add_options(CLI::App& app, CommandLine& cli) {
   app.add_option("--manager-query-period-s", f.manager_query_period_s,
                  "how often the task manager's list is asked for "
                  "(ground_station.manager_query_period_s)");
+  app.add_option("--run-id", cli.sim_run_id,
+                 "the simulator run whose world poses give the page its world frame (segment "
+                 "/cover_sim_d<domain>_<run-id> on this host, as the UGV agents')")
+      ->capture_default_str();
   app.add_option("--uavs", f.uavs, "UAV ids 0..N-1 to listen for (ground_station.uavs)");
   app.add_option("--ugvs", f.ugvs, "UGV ids 0..N-1 to listen for (ground_station.ugvs)");
   cli.dds.add_to(app);
@@ -130,6 +136,11 @@ gs::StationParams load(const CLI::App& app, const CommandLine& cli) {
   if (given("--uavs")) p.uavs = f.uavs;
   if (given("--ugvs")) p.ugvs = f.ugvs;
   p.validate();
+  try {
+    cover::shm::segment_name(0, cli.sim_run_id);
+  } catch (const std::invalid_argument& e) {
+    throw cover::config::ConfigError(std::string("--run-id: ") + e.what());
+  }
   if (!gs::is_loopback(p.bind) && p.token_file.empty()) {
     throw cover::config::ConfigError("bind " + p.bind +
                                      ": any address but loopback needs token_file "
@@ -169,6 +180,8 @@ int serve(const CLI::App& app, const CommandLine& cli) {
   }
   const auto dds = cli.dds.resolve("cover-ground-station");
   options.record_argv = recorder_argv(cli, dds);
+  options.dds_domain = dds.domain_id;
+  options.sim_run_id = cli.sim_run_id;
   cover::dds::Participant participant(dds);
   std::unique_ptr<gs::Station> station;
   try {

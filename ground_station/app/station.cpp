@@ -11,6 +11,7 @@
 #include <ctime>
 
 #include "cover/clock/clock.hpp"
+#include "cover/dds/dds_error.hpp"
 #include "cover/dds/json_codec.hpp"
 #include "cover/process/shutdown_signal.hpp"
 #include "cover/wire/task.hpp"
@@ -77,7 +78,8 @@ Station::Station(dds::Participant& participant, StationOptions options)
       listener_(participant, options_.fleet, options_.manager_query_period_s,
                 [this](cli::FleetKind kind, std::optional<std::uint32_t> id, std::int64_t stamp) {
                   on_status(kind, id, stamp);
-                }) {
+                }),
+      world_(options_.dds_domain, options_.sim_run_id) {
   for (std::uint32_t u = 0; u < options_.fleet.uavs; ++u) {
     command_readers_.push_back(
         participant.make_reader(dds::topics::uav_command(u), [this, u](const msg::UavCommand& c) {
@@ -201,6 +203,7 @@ void Station::on_message(std::uint64_t client, bool has_token, const std::string
 // The task manager's and the autopilots' answers can take seconds: one request at a time,
 // off the server's I/O thread.
 void Station::work() {
+  make_clients();
   while (true) {
     Job job;
     {
@@ -223,12 +226,25 @@ void Station::work() {
   }
 }
 
-std::string Station::answer(const ApiRequest& request, bool& ok, std::string& field) {
+void Station::make_clients() {
   const auto timeout = clock::to_milliseconds(options_.command_timeout_s);
+  try {
+    manager_client_ = std::make_unique<cli::ManagerClient>(participant_, timeout);
+  } catch (const dds::DdsError& e) {
+    manager_client_error_ = e.what();
+  }
+  try {
+    fc_client_ = std::make_unique<cli::FcClient>(participant_, timeout);
+  } catch (const dds::DdsError& e) {
+    fc_client_error_ = e.what();
+  }
+}
+
+std::string Station::answer(const ApiRequest& request, bool& ok, std::string& field) {
   if (request.op == ApiOp::Record) return record(request.record_start, ok);
   if (request.op == ApiOp::Fc) {
-    cli::FcClient fc(participant_, timeout);
-    const auto reply = fc.call(request.uav_id, fc_kind(request.fc));
+    if (!fc_client_) return fc_client_error_;
+    const auto reply = fc_client_->call(request.uav_id, fc_kind(request.fc));
     if (!reply)
       return "no answer: no flight-controller bridge for this UAV, or its autopilot is silent";
     ok = reply->result == msg::FcCommandResult::FC_RESULT_ACCEPTED;
@@ -237,7 +253,7 @@ std::string Station::answer(const ApiRequest& request, bool& ok, std::string& fi
                                                                                     : "no answer";
     return std::string(result) + ": " + reply->message;
   }
-  cli::ManagerClient manager(participant_, timeout);
+  if (!manager_client_) return manager_client_error_;
   msg::ManagerRequest r;
   if (request.op == ApiOp::Submit) {
     r.kind = msg::ManagerRequestKind::MANAGER_SUBMIT;
@@ -248,7 +264,7 @@ std::string Station::answer(const ApiRequest& request, bool& ok, std::string& fi
     r.reason = request.reason;
   }
   try {
-    const msg::ManagerReply reply = manager.call(r);
+    const msg::ManagerReply reply = manager_client_->call(r);
     ok = reply.ok;
     if (!ok) {
       field = field_of_error(reply.message);
@@ -284,8 +300,19 @@ std::string Station::record(bool start, bool& ok) {
 }
 
 void Station::query_manager() {
-  cli::ManagerClient manager(participant_,
-                             clock::to_milliseconds(options_.manager_query_period_s * 2));
+  std::unique_ptr<cli::ManagerClient> client;
+  try {
+    client = std::make_unique<cli::ManagerClient>(
+        participant_, clock::to_milliseconds(options_.manager_query_period_s * 2));
+  } catch (const dds::DdsError& e) {
+    // Under DDS-Security an identity without cover/manager/request (a viewer's station) may
+    // not ask the task manager: the page shows why, the fleet and the autopilots still.
+    spdlog::warn("no task list: {}", e.what());
+    std::lock_guard<std::mutex> lock(tasks_mutex_);
+    manager_note_ = e.what();
+    return;
+  }
+  cli::ManagerClient& manager = *client;
   while (!stopping_) {
     msg::ManagerRequest query;
     query.kind = msg::ManagerRequestKind::MANAGER_QUERY;
@@ -365,6 +392,7 @@ Json Station::state_json() {
     state["manager"] = manager_note_;
   }
   state["live"] = live_json();
+  state["world"] = world_.json();
   {
     std::lock_guard<std::mutex> lock(record_mutex_);
     if (recorder_ && recorder_->wait(0ms)) recorder_.reset();

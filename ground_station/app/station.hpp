@@ -20,7 +20,10 @@
 #include "cover/ground_station/web_server.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/recording/fleet_topics.hpp"
+#include "fc_client.hpp"
 #include "fleet_listener.hpp"
+#include "manager_client.hpp"
+#include "sim_world.hpp"
 
 namespace cover::ground_station {
 
@@ -33,6 +36,8 @@ struct StationOptions {
   double command_timeout_s = 5.0;        // a task manager's or an autopilot's answer
   std::vector<std::string> record_argv;  // `cover record` and its DDS flags (-o is added)
   std::string record_dir = ".";
+  int dds_domain = 0;  // with sim_run_id: the simulator's world segment
+  std::string sim_run_id = "default";
 };
 
 // The adapter between the page's API and the fleet: the fleet as `cover fleet` hears it,
@@ -77,6 +82,7 @@ class Station {
   nlohmann::json rows_json(const std::map<RowKey, Heard>& heard);
   void on_message(std::uint64_t client, bool has_token, const std::string& text);
   void work();
+  void make_clients();
   void query_manager();
   std::string answer(const ApiRequest& request, bool& ok, std::string& field);
   std::string record(bool start, bool& ok);
@@ -92,6 +98,7 @@ class Station {
   std::condition_variable push_cv_;
   std::map<RowKey, Heard> heard_;
   cli::FleetListener listener_;
+  SimWorld world_;  // read by run()'s thread only
 
   std::mutex live_mutex_;
   std::map<std::uint32_t, Live> live_;
@@ -107,6 +114,15 @@ class Station {
   std::mutex record_mutex_;
   std::unique_ptr<process::ChildProcess> recorder_;
   std::string record_file_;
+
+  // The worker's lines to the task manager and the bridges, made once when it starts: a new
+  // writer and reader per request would wait for discovery (and under DDS-Security for the
+  // key exchange) on every request. Null with the reason when this identity may not publish
+  // the request topic.
+  std::unique_ptr<cli::ManagerClient> manager_client_;
+  std::unique_ptr<cli::FcClient> fc_client_;
+  std::string manager_client_error_;
+  std::string fc_client_error_;
 
   std::mutex jobs_mutex_;
   std::condition_variable jobs_cv_;

@@ -1,14 +1,17 @@
 // `ground_station: true` in a launch file and `cover-launch --ground-station`: the plan starts
 // cover-ground-station before the run's processes, respawned if it dies; a process of the
-// file already named `ground_station` is refused; a non-boolean value is an error.
+// file already named `ground_station` is refused; a non-boolean value is an error; it gets the
+// run's id and folder, and under DDS-Security the ground-station identity.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 #include "cover/config/config_error.hpp"
 #include "cover/launch/ground_station_view.hpp"
 #include "cover/launch/launch_plan.hpp"
+#include "cover/launch/security_identity.hpp"
 #include "launch_plan_support.hpp"
 
 namespace cover::launch {
@@ -34,6 +37,18 @@ TEST(LaunchGroundStation, KeyStartsTheStationBeforeTheRun) {
   EXPECT_TRUE(plan.processes[0].respawn.enabled);
   EXPECT_FALSE(plan.processes[0].ends_run);
   EXPECT_EQ(plan.processes[1].name, "sim");
+  // The run's simulator world and folder, placeholders expanded.
+  const auto& args = plan.processes[0].args;
+  EXPECT_NE(std::find(args.begin(), args.end(), "--run-id=" + plan.run_id), args.end());
+  EXPECT_NE(std::find(args.begin(), args.end(), "--record-dir=" + plan.run_dir), args.end());
+}
+
+// Under DDS-Security the station runs as the fleet's ground station, by its role.
+TEST(LaunchGroundStation, SecureStationIsTheGroundStationIdentity) {
+  EXPECT_EQ(launch_identity("ground_station", "cover-ground-station", {}, ""), "ground-station-0");
+  EXPECT_EQ(launch_identity("ground_station", "/opt/bin/cover-ground-station", {"--port", "80"},
+                            "ground-station-3"),
+            "ground-station-3");
 }
 
 TEST(LaunchGroundStation, TheFlagAddsTheStationAndANameClashIsRefused) {

@@ -1,7 +1,7 @@
 // cover-ground-station's page: one WebSocket to the station (its API: ground_station/core
 // api.hpp), state rows at the station's rate, requests answered one by one.
-import * as THREE from "three";
 import uPlot from "uplot";
+import { createScene } from "./scene.js";
 
 const $ = (s) => document.querySelector(s);
 const token = new URLSearchParams(location.search).get("token") ?? "";
@@ -72,7 +72,7 @@ function onState(m) {
   renderFc(m.fleet);
   renderRecorder(m.recorder);
   updatePlots(m.live);
-  updateScene(m.live, m.fleet);
+  view.update(m.live, m.fleet, m.world);
 }
 
 // The fleet table: one element per row ("kind/id"), its cells written only when their text
@@ -246,10 +246,18 @@ $("#fc").addEventListener("click", async (e) => {
   fcAnswers[uav] = reply;
 });
 
+// The recorder's file and size as the station sees them (stat() at its rate): the size grows
+// while it records. data-* carry the same for the browser tests.
 function renderRecorder(r) {
   if (!r) return;
-  $("#rec-status").textContent = r.running ? `recording ${r.file}, ${(r.bytes / 1e6).toFixed(2)} MB` :
-    r.file ? `stopped: ${r.file}, ${(r.bytes / 1e6).toFixed(2)} MB` : "not recording";
+  const el = $("#rec-status");
+  const size = r.bytes < 1e6 ? `${(r.bytes / 1e3).toFixed(1)} kB` : `${(r.bytes / 1e6).toFixed(2)} MB`;
+  el.textContent = r.running ? `recording ${r.file}, ${size}` : r.file ? `stopped: ${r.file}, ${size}` : "not recording";
+  el.dataset.running = r.running;
+  el.dataset.file = r.file;
+  el.dataset.bytes = r.bytes;
+  $("#rec-start").disabled = r.running;
+  $("#rec-stop").disabled = !r.running;
 }
 $("#rec-start").onclick = async () => { $("#rec-status").textContent = (await request({ op: "record", action: "start" })).message; };
 $("#rec-stop").onclick = async () => { $("#rec-status").textContent = (await request({ op: "record", action: "stop" })).message; };
@@ -299,69 +307,6 @@ function updatePlots(live) {
   plots.forEach((plot, k) => plot.setData([plotTimes, ...plotValues[k]]));
 }
 
-// 3D view in a chosen UGV's frame G_k (x forward, z up): the grid, UGV k's deck at the
-// origin, each UAV where its relative state puts it, its reference path when planned in G_k.
-const canvas = $("#view3d");
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0x0d1117);
-const camera = new THREE.PerspectiveCamera(50, canvas.width / canvas.height, 0.05, 200);
-camera.up.set(0, 0, 1);
-camera.position.set(-4, -5, 3.5);
-camera.lookAt(0, 0, 0.5);
-const grid = new THREE.GridHelper(20, 40, 0x3d4a57, 0x26303a);
-grid.rotation.x = Math.PI / 2;
-scene.add(grid, new THREE.AxesHelper(1), new THREE.AmbientLight(0xffffff, 0.6));
-const sun = new THREE.DirectionalLight(0xffffff, 0.9);
-sun.position.set(3, -2, 6);
-scene.add(sun);
-const deck = new THREE.Mesh(new THREE.BoxGeometry(1.0, 0.8, 0.1), new THREE.MeshLambertMaterial({ color: 0x2e7d32 }));
-deck.position.z = -0.05;
-scene.add(deck);
-const uavs = {};
-const paths = {};
-let frame = 0;
-$("#frame").onchange = (e) => { frame = Number(e.target.value); draw(); };
-
-function updateScene(live, fleet) {
-  const ugvIds = fleet.filter((r) => r.kind === "ugv-agent" && r.id !== null).map((r) => r.id);
-  const select = $("#frame");
-  if (select.options.length !== ugvIds.length) {
-    select.innerHTML = ugvIds.map((k) => `<option value="${k}">frame of UGV ${k}</option>`).join("");
-    select.value = String(frame);
-  }
-  for (const [u, l] of Object.entries(live ?? {})) {
-    if (!uavs[u]) {
-      uavs[u] = new THREE.Mesh(new THREE.SphereGeometry(0.15, 16, 12), new THREE.MeshLambertMaterial({ color: 0xffa726 }));
-      scene.add(uavs[u]);
-    }
-    const p = l.relative?.[String(frame)];
-    uavs[u].visible = !!p;
-    if (p) uavs[u].position.set(p[0], p[1], p[2]);
-    if (paths[u]) { scene.remove(paths[u]); paths[u].geometry.dispose(); delete paths[u]; }
-    if (l.reference && l.reference.ugv === frame) {
-      const g = new THREE.BufferGeometry().setFromPoints(l.reference.points.map((q) => new THREE.Vector3(q[0], q[1], q[2])));
-      paths[u] = new THREE.Line(g, new THREE.LineBasicMaterial({ color: 0x58a6ff }));
-      scene.add(paths[u]);
-    }
-  }
-  draw();
-}
-
-// Drawn when the state changes (the station's rate), not every animation frame: the page
-// must leave the ground station's computer to the fleet.
-// At most 5 frames a second: software WebGL (SwiftShader, no GPU) takes ~0.1 s a frame.
-const kDrawPeriodMs = 200;
-let drawPending = false;
-let lastDrawMs = 0;
-function draw() {
-  if (drawPending) return;
-  drawPending = true;
-  setTimeout(() => requestAnimationFrame(() => {
-    drawPending = false;
-    lastDrawMs = performance.now();
-    renderer.render(scene, camera);
-  }), Math.max(0, lastDrawMs + kDrawPeriodMs - performance.now()));
-}
-draw();
+// The 3D view (scene.js), in the world frame or a chosen UGV's.
+const view = createScene($("#view3d"), $("#frame"), stats);
 connect();

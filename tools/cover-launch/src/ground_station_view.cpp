@@ -9,6 +9,9 @@ ProcessSpec ground_station_spec(const std::optional<LaunchedFleet>& fleet) {
   spec.name = kGroundStationName;
   spec.executable = "cover-ground-station";
   spec.args = fleet_args(fleet);
+  // The run's simulator world (its world frame on the page) and the run's folder for the
+  // recordings started from the page.
+  spec.args.insert(spec.args.end(), {"--run-id={run_id}", "--record-dir={run_dir}"});
   // Its state is the fleet's: a restarted station serves as before (pages reconnect).
   spec.respawn.enabled = true;
   return spec;

@@ -29,7 +29,9 @@ std::optional<dds::Identity> identity_by_role(const std::string& executable,
   const std::string program = std::filesystem::path(executable).filename().string();
   if (program == "cover-sim") return dds::Identity{dds::Role::Sim, 0};
   if (program == "cover-task-manager") return dds::Identity{dds::Role::TaskManager, 0};
-  if (program == "cover") return dds::Identity{dds::Role::GroundStation, 0};
+  if (program == "cover" || program == "cover-ground-station") {
+    return dds::Identity{dds::Role::GroundStation, 0};
+  }
   if (program == "cover-mocap-relay") return dds::Identity{dds::Role::MocapRelay, 0};
   const auto id = id_argument(args);
   if (!id) return std::nullopt;
