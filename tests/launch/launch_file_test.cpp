@@ -495,17 +495,19 @@ launch:
   EXPECT_NE(error_of(other).find("'{nope}' names no variable"), std::string::npos);
 }
 
-// The shipped fleet: 1 simulator, 16 UGV agents, 16 UAV agents each with its own task file.
+// The shipped fleet: 1 simulator, a task manager, 16 UGV agents, 16 UAV agents each with its
+// own task file.
 TEST(LaunchFile, ShippedFleet16Loads) {
   const LaunchFile file =
       LaunchFile::load_file(std::string(COVER_SOURCE_DIR) + "/config/launch/fleet16.yaml");
-  ASSERT_EQ(file.processes.size(), 33u);
-  EXPECT_EQ(file.processes[1].name, "ugv0");
-  EXPECT_EQ(file.processes[16].name, "ugv15");
-  EXPECT_EQ(file.processes[32].name, "uav15");
-  EXPECT_NE(std::find(file.processes[32].args.begin(), file.processes[32].args.end(),
+  ASSERT_EQ(file.processes.size(), 34u);
+  EXPECT_EQ(file.processes[1].name, "task_manager");
+  EXPECT_EQ(file.processes[2].name, "ugv0");
+  EXPECT_EQ(file.processes[17].name, "ugv15");
+  EXPECT_EQ(file.processes[33].name, "uav15");
+  EXPECT_NE(std::find(file.processes[33].args.begin(), file.processes[33].args.end(),
                       "{config_dir}/tasks/fleet/uav15.yaml"),
-            file.processes[32].args.end());
+            file.processes[33].args.end());
 }
 
 }  // namespace
