@@ -153,12 +153,18 @@ function drawFleet() {
   dirtyRows.clear();
 }
 
+// A write that changes nothing still replaces the text node, and the page is laid out and
+// painted again: at the state's rate that is most of the page's frames.
+function setText(el, text) {
+  if (el.textContent !== text) el.textContent = text;
+}
+
 function esc(s) {
   return String(s ?? "").replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" }[c]));
 }
 
 function renderTasks(tasks, fleet, note) {
-  $("#manager-note").textContent = note ? `(${note})` : "";
+  setText($("#manager-note"), note ? `(${note})` : "");
   const status = {};
   for (const r of fleet) if (r.kind === "uav-agent" && r.last) status[r.last.task_id] = r.last;
   const html = [...tasks].reverse().map((t) => {
@@ -225,10 +231,10 @@ function renderFc(fleet) {
     }
     const s = r.last ?? {};
     const battery = s.battery_remaining >= 0 ? `${Math.round(100 * s.battery_remaining)} %` : "?";
-    box.querySelector(".fc-status").textContent =
+    setText(box.querySelector(".fc-status"),
       `UAV ${r.id}: link ${s.link_ok ? "ok" : "LOST"}, ${short(s.autopilot)}, mode ${s.mode_name ?? "?"}, ` +
       `${s.armed ? "ARMED" : "disarmed"}, battery ${battery}, hover thrust ${(s.hover_thrust ?? 0).toFixed(3)}, ` +
-      `parameters ${s.flight_blocker ? "BLOCKED: " + s.flight_blocker : "ok"}`;
+      `parameters ${s.flight_blocker ? "BLOCKED: " + s.flight_blocker : "ok"}`);
   }
 }
 
@@ -252,7 +258,10 @@ function renderRecorder(r) {
   if (!r) return;
   const el = $("#rec-status");
   const size = r.bytes < 1e6 ? `${(r.bytes / 1e3).toFixed(1)} kB` : `${(r.bytes / 1e6).toFixed(2)} MB`;
-  el.textContent = r.running ? `recording ${r.file}, ${size}` : r.file ? `stopped: ${r.file}, ${size}` : "not recording";
+  const text = r.running ? `recording ${r.file}, ${size}` : r.file ? `stopped: ${r.file}, ${size}` : "not recording";
+  if (el.dataset.bytes === String(r.bytes) && el.dataset.running === String(r.running) &&
+      el.dataset.file === String(r.file) && el.textContent === text) return;
+  el.textContent = text;
   el.dataset.running = r.running;
   el.dataset.file = r.file;
   el.dataset.bytes = r.bytes;
