@@ -77,7 +77,7 @@ TEST(AgentsAndSimulator, OffboardLossLevelsDescendsAndDisarms) {
       },
       20s));
   auto final_world = std::make_unique<SharedWorld>();
-  ASSERT_TRUE(system.world().read(*final_world));
+  ASSERT_TRUE(system.read_world(*final_world));
   EXPECT_TRUE(final_world->uavs[0].contact.resting);
   EXPECT_EQ(final_world->uavs[0].command.thrust_m_s2, 0.0);  // disarmed
   EXPECT_GT(lowest_tilt_cos, std::cos(0.5));                 // stayed near level
@@ -176,7 +176,7 @@ void fly_task_over_dds_validate_and_abort() {
   for (std::uint32_t k = 0; k < 2; ++k) {
     ASSERT_TRUE(ugv_imu[k].wait_for_sample(5s));
     const cover::msg::UgvImu imu = ugv_imu[k].latest()->sample;
-    ASSERT_TRUE(system.world().read(*truth));
+    ASSERT_TRUE(system.read_world(*truth));
     EXPECT_EQ(imu.speed_source, cover::msg::SpeedSource::SPEED_SOURCE_WHEEL_ODOMETRY) << k;
     EXPECT_NEAR(imu.speed_m_s, cover::sim::true_forward_speed_m_s(truth->ugvs[k]), 0.1) << k;
   }

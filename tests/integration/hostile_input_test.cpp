@@ -173,7 +173,7 @@ TEST(HostileInput, BadSamplesAreDroppedCountedAndNeverCommanded) {
     std::uint64_t sent = 0;
     const auto flood_end = Clock::now() + 3s;
     for (int i = 0; Clock::now() < flood_end; ++i) {
-      ASSERT_TRUE(system.world().read(*copy));
+      ASSERT_TRUE(system.read_world(*copy));
       const auto now_ns = static_cast<std::int64_t>(std::llround(copy->time_s * 1e9));
       const auto k = static_cast<std::uint32_t>(i % 2);
       states[k].write(hostile_state(i % 7, k, now_ns));

@@ -65,6 +65,12 @@ class SimSystem {
     return wait_until([&] { return world_->read(*copy) && condition(*copy); }, timeout,
                       std::chrono::milliseconds(2));
   }
+  // One consistent copy of the world: a read that a write overlapped (the world is ~190 KiB,
+  // written at 200 Hz by a simulator that may be preempted mid-write) is tried again.
+  bool read_world(sim::SharedWorld& out,
+                  std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
+    return wait_until([&] { return world_->read(out); }, timeout, std::chrono::milliseconds(1));
+  }
   shm::SeqlockReader<sim::SharedWorld>& world() { return *world_; }
   // Lets go of the world before the simulator is killed or stopped.
   void close_world() { world_.reset(); }

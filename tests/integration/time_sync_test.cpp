@@ -78,7 +78,7 @@ void hold_with_the_offset_named_then_fly() {
   auto task_status = station.make_reader(cover::dds::topics::task_status());
   auto requests = station.make_writer(cover::dds::topics::task_request());
   auto world = std::make_unique<cover::sim::SharedWorld>();
-  ASSERT_TRUE(system.world().read(*world));
+  ASSERT_TRUE(system.read_world(*world));
   const double start_z_m = world->uavs[0].state.position_m.z;  // on its deck
   auto latest_status = [&] {
     const auto s = status.latest();
@@ -148,7 +148,7 @@ void hold_with_the_offset_named_then_fly() {
   // Its status reports the held task as its own, pending: not an idle agent.
   EXPECT_EQ(latest_status().task_id, task.task_id);
   EXPECT_EQ(latest_status().task_state, cover::msg::TaskState::TASK_PENDING);
-  ASSERT_TRUE(system.world().read(*world));
+  ASSERT_TRUE(system.read_world(*world));
   EXPECT_LT(world->uavs[0].state.position_m.z, start_z_m + 0.05);
 
   // The same UGV agent with a right clock: the task starts and the UAV takes off.
@@ -232,7 +232,7 @@ void task_manager_shows_the_hold() {
       },
       30s));
   auto world = std::make_unique<cover::sim::SharedWorld>();
-  ASSERT_TRUE(system.world().read(*world));
+  ASSERT_TRUE(system.read_world(*world));
   const double start_z_m = world->uavs[0].state.position_m.z;
 
   const auto [submitted, reply] =
@@ -256,7 +256,7 @@ void task_manager_shows_the_hold() {
   EXPECT_NE(record.value("state", ""), "MANAGED_FAILED") << record.dump();
   EXPECT_NE(record.value("reason", "").find("waiting for the clocks to agree"), std::string::npos)
       << record.dump();
-  ASSERT_TRUE(system.world().read(*world));
+  ASSERT_TRUE(system.read_world(*world));
   EXPECT_LT(world->uavs[0].state.position_m.z, start_z_m + 0.05);
 
   // Released: the agent starts the task (its stage line replaces the reason). Whether the
