@@ -309,44 +309,51 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
       << "the viewer's arm reached the autopilot";
 
   // The operator's station, as ground-station-0: a task submitted, then the arm accepted.
-  Json submitted = operator_ptr->call({{"op", "submit"}, {"id", "s1"}, {"task", task}});
-  ASSERT_TRUE(submitted.is_object()) << "no reply to the submit";
-  // The manager answered, so the submission was delivered. The secure pair stall again (seen
-  // under load): a manager that stopped hearing the UAV agent or a UGV, or a station whose
-  // request writer never reached the manager, is replaced by a new participant, as
-  // docs/security.md says, and the task submitted once more.
-  const std::string first_answer = submitted.value("message", "");
+  // On a loaded machine the secure fleet can answer what the test cannot take as the
+  // requirement's answer; each is asked again until a deadline:
+  //  - "UAV 0 is not up" / "UGV k is not publishing": the manager does not hear an agent (a
+  //    starved agent, or the Fast DDS 2.9 secure pair stall: then only a new participant
+  //    recovers it, docs/security.md: the manager is restarted once, after 15 s of it);
+  //  - "no task manager reachable": the station's request writer never met the manager (the
+  //    stall again: a new station);
+  //  - "did not answer": the reply was late; the same task asked again is answered "queued"
+  //    whether or not the first one was taken (a submission is idempotent).
   const auto manager_lost_the_fleet = [](const std::string& why) {
     return why.find("is not publishing") != std::string::npos ||
            why.find("is not up") != std::string::npos;
   };
-  if (!submitted["ok"].get<bool>() &&
-      (manager_lost_the_fleet(first_answer) ||
-       first_answer.find("no task manager reachable") != std::string::npos)) {
-    std::cout << "submit: " << first_answer << ": a new participant" << std::endl;
-    if (manager_lost_the_fleet(first_answer)) {
-      fleet_processes.back()->terminate(scaled(5000ms), SIGINT);
-      fleet_processes.back() = start_manager("manager_1");
-      EXPECT_TRUE(operator_ptr->wait_for(lists_the_fleet, 90000ms));
-    } else {
-      operator_ptr.reset();
-      operator_ptr = listing_station(fleet, "ground-station-0", lists_the_fleet);
-      ASSERT_NE(operator_ptr, nullptr) << "the operator's station does not list the fleet";
-    }
-    // The new participant hears the agents' heartbeats within a few of them: until then
-    // the manager answers "not up", which is asked again.
-    int attempt = 2;
-    cover::test::wait_until(
-        [&] {
-          submitted = operator_ptr->call(
-              {{"op", "submit"}, {"id", "s" + std::to_string(attempt++)}, {"task", task}});
-          return !submitted.is_object() || submitted.value("ok", false) ||
-                 !manager_lost_the_fleet(submitted.value("message", ""));
-        },
-        30000ms, 500ms);
-    ASSERT_TRUE(submitted.is_object()) << "no reply to the second submit";
-  }
-  EXPECT_TRUE(submitted["ok"].get<bool>()) << submitted;
+  const auto accepted = [](const Json& reply) { return reply.value("ok", false); };
+  Json submitted;
+  int attempt = 0;
+  bool manager_restarted = false;
+  const auto since = std::chrono::steady_clock::now();
+  cover::test::wait_until(
+      [&] {
+        submitted = operator_ptr->call(
+            {{"op", "submit"}, {"id", "s" + std::to_string(++attempt)}, {"task", task}});
+        const std::string why = submitted.value("message", "");
+        if (!submitted.is_object() || accepted(submitted)) return true;
+        std::cout << "submit " << attempt << ": " << why << std::endl;
+        if (manager_lost_the_fleet(why) && !manager_restarted &&
+            std::chrono::steady_clock::now() - since > scaled(15000ms)) {
+          std::cout << "a new task manager participant" << std::endl;
+          manager_restarted = true;
+          fleet_processes.back()->terminate(scaled(5000ms), SIGINT);
+          fleet_processes.back() = start_manager("manager_1");
+          return !operator_ptr->wait_for(lists_the_fleet, 90000ms);
+        }
+        if (why.find("no task manager reachable") != std::string::npos) {
+          std::cout << "a new station participant" << std::endl;
+          operator_ptr.reset();
+          operator_ptr = listing_station(fleet, "ground-station-0", lists_the_fleet);
+          return operator_ptr == nullptr;
+        }
+        return !manager_lost_the_fleet(why) && why.find("did not answer") == std::string::npos;
+      },
+      90000ms, 1000ms);
+  ASSERT_NE(operator_ptr, nullptr) << "the operator's station does not list the fleet";
+  ASSERT_TRUE(submitted.is_object()) << "no reply to the submit";
+  EXPECT_TRUE(accepted(submitted)) << submitted;
   EXPECT_TRUE(operator_ptr->wait_for(
       [](const Json& s) {
         bool listed = false;

@@ -12,9 +12,9 @@ const kUavColor = 0xffa726;
 const kPathColor = 0x58a6ff;
 const kGridSizeM = 60;            // 1 m cells, under the view's target; its far part fogged
 const kCameraOffset = new THREE.Vector3(-4, -5, 3.5);
-// Drawn when the state changes (the station's rate), not every animation frame, and at most
-// 5 frames a second: software WebGL (SwiftShader, no GPU) takes ~0.1 s a frame, and the page
-// must leave the ground station's computer to the fleet.
+// Drawn when the state changes, not every animation frame, and at most 5 times a second:
+// software WebGL (SwiftShader, no GPU) takes ~0.1 s a frame, and the page must leave the
+// ground station's computer to the fleet.
 const kDrawPeriodMs = 200;
 
 // The pose of UGV k in the world (its frame G_k): translation, then yaw about z.
@@ -168,21 +168,29 @@ export function createScene(canvas, select, stats = {}) {
     camera.lookAt(view.target);
   }
 
-  let drawPending = false;
-  let lastDrawMs = 0;
+  // Drawn in the page's own frames (main.js calls update from its animation frame): now when
+  // the last picture is kDrawPeriodMs old, else by a later update; the last state before the
+  // updates stop is drawn by a timer.
+  let lastDrawMs = -Infinity;
+  let trailing = 0;
+  function render() {
+    clearTimeout(trailing);
+    trailing = 0;
+    lastDrawMs = performance.now();
+    place();
+    renderer.render(scene, camera);
+    stats.view = { frame: shown, draws: (stats.view?.draws ?? 0) + 1 };
+  }
   function draw() {
-    if (drawPending) return;
-    drawPending = true;
-    setTimeout(() => requestAnimationFrame(() => {
-      drawPending = false;
-      lastDrawMs = performance.now();
-      place();
-      renderer.render(scene, camera);
-      stats.view = { frame: shown, draws: (stats.view?.draws ?? 0) + 1 };
-    }), Math.max(0, lastDrawMs + kDrawPeriodMs - performance.now()));
+    if (performance.now() - lastDrawMs >= kDrawPeriodMs) {
+      render();
+      return;
+    }
+    clearTimeout(trailing);
+    trailing = setTimeout(() => requestAnimationFrame(render), 2 * kDrawPeriodMs);
   }
 
-  select.onchange = (e) => { frame = e.target.value; draw(); };
+  select.onchange = (e) => { frame = e.target.value; requestAnimationFrame(render); };
   camera.position.copy(kCameraOffset);
   camera.lookAt(0, 0, 0.5);
   draw();

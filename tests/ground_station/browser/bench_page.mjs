@@ -85,22 +85,35 @@ try {
   step = "measure";
   await page.evaluate(() => {
     const s = window.__gs;
-    for (const list of [s.latencies_ms, s.server_latencies_ms, s.state_latencies_ms, s.arrival_latencies_ms]) list.length = 0;
+    for (const list of [s.latencies_ms, s.server_latencies_ms, s.state_latencies_ms, s.arrival_latencies_ms, s.lazy_latencies_ms]) list.length = 0;
     s.row_updates = {};
     s.states = 0;
     s.pushes = 0;
+    s.urgent_frames = 0;
+    s.lazy_frames = 0;
   });
+  // The renderer's main thread by kind of work (Chrome DevTools Protocol, Performance domain):
+  // where the page's own CPU goes.
+  const cdp = await page.context().newCDPSession(page);
+  await cdp.send("Performance.enable", { timeDomain: "threadTicks" });
+  const metrics = async () => Object.fromEntries((await cdp.send("Performance.getMetrics")).metrics.map((m) => [m.name, m.value]));
+  const main0 = await metrics();
   const cpu0 = chromiumCpu(pid);
   const t0 = performance.now();
   console.log("measuring");
   await page.waitForTimeout(seconds * 1000); // the measured window itself, not a synchronisation
   const stats = await page.evaluate(() => window.__gs);
   const cpu1 = chromiumCpu(pid);
+  const main1 = await metrics();
+  const mainThread = {};
+  for (const k of ["ThreadTime", "TaskDuration", "ScriptDuration", "RecalcStyleDuration", "LayoutDuration", "RecalcStyleCount", "LayoutCount"])
+    mainThread[k] = main1[k] - main0[k];
   const window_s = (performance.now() - t0) / 1000;
   console.log(JSON.stringify({
     window_s,
     renderer_cpu_s: cpu1.renderer - cpu0.renderer,
     gpu_cpu_s: cpu1.gpu - cpu0.gpu,
+    main_thread: mainThread,
     renderers: cpu1.renderers,
     gpu_processes: cpu1.gpus,
     states: stats.states,
@@ -110,6 +123,9 @@ try {
     server_latencies_ms: stats.server_latencies_ms,
     state_latencies_ms: stats.state_latencies_ms,
     arrival_latencies_ms: stats.arrival_latencies_ms,
+    lazy_latencies_ms: stats.lazy_latencies_ms,
+    urgent_frames: stats.urgent_frames,
+    lazy_frames: stats.lazy_frames,
   }));
   await browser.close();
 } catch (e) {
