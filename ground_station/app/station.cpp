@@ -153,20 +153,36 @@ void Station::push_rows() {
     lock.unlock();
     last_push = std::chrono::steady_clock::now();
     if (server_->stats().clients > 0) {
-      const Json message{{"type", "rows"}, {"rows", rows_json(heard)}};
-      server_->broadcast(message.dump(-1, ' ', false, Json::error_handler_t::replace));
+      const Json rows = rows_json(heard);
+      if (!rows.empty()) {
+        const Json message{{"type", "rows"}, {"rows", rows}};
+        server_->broadcast(message.dump(-1, ' ', false, Json::error_handler_t::replace));
+      }
     }
     lock.lock();
   }
 }
 
-// The rows heard, as the state's fleet rows, each with the server's receive time and, when
-// it is a wall-clock time, the sample's own stamp (milliseconds since the epoch).
+// The rows heard that changed what the page shows of them (their text, or back from stale),
+// as the state's fleet rows, each with the server's receive time and, when it is a wall-clock
+// time, the sample's own stamp (milliseconds since the epoch). A sample that only moves its
+// row's age (most of them: a UAV agent's 10 Hz status) waits for the next state.
 Json Station::rows_json(const std::map<RowKey, Heard>& heard) {
   Json out = Json::array();
   for (const auto& row : listener_.rows()) {
-    const auto it = heard.find({row.kind, row.id});
+    const RowKey key{row.kind, row.id};
+    const auto it = heard.find(key);
     if (it == heard.end()) continue;
+    std::string shown = row.state + '\n' + row.failsafe + '\n' + row.task + '\n' + row.autopilot;
+    for (const std::string& process : row.processes) shown += '\n' + process;
+    const auto before = pushed_heard_ns_.find(key);
+    const bool was_stale =
+        before == pushed_heard_ns_.end() ||
+        static_cast<double>(it->second.received_ns - before->second) / 1e9 > row.stale_after_s;
+    pushed_heard_ns_[key] = it->second.received_ns;
+    std::string& pushed = pushed_shown_[key];
+    if (!was_stale && pushed == shown) continue;
+    pushed = std::move(shown);
     Json j = cli::fleet_json({row})[0];
     drop_structured_fields(j);
     const Heard& h = it->second;

@@ -97,6 +97,10 @@ class Station {
   std::mutex push_mutex_;
   std::condition_variable push_cv_;
   std::map<RowKey, Heard> heard_;
+  // What each row showed when last pushed, and when it was heard (the push thread's own):
+  // a sample that changes neither is no news, its age goes out with the next state.
+  std::map<RowKey, std::string> pushed_shown_;
+  std::map<RowKey, std::int64_t> pushed_heard_ns_;
   cli::FleetListener listener_;
   SimWorld world_;  // read by run()'s thread only
 

@@ -19,7 +19,7 @@ struct StationParams {
   int uavs = fleet::kDefaultUavs;
   int ugvs = fleet::kDefaultUgvs;
   // The whole state (tasks, live plots, 3D view, every row's age) at this rate; a status
-  // sample's row is pushed as it arrives, within push_coalesce_ms.
+  // sample that changes what its row shows is pushed as it arrives, within push_coalesce_ms.
   double state_rate_hz = 10.0;
   double push_coalesce_ms = 5.0;
   int max_clients = 16;
@@ -53,7 +53,8 @@ struct StationParams {
               .at_most(50.0));
     visit("push_coalesce_ms", self.push_coalesce_ms,
           Field("ms",
-                "a status sample's row is pushed at once, or at most this long after it "
+                "a status sample that changes its row's text is pushed at once, or at most "
+                "this long after it "
                 "arrives when a message went out less than this ago; the rows heard meanwhile "
                 "go in the same message (at most one message per window)")
               .at_least(0.0)
