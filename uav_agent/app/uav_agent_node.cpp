@@ -188,6 +188,10 @@ constexpr double kStaleStepPeriods = 1.5;
 
 void UavAgentNode::run_realtime() {
   const double period_s = loop_.config().mission.control_period_s;
+  // The samples of `waited_on` already stepped on. Counts are per reader: when the reference
+  // UGV changes, the new reader's count says nothing of what was stepped on, so the wait is
+  // for its next sample.
+  const dds::Reader<msg::RelativeState>* waited_on = nullptr;
   std::uint64_t seen = 0;
   while (!process::ShutdownSignal::requested()) {
     // Step on each fresh relative state of the reference frame, or after 1.5 control periods
@@ -200,6 +204,11 @@ void UavAgentNode::run_realtime() {
       reader = inputs_.relative_reader(controller->stage_machine().reference_ugv());
     }
     if (reader) {
+      if (reader != waited_on) {
+        waited_on = reader;
+        seen = reader->received_count();
+        last_state_arrival_.reset();
+      }
       if (wait_for_relative_state(*reader, seen, period_s)) seen = reader->received_count();
     } else {
       process::ShutdownSignal::wait_for(clock::to_milliseconds(period_s));

