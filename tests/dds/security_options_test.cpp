@@ -165,7 +165,11 @@ TEST(AccessRules, LeastPrivilegeOverTheWholeCatalogue) {
     const TopicAccess access = topic_access(identity, fleet);
     published.insert(access.publish.begin(), access.publish.end());
     subscribed.insert(access.subscribe.begin(), access.subscribe.end());
-    for (const auto& topic : access.publish) EXPECT_TRUE(find_topic(topic)) << topic;
+    // A '*' stands for every process's reply topic (a DDS-Security fnmatch pattern).
+    for (auto topic : access.publish) {
+      if (const auto star = topic.find('*'); star != std::string::npos) topic.replace(star, 1, "x");
+      EXPECT_TRUE(find_topic(topic)) << topic;
+    }
   }
   using Names = std::set<std::string>;
   EXPECT_EQ(writers(topics::uav_command(1).name()), Names{"uav-agent-1"});
@@ -176,8 +180,10 @@ TEST(AccessRules, LeastPrivilegeOverTheWholeCatalogue) {
   // Every catalogue pattern is published and subscribed by someone in the fleet.
   for (const auto& info : topic_catalog()) {
     const auto has = [&](const std::set<std::string>& names) {
-      return std::any_of(names.begin(), names.end(),
-                         [&](const std::string& n) { return find_topic(n) == &info; });
+      return std::any_of(names.begin(), names.end(), [&](std::string n) {
+        if (const auto star = n.find('*'); star != std::string::npos) n.replace(star, 1, "x");
+        return find_topic(n) == &info;
+      });
     };
     EXPECT_TRUE(has(published)) << info.pattern;
     EXPECT_TRUE(has(subscribed)) << info.pattern;
@@ -208,6 +214,22 @@ TEST(AccessRules, LeastPrivilegeOverTheWholeCatalogue) {
   EXPECT_FALSE(contains(relay.publish, topics::uav_command(0).name()));
   EXPECT_EQ(relay.subscribe.size(), 1u);
   EXPECT_EQ(identity_name({Role::MocapRelay, 0}), "mocap-relay");
+  // Clock replies: every answerer may write any asker's topic; an asker reads its own only.
+  const std::string any_reply = "cover/time/reply/*";
+  EXPECT_EQ(writers(any_reply),
+            (Names{"fc-bridge-0", "fc-bridge-1", "mocap-relay", "sim", "uav-agent-0", "uav-agent-1",
+                   "ugv-agent-0", "ugv-agent-1"}));
+  EXPECT_TRUE(contains(relay.publish, any_reply));
+  EXPECT_TRUE(contains(uav0.subscribe, topics::time_reply("cover-uav-agent-0").name()));
+  EXPECT_FALSE(contains(uav0.subscribe, topics::time_reply("cover-uav-agent-1").name()));
+  EXPECT_FALSE(contains(uav0.subscribe, any_reply));
+  EXPECT_TRUE(contains(topic_access({Role::TaskManager, 0}, fleet).subscribe,
+                       topics::time_reply("cover-task-manager").name()));
+  EXPECT_TRUE(contains(topic_access({Role::UgvAgent, 1}, fleet).subscribe,
+                       topics::time_reply("cover-ugv-agent-1").name()));
+  EXPECT_FALSE(contains(bridge0.subscribe, topics::time_reply("cover-fc-bridge-0").name()));
+  EXPECT_TRUE(contains(station.subscribe, any_reply));
+  EXPECT_FALSE(contains(station.publish, any_reply));
   EXPECT_EQ(parse_identity("mocap-relay")->role, Role::MocapRelay);
 }
 

@@ -95,7 +95,8 @@ TEST(TopicCatalog, EveryAccessorBindsItsRowAndEveryRowHasOne) {
   expect_catalogued(topics::fc_request(), "cover/fc/request", patterns);
   expect_catalogued(topics::fc_reply(), "cover/fc/reply", patterns);
   expect_catalogued(topics::time_request(), "cover/time/request", patterns);
-  expect_catalogued(topics::time_reply(), "cover/time/reply", patterns);
+  expect_catalogued(topics::time_reply("cover-uav-agent-3"), "cover/time/reply/cover_uav_agent_3",
+                    patterns);
   std::set<std::string> catalogued;
   for (const auto& entry : dds::topic_catalog()) catalogued.insert(entry.pattern);
   EXPECT_EQ(patterns, catalogued) << "a catalogue row without an accessor (or a test)";
@@ -150,6 +151,30 @@ TEST(TopicCatalog, RuntimeLookupRefusesAWrongTypeOrAnUnknownName) {
   EXPECT_NE(wrong.find("cover::idl::UavStatus"), std::string::npos) << wrong;
   const auto unknown = message_of([] { dds::catalogued_topic<msg::UavStatus>("cover/uav/0/x"); });
   EXPECT_NE(unknown.find("not in the catalogue"), std::string::npos) << unknown;
+}
+
+// A clock reply topic per asker: its process name, as Cyclone takes it ([A-Za-z0-9_/]).
+TEST(TopicCatalog, ReplyTopicsAreNamedByTheirAsker) {
+  EXPECT_EQ(topics::time_reply("cover-task-manager").name(), "cover/time/reply/cover_task_manager");
+  EXPECT_EQ(topics::time_reply("time-sync.test_2").name(), "cover/time/reply/time_sync_test_2");
+  EXPECT_EQ(dds::find_topic("cover/time/reply/cover_sim")->type_name, "cover::idl::TimeSyncReply");
+  EXPECT_EQ(dds::find_topic("cover/time/reply"), nullptr);
+  EXPECT_EQ(dds::find_topic("cover/time/reply/"), nullptr);
+  EXPECT_EQ(dds::find_topic("cover/time/reply/cover-sim"), nullptr);
+  EXPECT_EQ(dds::find_topic("cover/time/reply/a/b"), nullptr);
+  EXPECT_EQ(dds::find_topic("cover/time/reply/*"), nullptr);
+  EXPECT_EQ(dds::find_topic("cover/time/reply/" + std::string(65, 'a')), nullptr);
+  const std::vector<std::string> bad_names{"", "host/cover-sim", "a b", "cover*",
+                                           std::string(65, 'a')};
+  for (const std::string& bad : bad_names) {
+    EXPECT_FALSE(dds::valid_process_name(bad)) << bad;
+    EXPECT_NE(message_of([&] { topics::time_reply(bad); }).find("cannot name a clock reply topic"),
+              std::string::npos)
+        << bad;
+  }
+  EXPECT_EQ(topics::clock_askers(2, 1),
+            (std::vector<std::string>{"cover-task-manager", "cover-uav-agent-0",
+                                      "cover-uav-agent-1", "cover-ugv-agent-0"}));
 }
 
 // --- docs/topics.md ---

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -475,6 +476,7 @@ struct LaunchOutcome {
   int exit_code = -1;
   nlohmann::json result;
   std::string text;
+  std::map<std::string, std::string> logs;  // each process's log, by its launch name
 };
 
 LaunchOutcome launch(const std::vector<std::string>& flags, int domain) {
@@ -499,6 +501,12 @@ LaunchOutcome launch(const std::vector<std::string>& flags, int domain) {
   outcome.text += read_text(options.log_file);
   outcome.result =
       nlohmann::json::parse(outcome.text.substr(0, outcome.text.find('\n')), nullptr, false);
+  std::error_code missing;  // no run folder: nothing started
+  for (const auto& entry : fs::directory_iterator(run_dir, missing)) {
+    if (entry.path().extension() == ".log") {
+      outcome.logs[entry.path().stem().string()] = read_text(entry.path().string());
+    }
+  }
   if (outcome.exit_code == 0) fs::remove_all(run_dir);
   return outcome;
 }
@@ -513,6 +521,18 @@ TEST_P(Security, SecureScenarioTwoLands) {
   ASSERT_EQ(run.exit_code, 0) << run.text;
   EXPECT_TRUE(run.result["success"].get<bool>()) << run.result.dump(2);
   EXPECT_LE(run.result["landing_error_m"].get<double>(), 0.05);
+  // The clock replies came on the UAV agent's own reply topic, which its permissions
+  // grant it alone (cover/time/reply/cover_uav_agent_0; the answerers' a '*' pattern).
+  const std::string uav_log = run.logs.count("uav0") ? run.logs.at("uav0") : "";
+  const std::string summary = "clock replies delivered to ";
+  const std::size_t at = uav_log.find(summary);
+  ASSERT_NE(at, std::string::npos) << uav_log;
+  const std::size_t count_at = uav_log.find(": ", at) + 2;
+  EXPECT_GT(std::atoll(uav_log.c_str() + count_at), 0) << uav_log.substr(at, 120);
+  EXPECT_NE(uav_log.find("clock offset to "), std::string::npos) << uav_log;
+  for (const auto& [name, text] : run.logs) {
+    EXPECT_EQ(text.find("cannot answer"), std::string::npos) << name << ": " << text;
+  }
   for (const auto& name : cover::test::shm_entries()) {
     if (!before.count(name)) {
       EXPECT_TRUE(name.rfind("cover_sim_", 0) != 0) << name;

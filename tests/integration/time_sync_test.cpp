@@ -318,11 +318,28 @@ void only_the_task_peers_are_asked() {
                                         named.insert(r.responders.begin(), r.responders.end());
                                         if (r.responders.empty()) named.insert("<everyone>");
                                       });
-  auto replies = station.make_reader(
-      cover::dds::topics::time_reply(), [&](const cover::msg::TimeSyncReply& r) {
-        std::lock_guard<std::mutex> lock(mutex);
-        answered[process_of(r.requester)].insert(process_of(r.responder));
-      });
+  // Each asker's replies on its own topic (cover/time/reply/<process>); the topic a reply
+  // came on is kept with it: a reply on another asker's topic would reach that asker.
+  std::map<std::string, std::set<std::string>> carried;  // topic's asker -> requesters on it
+  std::vector<cover::dds::Reader<cover::msg::TimeSyncReply>> replies;
+  const std::vector<std::string> askers{"cover-uav-agent-0", "cover-ugv-agent-0",
+                                        "cover-ugv-agent-1", "cover-ugv-agent-2",
+                                        "cover-ugv-agent-3"};
+  for (const std::string& asker : askers) {
+    replies.push_back(station.make_reader(
+        cover::dds::topics::time_reply(asker), [&, asker](const cover::msg::TimeSyncReply& r) {
+          std::lock_guard<std::mutex> lock(mutex);
+          answered[process_of(r.requester)].insert(process_of(r.responder));
+          carried[asker].insert(process_of(r.requester));
+        }));
+  }
+  std::size_t shared = 0;  // the one reply topic every asker read before
+  replies.push_back(station.make_reader(cover::dds::Topic<cover::msg::TimeSyncReply>::uncatalogued(
+                                            "cover/time/reply", cover::dds::exchange_qos()),
+                                        [&](const cover::msg::TimeSyncReply&) {
+                                          std::lock_guard<std::mutex> lock(mutex);
+                                          ++shared;
+                                        }));
   auto uav =
       system.spawn({bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "4",
                     "--task", std::string(COVER_CONFIG_DIR) + "/tasks/fleet/uav0.yaml"},
@@ -354,8 +371,30 @@ void only_the_task_peers_are_asked() {
     std::lock_guard<std::mutex> lock(mutex);
     EXPECT_EQ(asked.count(k), 0u) << k;
     for (const auto& [requester, who] : answered) EXPECT_EQ(who.count(k), 0u) << requester;
+    EXPECT_EQ(carried.count(k), 0u) << "replies on the topic of " << k << ", which asked no one";
+  }
+  {
+    // Each asker's topic carries its own replies only, and none goes on a shared topic.
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [topic_asker, requesters] : carried) {
+      EXPECT_EQ(requesters, std::set<std::string>{topic_asker}) << topic_asker;
+    }
+    EXPECT_EQ(shared, 0u) << "replies on cover/time/reply";
   }
   EXPECT_EQ(uav->terminate(scaled(10s), SIGINT), 0);
+  // The UAV agent was delivered its own replies, none of another asker's (on one shared
+  // topic it would have had its UGV agents' too: they asked it back all along).
+  const std::string summary = "clock replies delivered to ";
+  std::ifstream log(system.log_path("uav"));
+  std::string line, found;
+  while (std::getline(log, line)) {
+    if (line.find(summary) != std::string::npos) found = line;
+  }
+  ASSERT_FALSE(found.empty()) << "no '" << summary << "' line in " << system.log_path("uav");
+  std::printf("[ measured ] %s\n", found.c_str());
+  const std::size_t count_at = found.find(": ", found.find(summary)) + 2;
+  EXPECT_GT(std::atoll(found.c_str() + count_at), 0) << found;
+  EXPECT_NE(found.find("(0 for another asker)"), std::string::npos) << found;
   system.stop(scaled(10s));
   EXPECT_FALSE(std::filesystem::exists(system.segment_path())) << system.segment_path();
 }

@@ -15,6 +15,8 @@
 #include <set>
 #include <string>
 #include <thread>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "cover/dds/access_rules.hpp"
@@ -43,15 +45,17 @@ struct Fixture {
     o.domain_id = claim.domain();
     return o;
   }
+  // `asks`: the peers it asks too (time_sync_peer's PEER... or --wait).
   std::unique_ptr<process::ChildProcess> peer(const std::string& vendor, const std::string& name,
-                                              const std::string& offset_ms = "") const {
+                                              const std::string& offset_ms = "",
+                                              const std::vector<std::string>& asks = {}) const {
     process::SpawnOptions spawn;
     spawn.capture_stdout = true;
     if (!offset_ms.empty()) spawn.extra_env.push_back("COVER_TEST_CLOCK_OFFSET_MS=" + offset_ms);
-    auto child = std::make_unique<process::ChildProcess>(
-        std::vector<std::string>{COVER_TIME_SYNC_PEER, vendor, std::to_string(claim.domain()),
-                                 name},
-        spawn);
+    std::vector<std::string> argv{COVER_TIME_SYNC_PEER, vendor, std::to_string(claim.domain()),
+                                  name};
+    argv.insert(argv.end(), asks.begin(), asks.end());
+    auto child = std::make_unique<process::ChildProcess>(argv, spawn);
     // Its log lines come first on stdout (spdlog's default sink).
     const auto give_up = std::chrono::steady_clock::now() + scaled(10s);
     std::optional<std::string> line;
@@ -115,24 +119,29 @@ bool has(const std::vector<std::string>& names, const std::string& name) {
 TEST(TimeSyncAccess, AgentsAndTheManagerAskSimAgentsAndBridgesAnswer) {
   using dds::Role;
   const std::string request = dds::topics::time_request().name();
-  const std::string reply = dds::topics::time_reply().name();
+  const std::string any_reply = "cover/time/reply/*";  // every asker's (fnmatch)
   const dds::Fleet fleet{2, 1, 1};
   auto access = [&](Role role) { return dds::topic_access({role, 0}, fleet); };
+  auto own_reply = [&](Role role) {
+    return dds::topics::time_reply("cover-" + dds::identity_name({role, 0})).name();
+  };
   for (const Role asker : {Role::UavAgent, Role::UgvAgent, Role::TaskManager}) {
     EXPECT_TRUE(has(access(asker).publish, request)) << static_cast<int>(asker);
-    EXPECT_TRUE(has(access(asker).subscribe, reply)) << static_cast<int>(asker);
+    EXPECT_TRUE(has(access(asker).subscribe, own_reply(asker))) << static_cast<int>(asker);
+    EXPECT_FALSE(has(access(asker).subscribe, any_reply)) << static_cast<int>(asker);
   }
+  EXPECT_FALSE(has(access(Role::UavAgent).subscribe, own_reply(Role::TaskManager)));
   for (const Role answerer : {Role::Sim, Role::UgvAgent, Role::UavAgent, Role::FcBridge}) {
     EXPECT_TRUE(has(access(answerer).subscribe, request)) << static_cast<int>(answerer);
-    EXPECT_TRUE(has(access(answerer).publish, reply)) << static_cast<int>(answerer);
+    EXPECT_TRUE(has(access(answerer).publish, any_reply)) << static_cast<int>(answerer);
   }
-  EXPECT_FALSE(has(access(Role::TaskManager).publish, reply));
+  EXPECT_FALSE(has(access(Role::TaskManager).publish, any_reply));
   EXPECT_FALSE(has(access(Role::Sim).publish, request));
   EXPECT_FALSE(has(access(Role::FcBridge).publish, request));
   // A ground station may watch the exchange, not take part in it.
-  EXPECT_TRUE(has(access(Role::GroundStation).subscribe, reply));
+  EXPECT_TRUE(has(access(Role::GroundStation).subscribe, any_reply));
   EXPECT_FALSE(has(access(Role::GroundStation).publish, request));
-  EXPECT_FALSE(has(access(Role::GroundStation).publish, reply));
+  EXPECT_FALSE(has(access(Role::GroundStation).publish, any_reply));
 }
 
 class BetweenVendors : public ::testing::TestWithParam<std::pair<dds::Vendor, std::string>> {};
@@ -200,29 +209,36 @@ TEST(TimeSyncProcess, ForgedRepliesAndMalformedRequestsAreRefused) {
   ASSERT_TRUE(settled(monitor, "/cover-sim", 20s));
 
   dds::Participant intruder(f.options(dds::Vendor::Cyclone));
-  auto replies = intruder.make_writer(dds::topics::time_reply());
+  auto replies = intruder.make_writer(dds::topics::time_reply("time-sync-test"));
   auto requests = intruder.make_writer(dds::topics::time_request());
   ASSERT_TRUE(replies.wait_for_readers(1, scaled(10s)));
   ASSERT_TRUE(requests.wait_for_readers(1, scaled(10s)));
   const std::int64_t max = std::numeric_limits<std::int64_t>::max();
   const std::uint64_t refused_before = monitor.refused_replies();
-  for (std::uint64_t i = 0; i < 20; ++i) {
-    msg::TimeSyncReply forged;
-    forged.requester = monitor.name();
-    forged.responder = "evil/cover-sim";
-    forged.responder_session = i;
-    forged.request_id = 1 + i;                    // an id we may have used...
-    forged.t1_ns = static_cast<std::int64_t>(i);  // ...but not our t1
-    forged.t2_ns = i % 2 ? max : -max;
-    forged.t3_ns = max;
-    ASSERT_TRUE(replies.write(forged));
-    msg::TimeSyncRequest bad;
-    bad.requester = i % 2 ? std::string() : std::string(100000, 'x');
-    bad.t1_ns = -max;
-    ASSERT_TRUE(requests.write(bad));
-  }
-  ASSERT_TRUE(wait_until([&] { return monitor.refused_replies() >= refused_before + 20; }, 10s))
-      << monitor.refused_replies() - refused_before << " of 20 forged replies refused";
+  // Written until 20 were refused: best-effort, the first may come before the monitor's
+  // reader has matched the intruder's writer (wait_for_readers is the writer's side).
+  std::uint64_t written = 0;
+  const bool refused_20 = wait_until(
+      [&] {
+        const std::uint64_t i = written++;
+        msg::TimeSyncReply forged;
+        forged.requester = monitor.name();
+        forged.responder = "evil/cover-sim";
+        forged.responder_session = i;
+        forged.request_id = 1 + i % 20;               // an id we may have used...
+        forged.t1_ns = static_cast<std::int64_t>(i);  // ...but not our t1
+        forged.t2_ns = i % 2 ? max : -max;
+        forged.t3_ns = max;
+        EXPECT_TRUE(replies.write(forged));
+        msg::TimeSyncRequest bad;
+        bad.requester = i % 2 ? std::string() : std::string(100000, 'x');
+        bad.t1_ns = -max;
+        EXPECT_TRUE(requests.write(bad));
+        return monitor.refused_replies() >= refused_before + 20;
+      },
+      10s, 10ms);
+  ASSERT_TRUE(refused_20) << monitor.refused_replies() - refused_before << " of " << written
+                          << " forged replies refused";
   for (const PeerOffset& p : monitor.offsets()) {
     EXPECT_NE(p.peer, "evil/cover-sim");
     EXPECT_LE(std::abs(ns_to_ms(p.estimate.offset_ns)), 1.0) << p.peer;
@@ -233,17 +249,20 @@ TEST(TimeSyncProcess, ForgedRepliesAndMalformedRequestsAreRefused) {
 
 // Requests are addressed: a responder answers only the requests that name it (or name no
 // one), so a fleet's P processes do not each answer every asker. A station on the domain
-// reads every reply on cover/time/reply.
+// reads every asker's reply topic.
 TEST(TimeSyncProcess, AResponderAnswersOnlyTheRequestsThatNameIt) {
   Fixture f;
   dds::Participant participant(f.options(dds::Vendor::FastDds));
   std::mutex mutex;
   std::map<std::string, std::set<std::string>> answered;  // requester -> responders heard
-  auto replies =
-      participant.make_reader(dds::topics::time_reply(), [&](const msg::TimeSyncReply& r) {
-        std::lock_guard<std::mutex> lock(mutex);
-        answered[r.requester].insert(r.responder);
-      });
+  std::vector<dds::Reader<msg::TimeSyncReply>> replies;
+  for (const char* asker : {"time-sync-test", "time-sync-test-all", "time-sync-test-waiting"}) {
+    replies.push_back(
+        participant.make_reader(dds::topics::time_reply(asker), [&](const msg::TimeSyncReply& r) {
+          std::lock_guard<std::mutex> lock(mutex);
+          answered[r.requester].insert(r.responder);
+        }));
+  }
   auto heard = [&](const std::string& requester) {
     std::lock_guard<std::mutex> lock(mutex);
     return answered[requester];
@@ -283,6 +302,101 @@ TEST(TimeSyncProcess, AResponderAnswersOnlyTheRequestsThatNameIt) {
   idle.add_peer("cover-sim");
   ASSERT_TRUE(settled(idle, "/cover-sim", 20s));
   EXPECT_EQ(heard(idle.name()).size(), 1u);
+  EXPECT_EQ(sim->terminate(), 0);
+  EXPECT_EQ(ugv->terminate(), 0);
+}
+
+// Each reply reaches its asker only (cover/time/reply/<process>): four real processes,
+// two that answer and two that ask (across vendors), and one asker that asks no one. Every
+// reply an asker was delivered is its own, and a topic nobody asks on stays silent; on one
+// shared reply topic, each asker would have been delivered the other's replies too.
+TEST(TimeSyncProcess, RepliesReachOnlyTheirAsker) {
+  Fixture f;
+  dds::Participant station(f.options(dds::Vendor::Cyclone));
+  struct Heard {
+    std::mutex mutex;
+    std::map<std::string, std::set<std::string>> by_requester;  // requester -> responders
+    std::size_t samples = 0;
+  };
+  std::map<std::string, Heard> topics;  // by asker; "shared": the old cover/time/reply
+  std::vector<dds::Reader<msg::TimeSyncReply>> readers;
+  auto listen = [&](const std::string& key, const dds::Topic<msg::TimeSyncReply>& topic) {
+    Heard& heard = topics[key];
+    readers.push_back(station.make_reader(topic, [&heard](const msg::TimeSyncReply& r) {
+      std::lock_guard<std::mutex> lock(heard.mutex);
+      heard.by_requester[r.requester].insert(r.responder.substr(r.responder.rfind('/') + 1));
+      ++heard.samples;
+    }));
+  };
+  for (const char* asker : {"cover-uav-agent-0", "cover-uav-agent-1", "cover-ugv-agent-5"}) {
+    listen(asker, dds::topics::time_reply(asker));
+  }
+  listen("shared",
+         dds::Topic<msg::TimeSyncReply>::uncatalogued("cover/time/reply", dds::exchange_qos()));
+  auto snapshot = [&](const std::string& key) {
+    Heard& heard = topics.at(key);
+    std::lock_guard<std::mutex> lock(heard.mutex);
+    return std::make_pair(heard.samples, heard.by_requester);
+  };
+
+  auto sim = f.peer("fastdds", "cover-sim");
+  auto ugv = f.peer("cyclone", "cover-ugv-agent-3");
+  auto uav0 = f.peer("fastdds", "cover-uav-agent-0", "", {"cover-sim"});
+  auto uav1 = f.peer("cyclone", "cover-uav-agent-1", "", {"cover-sim", "cover-ugv-agent-3"});
+  auto idle = f.peer("fastdds", "cover-ugv-agent-5", "", {"--wait"});
+  // Both askers answered many times (a burst of 16 at 20 Hz, then 5 Hz).
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const auto [n0, who0] = snapshot("cover-uav-agent-0");
+        const auto [n1, who1] = snapshot("cover-uav-agent-1");
+        return n0 >= 20 && n1 >= 40 && who1.size() == 1 && who1.begin()->second.size() == 2;
+      },
+      20s))
+      << snapshot("cover-uav-agent-0").first << " and " << snapshot("cover-uav-agent-1").first
+      << " replies";
+
+  // What each asker was delivered, in its own process.
+  auto delivered = [](process::ChildProcess& child) {
+    EXPECT_EQ(child.terminate(), 0);
+    // Its log lines come first on stdout (spdlog's default sink).
+    std::string line = "<nothing>";
+    while (const auto next = child.read_line(scaled(5s))) {
+      line = *next;
+      if (line.rfind("delivered ", 0) == 0) break;
+    }
+    unsigned long long all = 0, foreign = 0;
+    std::size_t peers = 0;
+    EXPECT_EQ(
+        std::sscanf(line.c_str(), "delivered %llu foreign %llu peers %zu", &all, &foreign, &peers),
+        3)
+        << line;
+    std::printf("[ measured ] %s\n", line.c_str());
+    return std::make_tuple(all, foreign, peers);
+  };
+  const auto [all0, foreign0, peers0] = delivered(*uav0);
+  const auto [all1, foreign1, peers1] = delivered(*uav1);
+  const auto [all_idle, foreign_idle, peers_idle] = delivered(*idle);
+  EXPECT_GE(all0, 10u);
+  EXPECT_EQ(foreign0, 0u) << "replies to another asker reached cover-uav-agent-0";
+  EXPECT_EQ(peers0, 1u);
+  EXPECT_GE(all1, 20u);
+  EXPECT_EQ(foreign1, 0u) << "replies to another asker reached cover-uav-agent-1";
+  EXPECT_EQ(peers1, 2u);
+  EXPECT_EQ(all_idle, 0u) << "an asker that asked no one was delivered replies";
+
+  // On each asker's topic, its own replies only, from the peers it asked.
+  const auto [n0, who0] = snapshot("cover-uav-agent-0");
+  ASSERT_EQ(who0.size(), 1u);
+  EXPECT_EQ(who0.begin()->first.substr(who0.begin()->first.rfind('/')), "/cover-uav-agent-0");
+  EXPECT_EQ(who0.begin()->second, std::set<std::string>{"cover-sim"});
+  const auto [n1, who1] = snapshot("cover-uav-agent-1");
+  ASSERT_EQ(who1.size(), 1u);
+  EXPECT_EQ(who1.begin()->first.substr(who1.begin()->first.rfind('/')), "/cover-uav-agent-1");
+  EXPECT_EQ(who1.begin()->second, (std::set<std::string>{"cover-sim", "cover-ugv-agent-3"}));
+  EXPECT_EQ(snapshot("cover-ugv-agent-5").first, 0u);
+  EXPECT_EQ(snapshot("shared").first, 0u) << "replies still go out on cover/time/reply";
+  std::printf("[ measured ] replies on the askers' topics: %zu (uav-agent-0), %zu (uav-agent-1)\n",
+              n0, n1);
   EXPECT_EQ(sim->terminate(), 0);
   EXPECT_EQ(ugv->terminate(), 0);
 }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -52,16 +53,22 @@ class FleetListener {
     recording::for_each_fleet_topic_of<msg::FcState>(size, [&](const auto& t) { listen(t); });
     recording::for_each_fleet_topic_of<msg::UgvStatus>(size, [&](const auto& t) { listen(t); });
     listen(dds::topics::sim_clock());
-    // The clock exchange names its askers and answerers ("host/process").
-    peers_requests_ = participant.make_reader(
-        dds::topics::time_request(),
-        [this](const msg::TimeSyncRequest& r) { heard_peers({r.requester}); });
-    peers_replies_ =
-        participant.make_reader(dds::topics::time_reply(), [this](const msg::TimeSyncReply& r) {
-          heard_peers({r.requester, r.responder});
+    // The clock exchange names its askers and answerers ("host/process"); the replies to
+    // an asker are on its own topic: the fleet's askers' are read from the start, any
+    // other asker's once its requests were heard (note_discoveries).
+    for (const std::string& asker : dds::topics::clock_askers(size.uavs, size.ugvs)) {
+      askers_.insert(asker);
+    }
+    follow_askers();
+    peers_requests_ =
+        participant.make_reader(dds::topics::time_request(), [this](const msg::TimeSyncRequest& r) {
+          heard_peers({r.requester});
+          std::lock_guard<std::mutex> lock(mutex_);
+          const std::string asker = r.requester.substr(r.requester.rfind('/') + 1);
+          if (askers_.size() < kMaxAskers && dds::valid_process_name(asker)) askers_.insert(asker);
         });
     listened_for_.insert(dds::topics::time_request().name());
-    listened_for_.insert(dds::topics::time_reply().name());
+    listened_for_.insert(dds::find_topic(dds::topics::time_reply("cover-sim").name())->pattern);
   }
 
   void heard(const msg::ManagerReply& reply) {
@@ -73,6 +80,7 @@ class FleetListener {
   // The matched counts are read before the view's lock is taken: a vendor holds its
   // reader's lock while it calls the reader's callback, which takes the view's.
   void note_discoveries(const ManagerClient& manager) {
+    follow_askers();
     std::vector<const Matched*> found;
     for (const Matched& m : matched_) {
       if (m.writers()) found.push_back(&m);
@@ -127,6 +135,24 @@ class FleetListener {
     matched_.push_back(
         {kind, row_id, [&readers, id] { return readers[id].matched_writers() > 0; }});
   }
+  // A reader on the reply topic of each asker heard since the last call: its answerers
+  // are heard there. Made here, not in the request's callback (a vendor's thread).
+  void follow_askers() {
+    std::vector<std::string> fresh;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (const std::string& asker : askers_) {
+        if (peers_replies_.count(asker) == 0) fresh.push_back(asker);
+      }
+    }
+    for (const std::string& asker : fresh) {
+      peers_replies_.emplace(asker,
+                             participant_.make_reader(dds::topics::time_reply(asker),
+                                                      [this](const msg::TimeSyncReply& r) {
+                                                        heard_peers({r.requester, r.responder});
+                                                      }));
+    }
+  }
   void heard_peers(std::initializer_list<std::string> names) {
     std::lock_guard<std::mutex> lock(mutex_);
     for (const std::string& name : names) {
@@ -144,8 +170,10 @@ class FleetListener {
   std::tuple<std::vector<dds::Reader<msg::UavStatus>>, std::vector<dds::Reader<msg::FcState>>,
              std::vector<dds::Reader<msg::UgvStatus>>, std::vector<dds::Reader<msg::SimClock>>>
       readers_;
+  static constexpr std::size_t kMaxAskers = 256;  // a fleet's processes, with room
+  std::set<std::string> askers_;                  // process names heard asking
   dds::Reader<msg::TimeSyncRequest> peers_requests_;
-  dds::Reader<msg::TimeSyncReply> peers_replies_;
+  std::map<std::string, dds::Reader<msg::TimeSyncReply>> peers_replies_;  // by asker
 };
 
 }  // namespace cover::cli

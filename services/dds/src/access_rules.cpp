@@ -63,13 +63,18 @@ inline constexpr std::tuple kAccess{
     AccessRule<msg::FcReply>{{{Role::FcBridge}}, {kStation}},
     // Clock offsets (docs/time.md): whoever takes another host's samples asks; whoever
     // stamps samples another host takes answers.
-    AccessRule<msg::TimeSyncRequest>{
-        {{Role::UavAgent}, {Role::UgvAgent}, {Role::TaskManager}},
-        {{Role::Sim}, {Role::UgvAgent}, {Role::UavAgent}, {Role::FcBridge}, {Role::MocapRelay},
-         kStation}},
+    AccessRule<msg::TimeSyncRequest>{{{Role::UavAgent}, {Role::UgvAgent}, {Role::TaskManager}},
+                                     {{Role::Sim},
+                                      {Role::UgvAgent},
+                                      {Role::UavAgent},
+                                      {Role::FcBridge},
+                                      {Role::MocapRelay},
+                                      kStation}},
+    // A reply topic per asker (cover/time/reply/<process>): an answerer may publish on any
+    // (a '*' pattern), an asker reads only its own.
     AccessRule<msg::TimeSyncReply>{
         {{Role::Sim}, {Role::UgvAgent}, {Role::UavAgent}, {Role::FcBridge}, {Role::MocapRelay}},
-        {{Role::UavAgent}, {Role::UgvAgent}, {Role::TaskManager}, kStation}},
+        {{Role::UavAgent, kOwn}, {Role::UgvAgent, kOwn}, {Role::TaskManager, kOwn}, kStation}},
 };
 
 struct RoleName {
@@ -85,10 +90,14 @@ constexpr std::array<RoleName, 7> kRoleNames{{{Role::Sim, "sim", false},
                                               {Role::GroundStation, "ground-station-", true},
                                               {Role::MocapRelay, "mocap-relay", false}}};
 
-// The UGV and UAV ids a concrete topic name was bound to.
+// The ids a concrete topic name was bound to. A <process> topic is bound either to one
+// process's name (granted to that process only) or to every process ('*', granted to the
+// roles with a grant on every id).
 struct Binding {
   std::optional<std::uint32_t> ugv;
   std::optional<std::uint32_t> uav;
+  std::optional<std::string> process;
+  bool any_process = false;
 };
 void set(Binding& binding, UgvId id) {
   binding.ugv = id.value;
@@ -104,10 +113,23 @@ std::uint32_t count_of(UavId, const Fleet& fleet) {
   return fleet.uavs;
 }
 
+// The name a process of `identity` runs as ("uav-agent-0": "cover-uav-agent-0").
+std::string process_name(const Identity& identity) {
+  return "cover-" + identity_name(identity);
+}
+
 bool granted(const Grants& grants, const Identity& who, const Binding& binding) {
   for (std::size_t i = 0; i < grants.size; ++i) {
     const Grant& grant = grants.items[i];
     if (grant.role != who.role) continue;
+    if (binding.any_process) {
+      if (!grant.own_id_only) return true;
+      continue;
+    }
+    if (binding.process) {
+      if (grant.own_id_only && *binding.process == process_name(who)) return true;
+      continue;
+    }
     if (!grant.own_id_only) return true;
     const std::optional<std::uint32_t> own =
         who.role == Role::UgvAgent                                 ? binding.ugv
@@ -129,6 +151,17 @@ void for_each_binding(const TopicDescriptor<T, A>& row, const Fleet& fleet, Visi
     Binding binding;
     set(binding, A{a});
     visit(row.bind(A{a}).name(), binding);
+  }
+}
+template <typename T, typename Visit>
+void for_each_binding(const TopicDescriptor<T, ProcessName>& row, const Fleet& fleet, Visit visit) {
+  Binding any;
+  any.any_process = true;
+  visit(row.bind(ProcessName{"*"}).name(), any);
+  for (const Identity& identity : fleet_identities(fleet)) {
+    Binding own;
+    own.process = process_name(identity);
+    visit(row.bind(ProcessName::of(*own.process)).name(), own);
   }
 }
 template <typename T, typename A, typename B, typename Visit>

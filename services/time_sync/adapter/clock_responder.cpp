@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <optional>
 #include <random>
 #include <utility>
 
@@ -15,6 +16,11 @@ namespace {
 constexpr std::size_t kMaxNameBytes = 256;
 constexpr std::size_t kMaxAskers = 256;  // a fleet's processes, with room
 
+// The process part of "host/process" (all of it without a '/').
+std::string process_of(const std::string& peer) {
+  return peer.substr(peer.rfind('/') + 1);
+}
+
 std::uint64_t new_session() {
   std::random_device random;
   const std::uint64_t high = random();
@@ -26,10 +32,10 @@ std::uint64_t new_session() {
 
 ClockResponder::ClockResponder(dds::Participant& participant, const std::string& process,
                                AskerCallback on_new_asker)
-    : name_(peer_name(process)),
+    : participant_(participant),
+      name_(peer_name(process)),
       session_(new_session()),
-      on_new_asker_(std::move(on_new_asker)),
-      writer_(participant.make_writer(dds::topics::time_reply())) {
+      on_new_asker_(std::move(on_new_asker)) {
   const std::int64_t offset_ns = clock::test_clock_offset_ns();
   if (offset_ns != 0) {
     spdlog::warn("answering clock requests as {} with a TEST clock offset of {:+.3f} ms", name_,
@@ -37,14 +43,54 @@ ClockResponder::ClockResponder(dds::Participant& participant, const std::string&
   } else {
     spdlog::info("answering clock requests (cover/time/request) as {}", name_);
   }
+  thread_ = std::thread([this] { open_writers(); });
   reader_ = participant.make_reader(dds::topics::time_request(),
                                     [this](const msg::TimeSyncRequest& r) { on_request(r); });
+}
+
+ClockResponder::~ClockResponder() {
+  reader_ = {};  // no request arrives from here on
+  std::size_t askers = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    askers = writers_.size();
+  }
+  spdlog::info(
+      "clock requests answered by {}: {} ({} for others, {} before the asker's "
+      "writer, {} refused), to {} askers",
+      name_, answered_.load(), not_addressed_.load(), unanswered_.load(), refused_.load(), askers);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void ClockResponder::open_writers() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [&] { return stop_ || !opening_.empty(); });
+    if (stop_) return;
+    const std::string asker = *opening_.begin();
+    lock.unlock();
+    std::optional<dds::Writer<msg::TimeSyncReply>> writer;
+    try {
+      writer.emplace(participant_.make_writer(dds::topics::time_reply(asker)));
+    } catch (const std::exception& e) {
+      spdlog::warn("cannot answer {}: {}", asker, e.what());
+    }
+    lock.lock();
+    opening_.erase(asker);
+    if (writer) writers_.emplace(asker, std::move(*writer));
+  }
 }
 
 void ClockResponder::on_request(const msg::TimeSyncRequest& request) {
   const std::int64_t t2_ns = clock::system_ns();
   if (request.requester == name_) return;  // this process's own monitor asks the others
-  if (request.requester.empty() || request.requester.size() > kMaxNameBytes) {
+  const std::string asker = process_of(request.requester);
+  if (request.requester.size() > kMaxNameBytes || !dds::valid_process_name(asker)) {
     ++refused_;
     return;
   }
@@ -62,9 +108,20 @@ void ClockResponder::on_request(const msg::TimeSyncRequest& request) {
   bool new_asker = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    const bool known = writers_.count(asker) != 0 || opening_.count(asker) != 0;
+    if (!known && writers_.size() + opening_.size() >= kMaxAskers) {
+      ++refused_;
+      return;
+    }
     new_asker = askers_.size() < kMaxAskers && askers_.insert(request.requester).second;
-    reply.t3_ns = clock::system_ns();
-    if (writer_.write(reply)) ++answered_;
+    const auto writer = writers_.find(asker);
+    if (writer == writers_.end()) {
+      ++unanswered_;
+      if (opening_.insert(asker).second) wake_.notify_all();
+    } else {
+      reply.t3_ns = clock::system_ns();
+      if (writer->second.write(reply)) ++answered_;
+    }
   }
   if (!new_asker) return;
   spdlog::info("{} asks this process's clock", request.requester);

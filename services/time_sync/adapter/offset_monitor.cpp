@@ -30,13 +30,15 @@ OffsetMonitor::OffsetMonitor(dds::Participant& participant, MonitorOptions optio
       peers_(static_cast<std::size_t>(options_.params.window_samples),
              clock::s_to_ns(options_.params.peer_timeout_s)),
       writer_(participant.make_writer(dds::topics::time_request())),
-      reader_(participant.make_reader(dds::topics::time_reply(),
+      reader_(participant.make_reader(dds::topics::time_reply(options_.process),
                                       [this](const msg::TimeSyncReply& r) { on_reply(r); })) {
   options_.params.validate();
   thread_ = std::thread([this] { run(); });
 }
 
 OffsetMonitor::~OffsetMonitor() {
+  spdlog::info("clock replies delivered to {}: {} ({} for another asker), {} requests sent", name_,
+               delivered_.load(), foreign_.load(), requests_sent());
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
@@ -80,7 +82,11 @@ void OffsetMonitor::send_request() {
 
 void OffsetMonitor::on_reply(const msg::TimeSyncReply& reply) {
   const std::int64_t t4_ns = clock::system_ns();
-  if (reply.requester != name_) return;  // another process's exchange
+  ++delivered_;
+  if (reply.requester != name_) {  // a namesake's on another host, or forged
+    ++foreign_;
+    return;
+  }
   if (reply.responder.size() > kMaxNameBytes) return;
   std::lock_guard<std::mutex> lock(mutex_);
   // A reply to a request sent before set_peers dropped its responder.

@@ -40,8 +40,15 @@ void bind_each(const dds::TopicDescriptor<T, Ids...>& row, const FleetSize& flee
     f(row.bind(bound...));
   } else {
     using Next = std::tuple_element_t<sizeof...(Bound), std::tuple<Ids...>>;
-    for (std::uint32_t id = 0; id < id_count<Next>(fleet); ++id) {
-      bind_each(row, fleet, f, bound..., Next{id});
+    if constexpr (std::is_same_v<Next, dds::ProcessName>) {
+      // A topic per asking process: the fleet's askers'.
+      for (const std::string& asker : dds::topics::clock_askers(fleet.uavs, fleet.ugvs)) {
+        bind_each(row, fleet, f, bound..., Next::of(asker));
+      }
+    } else {
+      for (std::uint32_t id = 0; id < id_count<Next>(fleet); ++id) {
+        bind_each(row, fleet, f, bound..., Next{id});
+      }
     }
   }
 }
@@ -49,7 +56,8 @@ void bind_each(const dds::TopicDescriptor<T, Ids...>& row, const FleetSize& flee
 }  // namespace detail
 
 // Calls f(dds::Topic<T>) for every concrete topic of the catalogue in a fleet of `fleet`'s
-// size (cover/uav/<u>/rel/<k> for every u and k...), in catalogue order.
+// size (cover/uav/<u>/rel/<k> for every u and k, cover/time/reply/<process> for every
+// process that asks clocks...), in catalogue order.
 template <typename F>
 void for_each_fleet_topic(const FleetSize& fleet, F&& f) {
   std::apply([&](const auto&... rows) { (detail::bind_each(rows, fleet, f), ...); },

@@ -19,9 +19,24 @@ struct UavId {
   static constexpr std::string_view kPlaceholder = "<u>";
   std::uint32_t value;
 };
+// A process's own topic, which only it reads (the replies to its clock requests): its
+// name ("cover-uav-agent-0", a valid_process_name) as a topic name part, each '-' and '.'
+// an '_' ("cover_uav_agent_0"): Cyclone DDS takes only [A-Za-z0-9_/] in a topic name.
+struct ProcessName {
+  static constexpr std::string_view kPlaceholder = "<process>";
+  std::string value;
+  static ProcessName of(std::string_view process);
+};
+
+// Whether `name` may name a process in the clock exchange and its topic: 1 to 64 letters,
+// digits, '-', '_' or '.'.
+bool valid_process_name(std::string_view name);
 
 // `pattern` with its first `placeholder` replaced by the decimal `value`.
 std::string substitute(std::string_view pattern, std::string_view placeholder, std::uint32_t value);
+// `pattern` with its first `placeholder` replaced by `value`.
+std::string substitute(std::string_view pattern, std::string_view placeholder,
+                       const std::string& value);
 
 // One catalogue entry: everything about a topic, in one place. `bind` makes the concrete
 // Topic<T> for given ids; topic_catalog() and docs/topics.md are the runtime view of it.
@@ -29,7 +44,7 @@ template <typename T, typename... Ids>
 struct TopicDescriptor {
   using Message = T;
 
-  std::string_view pattern;  // <k>: UGV id, <u>: UAV id
+  std::string_view pattern;  // <k>: UGV id, <u>: UAV id, <process>: a process name
   QosProfile (*qos)();       // one of the named profiles (qos.hpp)
   std::string_view rate;
   std::string_view flow;  // "publisher -> subscribers"

@@ -73,10 +73,11 @@ inline constexpr std::tuple kCatalog{
         "cover/time/request", &exchange_qos, "1 Hz per asker",
         "uav_agent, ugv_agent, task_manager -> sim, agents, fc_bridge",
         "clock request (t1) of the four-timestamp offset exchange (docs/time.md)"},
-    TopicDescriptor<msg::TimeSyncReply>{
-        "cover/time/reply", &exchange_qos, "on request",
-        "sim, agents, fc_bridge -> uav_agent, ugv_agent, task_manager",
-        "a peer's receive (t2) and send (t3) times for one clock request"},
+    // One topic per asker: a reply reaches its asker only, not every asker of the fleet.
+    TopicDescriptor<msg::TimeSyncReply, ProcessName>{
+        "cover/time/reply/<process>", &exchange_qos, "on request",
+        "sim, agents, fc_bridge -> the asking uav_agent, ugv_agent or task_manager",
+        "a peer's receive (t2) and send (t3) times for one clock request of <process>"},
 };
 
 // The row of message type T, bound to `ids`; does not compile when T has no row or the
@@ -137,16 +138,20 @@ inline Topic<msg::FcReply> fc_reply() {
 inline Topic<msg::TimeSyncRequest> time_request() {
   return bind<msg::TimeSyncRequest>();
 }
-inline Topic<msg::TimeSyncReply> time_reply() {
-  return bind<msg::TimeSyncReply>();
-}
+// The replies to the clock requests of process `asker` ("cover-uav-agent-0"); throws
+// DdsError when `asker` is not a valid_process_name.
+Topic<msg::TimeSyncReply> time_reply(const std::string& asker);
+
+// The processes of a fleet that ask clocks (docs/time.md), whose reply topics a recorder
+// or a permissions file names: the task manager, every UAV agent and every UGV agent.
+std::vector<std::string> clock_askers(std::uint32_t uavs, std::uint32_t ugvs);
 
 }  // namespace topics
 
 // The catalogue as data, for tools that work by name (`cover topics`, echo, pub) and for
 // the docs check; built from topics::kCatalog, in its order.
 struct TopicInfo {
-  std::string pattern;    // <k>: UGV id, <u>: UAV id
+  std::string pattern;    // <k>: UGV id, <u>: UAV id, <process>: a process name
   std::string type_name;  // scoped IDL name (T::kTypeName), e.g. "cover::idl::UgvImu"
   std::string qos_profile;
   std::string rate;
@@ -156,8 +161,8 @@ struct TopicInfo {
 
 const std::vector<TopicInfo>& topic_catalog();
 
-// The catalogue entry a concrete topic name belongs to, or nullptr (placeholders match
-// decimal ids).
+// The catalogue entry a concrete topic name belongs to, or nullptr (<k> and <u> match
+// decimal ids, <process> a valid_process_name).
 const TopicInfo* find_topic(std::string_view topic_name);
 
 // The entry of `name`; throws DdsError when `name` is not catalogued or its type is not

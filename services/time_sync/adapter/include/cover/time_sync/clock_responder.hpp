@@ -1,11 +1,14 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <set>
 #include <string>
+#include <thread>
 
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
@@ -15,8 +18,11 @@ namespace cover::time_sync {
 // Answers clock requests (cover/time/request) with this host's system clock: the request's
 // arrival (t2) and the reply's departure (t3). Every process whose samples another host
 // takes runs one, so that the taker can measure the offset between their clocks. It
-// answers only the requests that name it (or name no one): a request for other
-// processes costs it a lookup, not a reply that every asker would receive.
+// answers only the requests that name it (or name no one), each on its asker's own topic
+// (cover/time/reply/<process>): a reply reaches its asker, not every asker of the fleet.
+// The writer of an asker's topic is made on this object's thread when the asker's first
+// request arrives (a vendor's receive thread must not make one); requests that arrive
+// before it exists go unanswered (the asker's burst asks again 0.1 s later).
 class ClockResponder {
  public:
   // Called once per process that asks this one's clock, with its "host/process" name, on
@@ -26,24 +32,37 @@ class ClockResponder {
   // `process`: this process's name ("cover-ugv-agent-1"); it answers as "host/process".
   ClockResponder(dds::Participant& participant, const std::string& process,
                  AskerCallback on_new_asker = {});
+  ~ClockResponder();
+  ClockResponder(const ClockResponder&) = delete;
+  ClockResponder& operator=(const ClockResponder&) = delete;
 
   const std::string& name() const { return name_; }
   std::uint64_t answered() const { return answered_.load(); }
   std::uint64_t refused() const { return refused_.load(); }              // malformed requests
   std::uint64_t not_addressed() const { return not_addressed_.load(); }  // for others
+  // Addressed to this process but arrived before the asker's reply writer existed.
+  std::uint64_t unanswered() const { return unanswered_.load(); }
 
  private:
   void on_request(const msg::TimeSyncRequest& request);
+  void open_writers();  // its thread: a writer for each asker queued by on_request
 
+  dds::Participant& participant_;
   std::string name_;
   std::uint64_t session_;
   std::atomic<std::uint64_t> answered_{0};
   std::atomic<std::uint64_t> refused_{0};
   std::atomic<std::uint64_t> not_addressed_{0};
+  std::atomic<std::uint64_t> unanswered_{0};
   AskerCallback on_new_asker_;
-  std::mutex mutex_;              // the writer and the askers logged
-  std::set<std::string> askers_;  // each logged (and called back) once
-  dds::Writer<msg::TimeSyncReply> writer_;
+  std::mutex mutex_;  // everything below but the reader
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::set<std::string> askers_;  // "host/process", each logged (and called back) once
+  // By the asker's process name (its topic); an asker restarted on another host reuses it.
+  std::map<std::string, dds::Writer<msg::TimeSyncReply>> writers_;
+  std::set<std::string> opening_;  // asked for, its writer not made yet
+  std::thread thread_;
   dds::Reader<msg::TimeSyncRequest> reader_;  // last: its callback uses the members above
 };
 

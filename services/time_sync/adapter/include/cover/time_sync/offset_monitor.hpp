@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -33,8 +34,10 @@ struct MonitorOptions {
 // Estimates this host's clock offset to each peer it takes samples from: a request on
 // cover/time/request every request_period_s (a burst at start and when a peer appears or
 // restarts) addressed to those peers only (a fleet of P processes costs each responder
-// the requests of its own askers, not P), each reply turned into an OffsetSample, each
-// peer's samples through NTP's clock filter. Logs each peer's first estimate, every crossing of
+// the requests of its own askers, not P), the replies on this process's own topic
+// cover/time/reply/<process> (so no asker receives another's; MonitorOptions::process must
+// be a dds::valid_process_name), each reply turned into an OffsetSample, each peer's
+// samples through NTP's clock filter. Logs each peer's first estimate, every crossing of
 // max_offset_ms and a summary once a minute. Its own thread sends; the replies arrive on DDS's.
 class OffsetMonitor {
  public:
@@ -51,6 +54,10 @@ class OffsetMonitor {
   std::optional<std::string> limit_reason() const;
   std::uint64_t refused_replies() const;  // not matching a request of ours
   std::uint64_t requests_sent() const;
+  // Replies DDS delivered to this monitor, and those of them for another asker (on its own
+  // topic cover/time/reply/<process>, only a namesake's on another host or a forgery).
+  std::uint64_t replies_delivered() const { return delivered_.load(); }
+  std::uint64_t foreign_replies() const { return foreign_.load(); }
 
   // The peers asked from now on (MonitorOptions::peers); a peer no longer named is
   // forgotten at once, a newly named one is asked in a burst.
@@ -77,6 +84,8 @@ class OffsetMonitor {
   PeerOffsets peers_;
   std::uint64_t refused_ = 0;
   std::uint64_t sent_ = 0;
+  std::atomic<std::uint64_t> delivered_{0};
+  std::atomic<std::uint64_t> foreign_{0};
   std::map<std::string, bool> logged_over_;  // peer -> beyond the limit when last logged
   std::int64_t next_summary_ns_ = 0;
   dds::Writer<msg::TimeSyncRequest> writer_;
