@@ -245,7 +245,57 @@ std::string left_out(const Setup& setup, bool multicast) {
   return "";
 }
 
-// The rows of one network: loopback, or the WiFi with multicast passed or dropped.
+// `repeats` runs of one cell, sorted; `why` says why a run measured nothing.
+std::vector<double> run_cell(const std::string& self, const Setup& setup, int count, int repeats,
+                             std::string& why) {
+  std::vector<double> seconds;
+  for (int r = 0; r < repeats && !cover::process::ShutdownSignal::requested(); ++r) {
+    const Cell cell = measure(self, setup, count);
+    if (cell.seconds)
+      seconds.push_back(*cell.seconds);
+    else
+      why = cell.why;
+  }
+  std::sort(seconds.begin(), seconds.end());
+  return seconds;
+}
+
+// A cell's row: median, min and max over its runs (null when none measured), the load.
+json cell_row(const Setup& setup, bool multicast, const Options& o, int count,
+              const std::vector<double>& seconds) {
+  json row{{"network", setup.wifi ? "wifi" : "lo"},
+           {"multicast", setup.wifi ? json(multicast) : json(nullptr)},
+           {"vendor", setup.vendor},
+           {"profile", setup.profile},
+           {"processes", count},
+           {"runs", seconds.size()},
+           {"load_average", load_average()},
+           {"median_s", nullptr}};
+  if (setup.wifi) row.update({{"loss_percent", o.link.loss_percent}, {"rate", o.link.rate}});
+  if (!seconds.empty()) {
+    row.update({{"median_s", seconds[seconds.size() / 2]},
+                {"min_s", seconds.front()},
+                {"max_s", seconds.back()}});
+  }
+  return row;
+}
+
+void print_row(const std::string& network, const json& row) {
+  const auto text = [&](const char* key) { return row.at(key).get<std::string>(); };
+  std::printf("%-19s %-8s %-8s %9d ", network.c_str(), text("vendor").c_str(),
+              text("profile").c_str(), row.at("processes").get<int>());
+  if (row.at("median_s").is_null()) {
+    std::printf("%10s\n", "not measured");
+  } else {
+    std::printf("%10.3f %8.3f %8.3f %5d %6.1f\n", row.at("median_s").get<double>(),
+                row.at("min_s").get<double>(), row.at("max_s").get<double>(),
+                row.at("runs").get<int>(), row.at("load_average").get<double>());
+  }
+  std::fflush(stdout);
+}
+
+// The rows of one network: loopback, or the WiFi with multicast passed or dropped. A cell
+// with fewer runs than asked for is named in `missing`.
 void measure_network(const std::string& self, const Options& o,
                      const cover::bench::DiscoveryWifi* wifi, bool multicast, json& rows,
                      cover::bench::NotMeasured& missing) {
@@ -260,50 +310,41 @@ void measure_network(const std::string& self, const Options& o,
         continue;
       }
       for (const int count : o.counts) {
-        std::vector<double> seconds;
         std::string why;
-        for (int r = 0; r < o.repeats && !cover::process::ShutdownSignal::requested(); ++r) {
-          const Cell cell = measure(self, setup, count);
-          if (cell.seconds)
-            seconds.push_back(*cell.seconds);
-          else
-            why = cell.why;
-        }
+        const auto seconds = run_cell(self, setup, count, o.repeats, why);
         if (cover::process::ShutdownSignal::requested()) return;
-        json row{{"network", wifi ? "wifi" : "lo"},
-                 {"multicast", wifi ? json(multicast) : json(nullptr)},
-                 {"vendor", vendor},
-                 {"profile", profile},
-                 {"processes", count},
-                 {"runs", seconds.size()},
-                 {"load_average", load_average()}};
-        if (wifi) row.update({{"loss_percent", o.link.loss_percent}, {"rate", o.link.rate}});
         if (static_cast<int>(seconds.size()) < o.repeats) {
           missing.add(network + " " + vendor + " " + profile + " x " + std::to_string(count) +
                       ": " + std::to_string(o.repeats - seconds.size()) + " of " +
                       std::to_string(o.repeats) + " runs: " + why);
         }
-        if (seconds.empty()) {
-          row["median_s"] = nullptr;
-          rows.push_back(row);
-          if (!o.as_json)
-            std::printf("%-19s %-8s %-8s %9d %10s\n", network.c_str(), vendor.c_str(),
-                        profile.c_str(), count, "not measured");
-          continue;
-        }
-        std::sort(seconds.begin(), seconds.end());
-        const double median = seconds[seconds.size() / 2];
-        row.update({{"median_s", median}, {"min_s", seconds.front()}, {"max_s", seconds.back()}});
-        rows.push_back(row);
-        if (!o.as_json) {
-          std::printf("%-19s %-8s %-8s %9d %10.3f %8.3f %8.3f %5zu %6.1f\n", network.c_str(),
-                      vendor.c_str(), profile.c_str(), count, median, seconds.front(),
-                      seconds.back(), seconds.size(), row["load_average"].get<double>());
-          std::fflush(stdout);
-        }
+        rows.push_back(cell_row(setup, multicast, o, count, seconds));
+        if (!o.as_json) print_row(network, rows.back());
       }
     }
   }
+}
+
+// Every cell over the WiFi, one network per multicast mode (sized for the largest cell).
+// False when the network could not be set up.
+bool measure_wifi(const std::string& self, Options o, json& rows,
+                  cover::bench::NotMeasured& missing) {
+  std::vector<bool> modes;
+  if (o.multicast != "drop") modes.push_back(true);
+  if (o.multicast != "pass") modes.push_back(false);
+  const int largest = *std::max_element(o.counts.begin(), o.counts.end());
+  for (const bool multicast : modes) {
+    if (cover::process::ShutdownSignal::requested()) break;
+    o.link.multicast = multicast;
+    const cover::bench::DiscoveryWifi wifi(o.link, largest);
+    if (!wifi.ok()) {
+      std::cerr << "cover-bench discovery: scripts/wifi-sim up failed (root needed):\n"
+                << wifi.output();
+      return false;
+    }
+    measure_network(self, o, &wifi, multicast, rows, missing);
+  }
+  return true;
 }
 
 int run(const std::vector<std::string>& args) {
@@ -361,22 +402,8 @@ int run(const std::vector<std::string>& args) {
   }
   if (!o.wifi) {
     measure_network(executable, o, nullptr, true, rows, missing);
-  } else {
-    std::vector<bool> modes;
-    if (o.multicast != "drop") modes.push_back(true);
-    if (o.multicast != "pass") modes.push_back(false);
-    for (const bool multicast : modes) {
-      if (cover::process::ShutdownSignal::requested()) break;
-      o.link.multicast = multicast;
-      const cover::bench::DiscoveryWifi wifi(o.link,
-                                             *std::max_element(o.counts.begin(), o.counts.end()));
-      if (!wifi.ok()) {
-        std::cerr << "cover-bench discovery: scripts/wifi-sim up failed (root needed):\n"
-                  << wifi.output();
-        return 1;
-      }
-      measure_network(executable, o, &wifi, multicast, rows, missing);
-    }
+  } else if (!measure_wifi(executable, o, rows, missing)) {
+    return 1;
   }
   if (cover::process::ShutdownSignal::requested()) {
     std::cerr << "cover-bench discovery: interrupted\n";
