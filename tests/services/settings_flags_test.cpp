@@ -97,19 +97,16 @@ TEST(SettingsFlags, AFileValueAFlagReplacesIsNotChecked) {
 
 TEST(SettingsFlags, ABadFlagValueNamesTheFlagAndItsKey) {
   const std::string file = write_file("bad_flag.yaml", kFile);
-  EXPECT_EQ(error_of(file, {"--port", "abc"}), "--port abc (served.port): expected a whole number");
-  EXPECT_EQ(error_of(file, {"--port", "8080.5"}),
-            "--port 8080.5 (served.port): expected a whole number");
-  EXPECT_EQ(error_of(file, {"--rate-hz", "fast"}),
-            "--rate-hz fast (served.rate_hz): expected a number");
-  EXPECT_EQ(error_of(file, {"--verbose", "2"}),
-            "--verbose 2 (served.verbose): expected true or false");
-  EXPECT_EQ(error_of(file, {"--port", "70000"}),
-            "--port 70000 (served.port): must be in [0, 65535]");
-  EXPECT_EQ(error_of(file, {"--rate-hz", "0"}),
-            "--rate-hz 0 (served.rate_hz): must be in (0, 50] Hz");
-  EXPECT_EQ(error_of(file, {"--mode", "medium"}),
-            "--mode medium (served.mode): 'medium' is not one of fast, slow");
+  // (flag, its value, the error): a wrong type, a bound, a word.
+  const std::vector<std::vector<std::string>> cases = {
+      {"--port", "abc", "--port abc (served.port): expected a whole number"},
+      {"--port", "8080.5", "--port 8080.5 (served.port): expected a whole number"},
+      {"--rate-hz", "fast", "--rate-hz fast (served.rate_hz): expected a number"},
+      {"--verbose", "2", "--verbose 2 (served.verbose): expected true or false"},
+      {"--port", "70000", "--port 70000 (served.port): must be in [0, 65535]"},
+      {"--rate-hz", "0", "--rate-hz 0 (served.rate_hz): must be in (0, 50] Hz"},
+      {"--mode", "medium", "--mode medium (served.mode): 'medium' is not one of fast, slow"}};
+  for (const auto& c : cases) EXPECT_EQ(error_of(file, {c[0], c[1]}), c[2]);
 }
 
 TEST(SettingsFlags, AnUnknownOrBadKeyInTheFileNamesTheKey) {
