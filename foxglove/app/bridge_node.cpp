@@ -70,9 +70,9 @@ BridgeNode::BridgeNode(dds::Participant& participant, const BridgeOptions& optio
   spdlog::info(
       "serving {} DDS topics and {} / {} on ws://{}:{} (queue {} KiB per client, a "
       "client full for {:.1f} s is dropped, at most {} clients)",
-      channel_of_topic_.size(), kTfTopic, kSceneTopic, options.server.address, server_.port(),
-      options.server.client_queue_bytes / 1024, options.server.slow_client_timeout_s,
-      options.server.max_clients);
+      channel_of_topic_.size(), kTfTopic, kSceneTopic, options.server.transport.address,
+      server_.port(), options.server.transport.client_queue_bytes / 1024,
+      options.server.transport.slow_client_timeout_s, options.server.transport.max_clients);
 }
 
 BridgeNode::~BridgeNode() {

@@ -15,8 +15,7 @@
 #include <vector>
 
 #include "bridge_node.hpp"
-#include "cover/config/config_error.hpp"
-#include "cover/config/yaml_reader.hpp"
+#include "cover/config/settings_flags.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/dds_error.hpp"
 #include "cover/foxglove/live_view_params.hpp"
@@ -42,64 +41,29 @@ double cpu_seconds() {
 }
 
 struct CommandLine {
-  std::string config_file = cover::config::default_config_dir() + "/foxglove_bridge.yaml";
-  cover::foxglove::LiveViewParams flags;  // the flags given (the others are not read)
+  cover::config::SettingsFlags<cover::foxglove::LiveViewParams> settings{
+      "foxglove", cover::config::default_config_dir() + "/foxglove_bridge.yaml"};
   std::vector<std::string> topic_globs;
   cover::dds::DdsCliOptions dds;
 };
 
 void add_options(CLI::App& app, CommandLine& cli) {
-  auto& f = cli.flags;
-  app.add_option("--config", cli.config_file,
-                 "settings (foxglove: section); the flags below override its keys")
-      ->capture_default_str();
-  app.add_option("--port", f.port, "TCP port, 0: any free port, logged (foxglove.port)");
-  app.add_option("--address", f.address, "address to listen on (foxglove.address)");
-  app.add_option("--uavs", f.uavs, "UAV ids 0..N-1 to serve topics of (foxglove.uavs)");
-  app.add_option("--ugvs", f.ugvs, "UGV ids 0..N-1 to serve topics of (foxglove.ugvs)");
+  cli.settings.add_to(
+      app, {"port", "address", "uavs", "ugvs", "client_queue_kib", "slow_client_timeout_s",
+            "max_clients", "scene_rate_hz", "deck_size_m"});
   app.add_option("--topics", cli.topic_globs,
                  "serve only topics matching these globs, e.g. 'cover/uav/*' (default: all)");
-  app.add_option("--client-queue-kib", f.client_queue_kib,
-                 "KiB waiting for one client before its new messages are dropped "
-                 "(foxglove.client_queue_kib)");
-  app.add_option("--slow-client-timeout-s", f.slow_client_timeout_s,
-                 "a client whose queue stays full this long (not reading) is disconnected "
-                 "(foxglove.slow_client_timeout_s)");
-  app.add_option("--max-clients", f.max_clients,
-                 "connections served at once (foxglove.max_clients)");
-  app.add_option("--scene-rate-hz", f.scene_rate_hz,
-                 "rate of cover/foxglove/tf and cover/foxglove/scene (foxglove.scene_rate_hz)");
-  app.add_option("--deck-size-m", f.deck_size_m,
-                 "side of the deck drawn per UGV (foxglove.deck_size_m)");
   cli.dds.add_to(app);
-}
-
-// The file's settings, then each flag given on top of them, then the bounds.
-cover::foxglove::LiveViewParams load(const CLI::App& app, const CommandLine& cli) {
-  auto p = cover::foxglove::LiveViewParams::load_file(cli.config_file);
-  const auto& f = cli.flags;
-  auto given = [&](const char* flag) { return app.count(flag) > 0; };
-  if (given("--port")) p.port = f.port;
-  if (given("--address")) p.address = f.address;
-  if (given("--uavs")) p.uavs = f.uavs;
-  if (given("--ugvs")) p.ugvs = f.ugvs;
-  if (given("--client-queue-kib")) p.client_queue_kib = f.client_queue_kib;
-  if (given("--slow-client-timeout-s")) p.slow_client_timeout_s = f.slow_client_timeout_s;
-  if (given("--max-clients")) p.max_clients = f.max_clients;
-  if (given("--scene-rate-hz")) p.scene_rate_hz = f.scene_rate_hz;
-  if (given("--deck-size-m")) p.deck_size_m = f.deck_size_m;
-  p.validate();
-  return p;
 }
 
 cover::foxglove_bridge::BridgeOptions bridge_options(const cover::foxglove::LiveViewParams& p,
                                                      const std::vector<std::string>& globs) {
   cover::foxglove_bridge::BridgeOptions o;
-  o.server.address = p.address;
-  o.server.port = static_cast<std::uint16_t>(p.port);
-  o.server.client_queue_bytes = static_cast<std::size_t>(p.client_queue_kib) * 1024;
-  o.server.slow_client_timeout_s = p.slow_client_timeout_s;
-  o.server.max_clients = static_cast<std::size_t>(p.max_clients);
+  o.server.transport.address = p.address;
+  o.server.transport.port = static_cast<std::uint16_t>(p.port);
+  o.server.transport.client_queue_bytes = static_cast<std::size_t>(p.client_queue_kib) * 1024;
+  o.server.transport.slow_client_timeout_s = p.slow_client_timeout_s;
+  o.server.transport.max_clients = static_cast<std::size_t>(p.max_clients);
   o.tap.fleet.uavs = static_cast<std::uint32_t>(p.uavs);
   o.tap.fleet.ugvs = static_cast<std::uint32_t>(p.ugvs);
   o.tap.topic_globs = globs;
@@ -112,14 +76,14 @@ cover::foxglove_bridge::BridgeOptions bridge_options(const cover::foxglove::Live
 }
 
 // Serves until SIGINT/SIGTERM; the exit code.
-int serve(const CLI::App& app, const CommandLine& cli) {
+int serve(const CommandLine& cli) {
   const auto start = std::chrono::steady_clock::now();
-  const auto options = bridge_options(load(app, cli), cli.topic_globs);
+  const auto options = bridge_options(cli.settings.load(), cli.topic_globs);
   cover::dds::ParticipantOptions dds = cli.dds.resolve("cover-foxglove-bridge");
   dds.receive_buffer_bytes = kReceiveBufferBytes;
   spdlog::info("{} domain {}, fleet of {} UAVs and {} UGVs, settings {}",
                cover::dds::vendor_name(dds.vendor), dds.domain_id, options.tap.fleet.uavs,
-               options.tap.fleet.ugvs, cli.config_file);
+               options.tap.fleet.ugvs, cli.settings.source());
   cover::dds::Participant participant(dds);
   std::unique_ptr<cover::foxglove_bridge::BridgeNode> node;
   try {
@@ -152,6 +116,5 @@ int main(int argc, char** argv) {
   program.logger_name = [] { return std::string("foxglove_bridge"); };
   program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
   program.exits = {cover::startup::exit_on<cover::dds::DdsError>(3)};
-  return cover::startup::run_main(argc, argv, program,
-                                  [&](const CLI::App& app) { return serve(app, cli); });
+  return cover::startup::run_main(argc, argv, program, [&](const CLI::App&) { return serve(cli); });
 }

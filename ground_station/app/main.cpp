@@ -14,7 +14,7 @@
 #include <string>
 
 #include "cover/config/config_error.hpp"
-#include "cover/config/yaml_reader.hpp"
+#include "cover/config/settings_flags.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/dds_error.hpp"
 #include "cover/dds/vendor.hpp"
@@ -36,8 +36,8 @@ constexpr const char* kExitCodes =
     "Open the address it prints (with its token) in a browser.";
 
 struct CommandLine {
-  std::string config_file = cover::config::default_config_dir() + "/ground_station.yaml";
-  gs::StationParams flags;  // the flags given (the others are not read)
+  cover::config::SettingsFlags<gs::StationParams> settings{
+      "ground_station", cover::config::default_config_dir() + "/ground_station.yaml"};
   std::string web_dir;
   std::string sim_run_id = "default";
   cover::dds::DdsCliOptions dds;
@@ -81,61 +81,20 @@ std::vector<std::string> recorder_argv(const CommandLine& cli,
 }
 
 void add_options(CLI::App& app, CommandLine& cli) {
-  auto& f = cli.flags;
-  app.add_option("--config", cli.config_file,
-                 "settings (ground_station: section); the flags below override its keys")
-      ->capture_default_str();
-  app.add_option("--port", f.port, "TCP port of the page, 0: any free port (ground_station.port)");
-  app.add_option("--bind", f.bind,
-                 "address to listen on; any but loopback needs --token-file (ground_station.bind)");
-  app.add_option("--token-file", f.token_file,
-                 "the token (first line, >= 16 characters); without it a new token is made and "
-                 "printed once with the page's address (ground_station.token_file)");
+  cli.settings.add_to(app, {"port", "bind", "token_file", "record_dir", "state_rate_hz",
+                            "push_coalesce_ms", "max_clients", "client_queue_kib",
+                            "slow_client_timeout_s", "manager_query_period_s", "uavs", "ugvs"});
   app.add_option("--web-dir", cli.web_dir, "the page's files (default: web/ of the build folder)");
-  app.add_option("--record-dir", f.record_dir,
-                 "folder of the recordings started from the page (ground_station.record_dir)");
-  app.add_option("--state-rate-hz", f.state_rate_hz,
-                 "rate of the page's whole state (ground_station.state_rate_hz)");
-  app.add_option("--push-coalesce-ms", f.push_coalesce_ms,
-                 "a status sample's row is pushed within this (ground_station.push_coalesce_ms)");
-  app.add_option("--max-clients", f.max_clients,
-                 "pages served at once (ground_station.max_clients)");
-  app.add_option("--client-queue-kib", f.client_queue_kib,
-                 "KiB waiting for one page before its new messages are dropped "
-                 "(ground_station.client_queue_kib)");
-  app.add_option("--slow-client-timeout-s", f.slow_client_timeout_s,
-                 "a page whose queue stays full this long (not reading) is disconnected "
-                 "(ground_station.slow_client_timeout_s)");
-  app.add_option("--manager-query-period-s", f.manager_query_period_s,
-                 "how often the task manager's list is asked for "
-                 "(ground_station.manager_query_period_s)");
   app.add_option("--run-id", cli.sim_run_id,
                  "the simulator run whose world poses give the page its world frame (segment "
                  "/cover_sim_d<domain>_<run-id> on this host, as the UGV agents')")
       ->capture_default_str();
-  app.add_option("--uavs", f.uavs, "UAV ids 0..N-1 to listen for (ground_station.uavs)");
-  app.add_option("--ugvs", f.ugvs, "UGV ids 0..N-1 to listen for (ground_station.ugvs)");
   cli.dds.add_to(app);
 }
 
-// The file's settings, then each flag given on top of them, then the bounds.
-gs::StationParams load(const CLI::App& app, const CommandLine& cli) {
-  auto p = gs::StationParams::load_file(cli.config_file);
-  const auto& f = cli.flags;
-  auto given = [&](const char* flag) { return app.count(flag) > 0; };
-  if (given("--port")) p.port = f.port;
-  if (given("--bind")) p.bind = f.bind;
-  if (given("--token-file")) p.token_file = f.token_file;
-  if (given("--record-dir")) p.record_dir = f.record_dir;
-  if (given("--state-rate-hz")) p.state_rate_hz = f.state_rate_hz;
-  if (given("--push-coalesce-ms")) p.push_coalesce_ms = f.push_coalesce_ms;
-  if (given("--max-clients")) p.max_clients = f.max_clients;
-  if (given("--client-queue-kib")) p.client_queue_kib = f.client_queue_kib;
-  if (given("--slow-client-timeout-s")) p.slow_client_timeout_s = f.slow_client_timeout_s;
-  if (given("--manager-query-period-s")) p.manager_query_period_s = f.manager_query_period_s;
-  if (given("--uavs")) p.uavs = f.uavs;
-  if (given("--ugvs")) p.ugvs = f.ugvs;
-  p.validate();
+// The settings (the file's, the flags given over them), then the checks across them.
+gs::StationParams load(const CommandLine& cli) {
+  const gs::StationParams p = cli.settings.load();
   try {
     cover::shm::segment_name(0, cli.sim_run_id);
   } catch (const std::invalid_argument& e) {
@@ -150,15 +109,15 @@ gs::StationParams load(const CLI::App& app, const CommandLine& cli) {
   return p;
 }
 
-int serve(const CLI::App& app, const CommandLine& cli) {
-  const gs::StationParams p = load(app, cli);
+int serve(const CommandLine& cli) {
+  const gs::StationParams p = load(cli);
   gs::StationOptions options;
-  options.web.address = p.bind;
-  options.web.port = static_cast<std::uint16_t>(p.port);
+  options.web.transport.address = p.bind;
+  options.web.transport.port = static_cast<std::uint16_t>(p.port);
+  options.web.transport.max_clients = static_cast<std::size_t>(p.max_clients);
+  options.web.transport.client_queue_bytes = static_cast<std::size_t>(p.client_queue_kib) * 1024;
+  options.web.transport.slow_client_timeout_s = p.slow_client_timeout_s;
   options.web.static_dir = web_dir(cli);
-  options.web.max_clients = static_cast<std::size_t>(p.max_clients);
-  options.web.client_queue_bytes = static_cast<std::size_t>(p.client_queue_kib) * 1024;
-  options.web.slow_client_timeout_s = p.slow_client_timeout_s;
   try {
     options.web.access.token =
         p.token_file.empty() ? gs::make_token() : gs::read_token_file(p.token_file);
@@ -199,7 +158,7 @@ int serve(const CLI::App& app, const CommandLine& cli) {
       "serving {} on {}:{} ({}), {} domain {}, settings {}", options.web.static_dir, p.bind,
       station->port(),
       options.web.access.token_required ? "token on every request" : "loopback: token for commands",
-      cover::dds::vendor_name(dds.vendor), dds.domain_id, cli.config_file);
+      cover::dds::vendor_name(dds.vendor), dds.domain_id, cli.settings.source());
   station->run();
   const auto stats = station->web_stats();
   spdlog::info("stopped: {} pages served, {} requests refused, {} slow pages dropped",
@@ -220,6 +179,5 @@ int main(int argc, char** argv) {
   program.logger_name = [] { return std::string("ground_station"); };
   program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
   program.exits = {cover::startup::exit_on<cover::dds::DdsError>(3)};
-  return cover::startup::run_main(argc, argv, program,
-                                  [&](const CLI::App& app) { return serve(app, cli); });
+  return cover::startup::run_main(argc, argv, program, [&](const CLI::App&) { return serve(cli); });
 }

@@ -32,11 +32,11 @@ struct Served {
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/index.html") << "<html>the page</html>";
     gs::WebServerOptions o;
-    o.port = 0;
+    o.transport.port = 0;
     o.static_dir = dir;
     o.access = {kToken, token_required};
-    o.client_queue_bytes = queue_bytes;
-    o.slow_client_timeout_s = slow_timeout_s;
+    o.transport.client_queue_bytes = queue_bytes;
+    o.transport.slow_client_timeout_s = slow_timeout_s;
     server = std::make_unique<gs::WebServer>(
         o, [this](std::uint64_t client, bool has_token, const std::string& text) {
           std::lock_guard<std::mutex> lock(mutex);

@@ -31,17 +31,12 @@
 #include "concurrent_floor.hpp"
 #include "cover/launch/launch_file.hpp"
 #include "cover/process/child_process.hpp"
+#include "cover_binary.hpp"
 #include "launch_run.hpp"
 #include "not_measured.hpp"
 #include "vendor_mix.hpp"
 
 namespace {
-
-#ifdef COVER_CLI
-constexpr const char* kCoverCli = COVER_CLI;
-#else
-constexpr const char* kCoverCli = "cover";
-#endif
 
 // A secure fleet runs one vendor: the mixes whose processes all share one.
 bool one_vendor(const cover::bench::VendorMix& mix) {
@@ -56,7 +51,8 @@ std::string make_fleet(const char* vendor) {
   cover::process::SpawnOptions options;
   options.log_file = dir.string() + ".log";
   cover::process::ChildProcess init(
-      {kCoverCli, "security", "init", dir.string(), "--vendor", vendor}, options);
+      {cover::bench::cover_binary("cover"), "security", "init", dir.string(), "--vendor", vendor},
+      options);
   if (init.wait(std::chrono::minutes(1)) != 0) {
     std::cerr << "cover-bench e2e: cover security init failed; see " << options.log_file << "\n";
     return "";

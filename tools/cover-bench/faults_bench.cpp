@@ -34,18 +34,13 @@
 #include "cover/shm/segment_name.hpp"
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/vocabulary/world_segment.hpp"
+#include "cover_binary.hpp"
 #include "fault_row.hpp"
 #include "not_measured.hpp"
 #include "vendor_mix.hpp"
 #include "wifi_runs.hpp"
 
 namespace {
-
-#ifdef COVER_LAUNCH
-const std::filesystem::path kBinDir = std::filesystem::path(COVER_LAUNCH).parent_path();
-#else
-const std::filesystem::path kBinDir = ".";
-#endif
 
 using namespace std::chrono_literals;
 using cover::bench::FaultRow;
@@ -263,7 +258,7 @@ class FaultRun {
     run_id_ = "fb_" + std::to_string(getpid()) + "_" + fault.substr(0, 12) + "_" + mix + "_" +
               std::to_string(seed);
     const cover::bench::VendorMix& v = cover::bench::vendor_mix(mix);
-    std::vector<std::string> sim{(kBinDir / "cover-sim").string(),
+    std::vector<std::string> sim{cover::bench::cover_binary("cover-sim"),
                                  "--scenario",
                                  whole_run ? scenario_with_sensor_faults(fault, dir) : "scenario2",
                                  "--clock",
@@ -282,7 +277,7 @@ class FaultRun {
       sim.insert(sim.end(), {"--firmware", firmware_->name, "--firmware-port-base",
                              std::to_string(firmware_->physics_port())});
       firmware_process_ =
-          spawn({(kBinDir / "cover-firmware").string(), firmware_->name, "--instance",
+          spawn({cover::bench::cover_binary("cover-firmware"), firmware_->name, "--instance",
                  std::to_string(firmware_->instance), "--workdir", dir_ + "/" + run_id_ + "_sitl",
                  "--params", firmware_->params_file()},
                 v.sim, "firmware");
@@ -295,12 +290,12 @@ class FaultRun {
     }
     sim_ = spawn(sim, v.sim, "sim");
     for (int k = 0; k < 2; ++k) {
-      ugvs_.push_back(spawn(
-          {(kBinDir / "cover-ugv-agent").string(), "--id", std::to_string(k), "--run-id", run_id_},
-          v.ugv, "ugv" + std::to_string(k)));
+      ugvs_.push_back(spawn({cover::bench::cover_binary("cover-ugv-agent"), "--id",
+                             std::to_string(k), "--run-id", run_id_},
+                            v.ugv, "ugv" + std::to_string(k)));
     }
     open_world();
-    std::vector<std::string> uav{(kBinDir / "cover-uav-agent").string(),
+    std::vector<std::string> uav{cover::bench::cover_binary("cover-uav-agent"),
                                  "--id",
                                  "0",
                                  "--clock",
@@ -311,7 +306,7 @@ class FaultRun {
                                  cover::config::default_config_dir() + "/tasks/scenario2.yaml"};
     if (through_bridge(fault) || firmware_) {
       uav.push_back("--fc-bridge");
-      std::vector<std::string> bridge{(kBinDir / "cover-fc-bridge").string(),
+      std::vector<std::string> bridge{cover::bench::cover_binary("cover-fc-bridge"),
                                       "--id",
                                       "0",
                                       "--autopilot",

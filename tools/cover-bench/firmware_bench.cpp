@@ -47,6 +47,7 @@
 #include "cover/firmware/firmware_rig.hpp"
 #include "cover/firmware/hover_settle.hpp"
 #include "cover/mavlink/state_messages.hpp"
+#include "cover_binary.hpp"
 #include "not_measured.hpp"
 
 namespace {
@@ -57,17 +58,6 @@ using namespace std::chrono_literals;
 using cover::bench::figure_json;
 using cover::bench::figure_text;
 using cover::bench::percentile;
-
-#ifdef COVER_LAUNCH
-const std::filesystem::path kBinDir = std::filesystem::path(COVER_LAUNCH).parent_path();
-#else
-const std::filesystem::path kBinDir = ".";
-#endif
-#ifdef COVER_CLI
-const std::filesystem::path kCli = COVER_CLI;
-#else
-const std::filesystem::path kCli = kBinDir / "cover";
-#endif
 
 constexpr auto kBoot = 120s;             // start to "would arm": boot, estimator, GPS fix
 constexpr double kFlightHeight_m = 3.0;  // above where it took off
@@ -725,8 +715,8 @@ nlohmann::json fly_autopilot(const fw::FirmwareProfile& profile, const fw::Firmw
       {"firmware",
        profile.firmware == cover::Autopilot::Px4 ? "PX4 SITL, SIH quad" : "ArduCopter SITL, quad"}};
   fw::RigSetup setup;
-  setup.fc_bridge = kBinDir / "cover-fc-bridge";
-  setup.cli = kCli;
+  setup.fc_bridge = cover::bench::cover_binary("cover-fc-bridge");
+  setup.cli = cover::bench::cover_binary("cover");
   setup.workdir = options.workdir / name;
   setup.log = stderr;
   // As the launch files run them: the agent's stream must not miss cmd_timeout_s because

@@ -43,6 +43,7 @@
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
 #include "cover/process/child_process.hpp"
+#include "cover_binary.hpp"
 #include "launch_run.hpp"
 #include "not_measured.hpp"
 
@@ -52,11 +53,7 @@ namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using nlohmann::json;
 
-#ifdef COVER_GROUND_STATION
-const std::string kStation = COVER_GROUND_STATION;
-#else
-const std::string kStation = "cover-ground-station";
-#endif
+const std::string kStation = cover::bench::cover_binary("cover-ground-station");
 #ifdef COVER_BENCH_PAGE
 const std::string kBenchPage = COVER_BENCH_PAGE;
 #else

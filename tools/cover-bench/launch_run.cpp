@@ -7,23 +7,20 @@
 
 #include "cover/config/yaml_reader.hpp"
 #include "cover/process/child_process.hpp"
+#include "cover_binary.hpp"
 
 namespace cover::bench {
 
-namespace {
-
-#ifdef COVER_LAUNCH
-constexpr const char* kLaunch = COVER_LAUNCH;
-#else
-constexpr const char* kLaunch = "cover-launch";
-#endif
-
-}  // namespace
+namespace {}  // namespace
 
 std::vector<std::string> launch_argv(const LaunchRequest& request) {
-  std::vector<std::string> argv = {
-      kLaunch,     request.launch_file,     "--json", "--domain", std::to_string(request.domain),
-      "--run-dir", request.run_dir.string()};
+  std::vector<std::string> argv = {cover::bench::cover_binary("cover-launch"),
+                                   request.launch_file,
+                                   "--json",
+                                   "--domain",
+                                   std::to_string(request.domain),
+                                   "--run-dir",
+                                   request.run_dir.string()};
   argv.insert(argv.end(), request.flags.begin(), request.flags.end());
   return argv;
 }

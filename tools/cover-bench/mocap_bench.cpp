@@ -43,6 +43,7 @@
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/relative_sensor.hpp"
 #include "cover/vocabulary/world_segment.hpp"
+#include "cover_binary.hpp"
 #include "launch_run.hpp"
 #include "not_measured.hpp"
 
@@ -52,12 +53,6 @@ namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using cover::bench::percentile;
 using cover::sim::SharedWorld;
-
-#ifdef COVER_LAUNCH
-const fs::path kLauncher = COVER_LAUNCH;
-#else
-const fs::path kLauncher = "cover-launch";
-#endif
 
 struct Row {
   std::string clock;
@@ -243,7 +238,7 @@ Row run_row(const std::string& clock, bool noise, const fs::path& dir) {
                                               }));
   }
   std::vector<std::string> argv{
-      kLauncher.string(),
+      cover::bench::cover_binary("cover-launch"),
       (fs::path(cover::config::default_config_dir()) / "launch" / "scenario2_mocap.yaml").string(),
       "--domain",
       std::to_string(claim.domain()),

@@ -33,6 +33,7 @@
 #include "cover/foxglove/subscriber_client.hpp"
 #include "cover/mcap/reader.hpp"
 #include "cover/process/child_process.hpp"
+#include "cover_binary.hpp"
 #include "not_measured.hpp"
 
 namespace {
@@ -41,17 +42,8 @@ namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-#ifdef COVER_LAUNCH
-const std::string kLauncher = COVER_LAUNCH;
-#else
-const std::string kLauncher = "cover-launch";
-#endif
-
-#ifdef COVER_CLI
-const std::string kCover = COVER_CLI;
-#else
-const std::string kCover = "cover";
-#endif
+const std::string kLauncher = cover::bench::cover_binary("cover-launch");
+const std::string kCover = cover::bench::cover_binary("cover");
 
 constexpr std::uint32_t kUavs = 4;
 // cover-launch --foxglove serves the live view on the bridge's default port.

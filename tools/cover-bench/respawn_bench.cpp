@@ -35,6 +35,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/wire/enums.hpp"
 #include "cover/wire/task.hpp"
+#include "cover_binary.hpp"
 #include "manager_client.hpp"
 #include "not_measured.hpp"
 
@@ -44,11 +45,7 @@ using namespace std::chrono_literals;
 namespace msg = cover::msg;
 using Clock = std::chrono::steady_clock;
 
-#ifdef COVER_LAUNCH
-constexpr const char* kLaunch = COVER_LAUNCH;
-#else
-constexpr const char* kLaunch = "cover-launch";
-#endif
+const std::string kLaunch = cover::bench::cover_binary("cover-launch");
 
 constexpr auto kIntoTransition = 500ms;  // when the kill lands
 constexpr auto kTaskTimeout = 60s;

@@ -22,6 +22,7 @@
 #include "cover/dds/participant.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/wire/task.hpp"
+#include "cover_binary.hpp"
 #include "manager_client.hpp"
 #include "not_measured.hpp"
 
@@ -30,11 +31,7 @@ namespace {
 using namespace std::chrono_literals;
 namespace msg = cover::msg;
 
-#ifdef COVER_LAUNCH
-constexpr const char* kLaunch = COVER_LAUNCH;
-#else
-constexpr const char* kLaunch = "cover-launch";
-#endif
+const std::string kLaunch = cover::bench::cover_binary("cover-launch");
 
 cover::mission::Task hop(const std::string& id, int from, int to) {
   cover::mission::Task task;

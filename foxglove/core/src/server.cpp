@@ -77,17 +77,7 @@ Server::Impl::Impl(ServerOptions options)
     : options_(std::move(options)),
       subscribers_(new std::atomic<std::uint32_t>[kMaxChannelId + 1]) {
   for (std::uint32_t i = 0; i <= kMaxChannelId; ++i) subscribers_[i] = 0;
-  websocket::ServerOptions transport;
-  transport.log_name = "foxglove server";
-  transport.address = options_.address;
-  transport.port = options_.port;
-  transport.client_queue_bytes = options_.client_queue_bytes;
-  transport.slow_client_timeout_s = options_.slow_client_timeout_s;
-  transport.max_clients = options_.max_clients;
-  // A client's message beyond this closes its connection (1009) before it is buffered
-  // whole; up to it, the parser answers an oversized one with an error status.
-  transport.max_message_bytes = 4 * kMaxClientMessageBytes;
-  transport_ = std::make_unique<websocket::Server>(transport, handlers());
+  transport_ = std::make_unique<websocket::Server>(options_.transport, handlers());
 }
 
 websocket::Handlers Server::Impl::handlers() {
@@ -262,6 +252,18 @@ ServerStats Server::Impl::stats() const {
   s.slow_disconnects = transport.slow_disconnects;
   s.bad_messages = bad_messages_;
   return s;
+}
+
+websocket::ServerOptions default_transport() {
+  websocket::ServerOptions transport;
+  transport.log_name = "foxglove server";
+  transport.address = "0.0.0.0";
+  transport.port = 8765;
+  transport.client_queue_bytes = 4 * 1024 * 1024;
+  transport.slow_client_timeout_s = 5.0;
+  transport.max_clients = 16;
+  transport.max_message_bytes = 4 * kMaxClientMessageBytes;
+  return transport;
 }
 
 Server::Server(ServerOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {}

@@ -68,16 +68,7 @@ WebServer::Impl::Impl(WebServerOptions options, MessageHandler message_handler,
     : options_(std::move(options)),
       on_message_(std::move(message_handler)),
       on_open_(std::move(open_handler)) {
-  websocket::ServerOptions transport;
-  transport.log_name = "ground station server";
-  transport.client_noun = "page";
-  transport.address = options_.address;
-  transport.port = options_.port;
-  transport.client_queue_bytes = options_.client_queue_bytes;
-  transport.slow_client_timeout_s = options_.slow_client_timeout_s;
-  transport.max_clients = options_.max_clients;
-  transport.max_message_bytes = options_.max_message_bytes;
-  transport_ = std::make_unique<websocket::Server>(transport, handlers());
+  transport_ = std::make_unique<websocket::Server>(options_.transport, handlers());
 }
 
 websocket::Handlers WebServer::Impl::handlers() {
@@ -168,6 +159,19 @@ WebServerStats WebServer::Impl::stats() const {
   s.dropped = transport.dropped;
   s.slow_disconnects = transport.slow_disconnects;
   return s;
+}
+
+websocket::ServerOptions default_transport() {
+  websocket::ServerOptions transport;
+  transport.log_name = "ground station server";
+  transport.client_noun = "page";
+  transport.address = "127.0.0.1";
+  transport.port = 8080;
+  transport.client_queue_bytes = 1024 * 1024;
+  transport.slow_client_timeout_s = 2.0;
+  transport.max_clients = 16;
+  transport.max_message_bytes = 256 * 1024;
+  return transport;
 }
 
 WebServer::WebServer(WebServerOptions options, MessageHandler on_message, OpenHandler on_open)

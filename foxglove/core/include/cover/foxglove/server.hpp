@@ -7,19 +7,19 @@
 #include <vector>
 
 #include "cover/foxglove/protocol.hpp"
+#include "cover/websocket/server.hpp"
 
 namespace cover::foxglove {
 
+// The live view's transport settings: every interface, port 8765, 4 MiB per client, a
+// client not reading for 5 s disconnected, 16 clients; a client's message beyond four times
+// kMaxClientMessageBytes closes its connection (1009) before it is buffered whole (up to it,
+// the parser answers an oversized one with an error status).
+websocket::ServerOptions default_transport();
+
 struct ServerOptions {
   std::string name = "cover-foxglove-bridge";  // serverInfo.name
-  std::string address = "0.0.0.0";
-  std::uint16_t port = 8765;  // 0: any free port (port() tells which)
-  // Bytes waiting for one client (in our queue, and again at most as much handed to the
-  // socket): beyond it that client's new messages are dropped, the others are unaffected.
-  std::size_t client_queue_bytes = 4 * 1024 * 1024;
-  // A client whose queue stays full this long (it does not read) is disconnected.
-  double slow_client_timeout_s = 5.0;
-  std::size_t max_clients = 16;
+  websocket::ServerOptions transport = default_transport();
 };
 
 struct ServerStats {

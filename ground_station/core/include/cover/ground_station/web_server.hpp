@@ -7,22 +7,18 @@
 #include <string>
 
 #include "cover/ground_station/access.hpp"
+#include "cover/websocket/server.hpp"
 
 namespace cover::ground_station {
 
+// The page's transport settings: loopback, port 8080, 1 MiB per page, a page not reading for
+// 2 s disconnected, 16 pages, a message beyond 256 KiB closing its connection (1009).
+websocket::ServerOptions default_transport();
+
 struct WebServerOptions {
-  std::string address = "127.0.0.1";
-  std::uint16_t port = 8080;  // 0: any free port (port() tells which)
-  std::string static_dir;     // the page's files (the build folder's web/)
+  websocket::ServerOptions transport = default_transport();
+  std::string static_dir;  // the page's files (the build folder's web/)
   AccessPolicy access;
-  // Bytes waiting for one client (queued, and again at most as much in its socket): beyond
-  // it that client's new messages are dropped, the others are unaffected.
-  std::size_t client_queue_bytes = 1024 * 1024;
-  // A client whose queue stays full this long (it does not read) is disconnected.
-  double slow_client_timeout_s = 2.0;
-  std::size_t max_clients = 16;
-  // A WebSocket message beyond this closes the connection (1009) before it is buffered.
-  std::size_t max_message_bytes = 256 * 1024;
 };
 
 struct WebServerStats {

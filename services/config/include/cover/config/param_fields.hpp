@@ -271,6 +271,22 @@ struct LoadVisitor {
   }
 };
 
+// Throws ConfigError("<where>: must be in ...") when one value (not a sub-section) is out of
+// its field's bounds or words.
+template <typename T>
+void check_value(const T& value, const Field& field, const std::string& where) {
+  if constexpr (kIsNumber<T>) {
+    check(field.admits(static_cast<double>(value)), where, field.requirement());
+  } else if constexpr (IsEigenFixed<T>::value) {
+    for (int i = 0; i < T::RowsAtCompileTime; ++i) {
+      check(field.admits(value[i]), where, "each " + field.requirement());
+    }
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    check(field.words.empty() || field.word_index(value) >= 0, where,
+          "'" + value + "' is not one of " + field.choices());
+  }
+}
+
 struct CheckVisitor {
   const std::string& context;
   template <typename T>
@@ -279,15 +295,8 @@ struct CheckVisitor {
     if constexpr (HasFields<T>::value) {
       CheckVisitor visit{where};
       visit_fields(value, field, visit);
-    } else if constexpr (kIsNumber<T>) {
-      check(field.admits(static_cast<double>(value)), where, field.requirement());
-    } else if constexpr (IsEigenFixed<T>::value) {
-      for (int i = 0; i < T::RowsAtCompileTime; ++i) {
-        check(field.admits(value[i]), where, "each " + field.requirement());
-      }
-    } else if constexpr (std::is_same_v<T, std::string>) {
-      check(field.words.empty() || field.word_index(value) >= 0, where,
-            "'" + value + "' is not one of " + field.choices());
+    } else {
+      check_value(value, field, where);
     }
   }
 };
