@@ -8,11 +8,12 @@
 // fleet stamps its status with simulated time, so the latency is measured on a probe: this
 // process publishes UAV 1's status at 10 Hz stamped with CLOCK_REALTIME (the page compares
 // Date.now() with it, same host), and the station listens for UAVs 0..1. Each probe sample
-// changes what its row shows (its process, 1/2 then 2/2): the page draws such a row at its
-// next frame, and a sample that only moves a row's age within 150 ms (web/src/main.js), so
-// the latency is of the samples the operator must see at once; the others' is printed too. The station is
-// started here rather than by the launch's ground_station: true, for a free port and its pid.
-// Chromium composites the page in software, as it does without a usable GPU (this VM has
+// changes what its row shows (its process, 1/2 then 2/2): the station pushes such a row and
+// the page draws it at its next frame, while a sample that only moves a row's age goes out
+// with the next state (docs/ground-station.md), so the latency is of the samples the
+// operator must see at once, every probe sample one of them (the worst case for the CPU). The
+// station is started here rather than by the launch's ground_station: true, for a free port and its
+// pid. Chromium composites the page in software, as it does without a usable GPU (this VM has
 // none); --gpu-compositing measures SwiftShader compositing it instead (as the browser test
 // runs): a GPU emulated on the CPU.
 #include <unistd.h>
@@ -91,8 +92,6 @@ struct Figures {
   double server_to_page_p99_ms = NAN;
   double arrival_p50_ms = NAN;  // the sample's stamp to the message's arrival in the page
   double arrival_p99_ms = NAN;
-  double lazy_p50_ms = NAN;  // a sample that only moves its row's age -> drawn
-  double lazy_p99_ms = NAN;
   double states_hz = NAN;
   double pushes_hz = NAN;
   // The renderer's main thread, of one core (DevTools' Performance metrics): all of it, and
@@ -100,7 +99,7 @@ struct Figures {
   double main_thread_cpu = NAN;
   double main_script_cpu = NAN;
   double main_style_layout_cpu = NAN;
-  double frames_hz = NAN;  // style recalculations a second: the page's frames that changed
+  double frames_hz = NAN;         // style recalculations a second: the page's frames that changed
   double urgent_frames_hz = NAN;  // frames the page asked for at once, and within 150 ms
   double lazy_frames_hz = NAN;
 };
@@ -218,9 +217,6 @@ void read_page(const json& page, double server_cpu_s, Figures& f) {
         (main.value("RecalcStyleDuration", NAN) + main.value("LayoutDuration", NAN)) / window;
     f.frames_hz = main.value("RecalcStyleCount", NAN) / window;
   }
-  const auto lazy = page.value("lazy_latencies_ms", std::vector<double>{});
-  f.lazy_p50_ms = cover::bench::percentile(lazy, 0.50);
-  f.lazy_p99_ms = cover::bench::percentile(lazy, 0.99);
   f.urgent_frames_hz = page.value("urgent_frames", NAN) / window;
   f.lazy_frames_hz = page.value("lazy_frames", NAN) / window;
   f.states_hz = page.value("states", 0) / window;
@@ -298,8 +294,6 @@ json figures_json(const Figures& f) {
           {"server_to_page_p99_ms", figure_json(f.server_to_page_p99_ms)},
           {"arrival_p50_ms", figure_json(f.arrival_p50_ms)},
           {"arrival_p99_ms", figure_json(f.arrival_p99_ms)},
-          {"lazy_p50_ms", figure_json(f.lazy_p50_ms)},
-          {"lazy_p99_ms", figure_json(f.lazy_p99_ms)},
           {"states_hz", figure_json(f.states_hz)},
           {"pushes_hz", figure_json(f.pushes_hz)},
           {"main_thread_cpu_share", figure_json(f.main_thread_cpu)},
@@ -354,10 +348,6 @@ void print_table(const Figures& f) {
       "%-44s %14s %10s %6s\n", "status sample -> message in the page, p50 / p99",
       (figure_text("%.1f", f.arrival_p50_ms) + " / " + figure_text("%.1f ms", f.arrival_p99_ms))
           .c_str(),
-      "", "");
-  std::printf(
-      "%-44s %14s %10s %6s\n", "sample moving only an age -> drawn, p50 / p99",
-      (figure_text("%.1f", f.lazy_p50_ms) + " / " + figure_text("%.1f ms", f.lazy_p99_ms)).c_str(),
       "", "");
   std::printf("(%s over %s: %zu probe samples; %s state and %s pushed messages a second)\n",
               "measured", figure_text("%.1f s", f.seconds).c_str(), f.latency_samples,

@@ -11,7 +11,7 @@ const token = new URLSearchParams(location.search).get("token") ?? "";
 // stamp to the message's arrival (before drawing); row_updates: times each fleet row was drawn
 // ("uav-agent/0": n).
 const stats = { states: 0, pushes: 0, state_latencies_ms: [], latencies_ms: [], server_latencies_ms: [],
-  arrival_latencies_ms: [], lazy_latencies_ms: [], fleet_updates: 0, row_updates: {}, first_state_ms: 0,
+  arrival_latencies_ms: [], fleet_updates: 0, row_updates: {}, first_state_ms: 0,
   urgent_frames: 0, lazy_frames: 0 };
 window.__gs = stats;
 const kMaxLatencies = 5000;
@@ -239,7 +239,6 @@ function drawFleet() {
     // The latency of what changed the page: a pushed row the operator had to see at once.
     if (urgent && r.source_ms !== undefined) note(stats.latencies_ms, now - r.source_ms);
     if (urgent && r.recv_ms !== undefined) note(stats.server_latencies_ms, now - r.recv_ms);
-    if (!urgent && r.source_ms !== undefined) note(stats.lazy_latencies_ms, now - r.source_ms);
   }
   dirtyRows.clear();
 }

@@ -85,7 +85,7 @@ try {
   step = "measure";
   await page.evaluate(() => {
     const s = window.__gs;
-    for (const list of [s.latencies_ms, s.server_latencies_ms, s.state_latencies_ms, s.arrival_latencies_ms, s.lazy_latencies_ms]) list.length = 0;
+    for (const list of [s.latencies_ms, s.server_latencies_ms, s.state_latencies_ms, s.arrival_latencies_ms]) list.length = 0;
     s.row_updates = {};
     s.states = 0;
     s.pushes = 0;
@@ -123,7 +123,6 @@ try {
     server_latencies_ms: stats.server_latencies_ms,
     state_latencies_ms: stats.state_latencies_ms,
     arrival_latencies_ms: stats.arrival_latencies_ms,
-    lazy_latencies_ms: stats.lazy_latencies_ms,
     urgent_frames: stats.urgent_frames,
     lazy_frames: stats.lazy_frames,
   }));
