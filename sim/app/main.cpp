@@ -145,6 +145,7 @@ nlohmann::json result_json(cover::sim::Fleet& fleet, const cover::sim::SimNode& 
   out["seed"] = fleet.scenario().world.seed;
   out["clock"] = cli.clock;
   out["speed_factor"] = node.wall_time_s() > 0.0 ? fleet.time_s() / node.wall_time_s() : 0.0;
+  out["startup_s"] = node.startup_s();
   // What the agents' answers cost the simulator: every command and trace it received.
   const std::uint64_t samples = node.samples_received();
   out["agent_samples"] = {

@@ -81,7 +81,10 @@ class SimNode {
   const std::vector<double>& latency_ms() const { return latency_.samples_ms(); }
   // What UAV `uav`'s link saw (autopilots only, after run()).
   const AutopilotLinks* autopilot_links() const { return autopilot_links_.get(); }
+  // The run's wall time: in lockstep from the first tick every agent answered (before it,
+  // startup_s of start-up), in realtime from the start.
   double wall_time_s() const { return wall_time_s_; }
+  double startup_s() const { return startup_s_; }
   // Lockstep: ticks published again (some agent's answer missing), and the answers awaited
   // by those publications (each an agent asked to answer again).
   std::uint64_t republished_ticks() const { return republished_ticks_; }
@@ -108,6 +111,7 @@ class SimNode {
   };
 
   bool wait_for_agents();
+  void note_first_tick_answered();
   bool run_over() const;
   SimExit run_lockstep();
   SimExit run_realtime();
@@ -161,6 +165,9 @@ class SimNode {
   // the autopilots' setpoints by the tick (latency_key).
   SensorLatency latency_;
   double wall_time_s_ = 0.0;
+  double startup_s_ = 0.0;
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point stepping_since_;
   std::uint64_t republished_ticks_ = 0;
   std::uint64_t awaited_answers_ = 0;
   bool in_relative_gap_ = false;

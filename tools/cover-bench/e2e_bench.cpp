@@ -213,6 +213,7 @@ int run(const std::vector<std::string>& args) {
          {"mix", run.mix},
          {"success", r.is_object() && r.value("success", false)},
          {"speed_factor", cover::bench::figure_json(speed > 0.0 ? speed : NAN)},
+         {"startup_s", cover::bench::figure_json(number(r, "startup_s"))},
          {"command_median_us", cover::bench::figure_json(number(r, "command_median_us"))},
          {"command_p99_us", cover::bench::figure_json(number(r, "command_p99_us"))}});
   }
@@ -239,12 +240,13 @@ int run(const std::vector<std::string>& args) {
     }
     std::printf("lockstep\n");
     for (const auto& l : out["lockstep"]) {
-      std::printf("  %-10s %-28s %s, %s real time; measurement -> command p50 %s  p99 %s\n",
-                  l["scenario"].get<std::string>().c_str(), l["mix"].get<std::string>().c_str(),
-                  l["success"].get<bool>() ? "success" : "FAILED",
-                  text(l["speed_factor"], "%.1fx").c_str(),
-                  text(l["command_median_us"], "%.1f us").c_str(),
-                  text(l["command_p99_us"], "%.1f us").c_str());
+      std::printf(
+          "  %-10s %-28s %s, %s real time (after %s of start-up); measurement -> command p50 %s  "
+          "p99 %s\n",
+          l["scenario"].get<std::string>().c_str(), l["mix"].get<std::string>().c_str(),
+          l["success"].get<bool>() ? "success" : "FAILED", text(l["speed_factor"], "%.1fx").c_str(),
+          text(l["startup_s"], "%.3f s").c_str(), text(l["command_median_us"], "%.1f us").c_str(),
+          text(l["command_p99_us"], "%.1f us").c_str());
     }
   }
   return missing.exit_code("e2e");
