@@ -117,6 +117,20 @@ TEST(ParticipantOptionsFile, LoadsAndValidates) {
   EXPECT_THROW(ParticipantOptions::load_file(bad_peer), cover::config::ConfigError);
 }
 
+// The ports an announcement goes to per unicast peer: a port pair per participant of one
+// domain's range.
+TEST(ParticipantOptionsFile, ParticipantsPerPeerIsBounded) {
+  for (const char* bad : {"0", "121", "-3"}) {
+    const auto file = write_temp_yaml(std::string("dds_range_") + bad + ".yaml",
+                                      std::string("dds:\n  participants_per_peer: ") + bad + "\n");
+    const std::string text = message_of([&] { ParticipantOptions::load_file(file); });
+    EXPECT_NE(text.find("participants_per_peer"), std::string::npos) << bad << ": " << text;
+  }
+  const auto good = write_temp_yaml("dds_range_8.yaml", "dds:\n  participants_per_peer: 8\n");
+  EXPECT_EQ(ParticipantOptions::load_file(good).participants_per_peer, 8);
+  EXPECT_EQ(ParticipantOptions{}.participants_per_peer, 72);
+}
+
 TEST(ParticipantOptionsFile, ShippedConfigIsValid) {
   const auto options =
       ParticipantOptions::load_file(std::string(COVER_SOURCE_DIR) + "/config/dds.yaml");
@@ -166,6 +180,9 @@ TEST(ParticipantOptionsFile, ShippedWifiProfileUsesUnicastPeers) {
       ParticipantOptions::load_file(std::string(COVER_SOURCE_DIR) + "/config/dds.yaml", "wifi");
   EXPECT_EQ(wifi.interface_name, "wifi0");
   EXPECT_FALSE(wifi.peers.empty());
+  // A vehicle's few processes per peer, not a whole fleet's: 72 x 32 peers per announcement
+  // saturated the emulated 10 Mbit link (docs/benchmarks.md).
+  EXPECT_LE(wifi.participants_per_peer, 8);
 }
 
 class OnEachVendor : public testing::TestWithParam<Vendor> {};

@@ -18,6 +18,10 @@ void ParticipantOptions::validate() const {
     throw DdsError("invalid announcement_period_s " + std::to_string(announcement_period_s) +
                    " (valid: 0 = vendor default, or up to 3600 s)");
   }
+  if (participants_per_peer < 1 || participants_per_peer > kMaxParticipantsPerPeer) {
+    throw DdsError("invalid participants_per_peer " + std::to_string(participants_per_peer) +
+                   " (valid: 1.." + std::to_string(kMaxParticipantsPerPeer) + ")");
+  }
   if (security.expiry_warning_days < 0 || security.expiry_warning_days > kMaxValidityDays) {
     throw DdsError("invalid security.expiry_warning_days " +
                    std::to_string(security.expiry_warning_days) + " (valid: 0.." +
@@ -62,6 +66,7 @@ void read_network_keys(config::YamlReader& reader, ParticipantOptions& options) 
   reader.optional("discovery_server", options.discovery_server);
   reader.optional("fastdds_shared_memory", options.fastdds_shared_memory);
   reader.optional("announcement_period_s", options.announcement_period_s);
+  reader.optional("participants_per_peer", options.participants_per_peer);
   config::YamlReader security = reader.child("security");
   security.optional("enabled", options.security.enabled);
   security.optional("directory", options.security.directory);

@@ -35,9 +35,8 @@ std::string cyclone_config(const ParticipantOptions& options) {
   if (!options.peers.empty()) xml += "<AllowMulticast>false</AllowMulticast>";
   xml += "</General><Discovery>";
   if (!options.peers.empty()) {
-    xml +=
-        "<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>"
-        "72</MaxAutoParticipantIndex><Peers>";
+    xml += "<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>" +
+           std::to_string(options.participants_per_peer - 1) + "</MaxAutoParticipantIndex><Peers>";
     for (const auto& peer : options.peers) xml += "<Peer address=\"" + peer + "\"/>";
     xml += "</Peers>";
   }

@@ -118,9 +118,8 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
       }
       udp->interfaceWhiteList.push_back(address);
     }
-    // Participants per host a unicast peer address reaches: a fleet of 32 UAVs and 32 UGVs
-    // on one host, its simulator and services (each participant takes the next port pair).
-    udp->maxInitialPeersRange = 72;
+    // The participants a unicast peer address may hold (each takes the next port pair).
+    udp->maxInitialPeersRange = static_cast<std::uint32_t>(options.participants_per_peer);
     // Unicast to a peer whose address does not resolve (a vehicle switched off, a spare
     // address) fills the socket's send buffer until ARP gives up, ~3 s, and a blocking
     // send would stall every writer of this process that long: drop instead, as a lossy

@@ -39,6 +39,13 @@ struct ParticipantOptions {
   // (Fast DDS 3 s, Cyclone 30 s). On a lossy link a lost announcement delays discovery
   // by one period: a UAV agent that discovers a UGV's IMU writer late fails its stage.
   double announcement_period_s = 0.0;
+  // Participants a unicast peer address may hold, so the ports each announcement goes to
+  // per peer (Fast DDS's initial-peers range, Cyclone's highest participant index): 72 for a
+  // fleet of 32 UAVs and 32 UGVs on one host, its simulator and services. Over WiFi each
+  // peer is one vehicle with a few processes: every announcement costs peers x this many
+  // datagrams, and 72 x 32 peers saturated a 10 Mbit link (docs/benchmarks.md, discovery
+  // over the emulated WiFi).
+  int participants_per_peer = 72;
   // Fast DDS's UDP receive buffer, bytes; 0: the OS default (212992 on Debian 12). A
   // process that must not lose a burst while it is descheduled (the flight recorder) asks
   // for more; Linux caps it at net.core.rmem_max. Cyclone sizes its own (>= 1 MiB).
@@ -58,6 +65,9 @@ struct ParticipantOptions {
 };
 
 inline constexpr int kMaxDomainId = 232;
+// Cyclone's participant index and Fast DDS's participant id map to port pairs of one
+// domain's range (250 ports, 2 per participant after the first 10): at most 120.
+inline constexpr int kMaxParticipantsPerPeer = 120;
 
 // The server id of the Discovery Server that `discovery_server` names: `fastdds discovery
 // -i 0`, whose GUID prefix the clients must know (44.53.<id>.5f.45.50.52.4f.53.49.4d.41).
