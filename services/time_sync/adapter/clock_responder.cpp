@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <optional>
 #include <random>
 #include <utility>
@@ -15,6 +16,9 @@ namespace {
 // Peer names are host/process: longer is not a COVER process (and not logged verbatim).
 constexpr std::size_t kMaxNameBytes = 256;
 constexpr std::size_t kMaxAskers = 256;  // a fleet's processes, with room
+// How long a new asker's writer waits for the asker's reader before the request that made it
+// is answered (discovery on one host: tens of ms).
+constexpr std::chrono::milliseconds kFirstReplyMatchWait{1000};
 
 // The process part of "host/process" (all of it without a '/').
 std::string process_of(const std::string& peer) {
@@ -77,13 +81,30 @@ void ClockResponder::open_writers() {
     std::optional<dds::Writer<msg::TimeSyncReply>> writer;
     try {
       writer.emplace(participant_.make_writer(dds::topics::time_reply(asker)));
+      // Written before the asker's reader matched, the reply would be lost (volatile).
+      writer->wait_for_readers(1, kFirstReplyMatchWait);
     } catch (const std::exception& e) {
       spdlog::warn("cannot answer {}: {}", asker, e.what());
     }
     lock.lock();
     opening_.erase(asker);
-    if (writer) writers_.emplace(asker, std::move(*writer));
+    if (!writer) continue;
+    auto& opened = writers_.emplace(asker, std::move(*writer)).first->second;
+    answer_pending(asker, opened);
   }
+}
+
+// The last request of `asker` that came before its writer, answered late: t2 is when it
+// arrived and t3 now, so the asker's offset stays right (the wait is not in its delay). A
+// one-shot asker (`cover fleet`) would otherwise hear no one that met it after its first
+// request. Called with mutex_ held.
+void ClockResponder::answer_pending(const std::string& asker,
+                                    dds::Writer<msg::TimeSyncReply>& writer) {
+  const auto pending = pending_.find(asker);
+  if (pending == pending_.end()) return;
+  pending->second.t3_ns = clock::system_ns();
+  if (writer.write(pending->second)) ++answered_;
+  pending_.erase(pending);
 }
 
 void ClockResponder::on_request(const msg::TimeSyncRequest& request) {
@@ -117,6 +138,7 @@ void ClockResponder::on_request(const msg::TimeSyncRequest& request) {
     const auto writer = writers_.find(asker);
     if (writer == writers_.end()) {
       ++unanswered_;
+      pending_[asker] = reply;
       if (opening_.insert(asker).second) wake_.notify_all();
     } else {
       reply.t3_ns = clock::system_ns();

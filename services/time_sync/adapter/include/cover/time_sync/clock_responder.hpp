@@ -21,8 +21,8 @@ namespace cover::time_sync {
 // answers only the requests that name it (or name no one), each on its asker's own topic
 // (cover/time/reply/<process>): a reply reaches its asker, not every asker of the fleet.
 // The writer of an asker's topic is made on this object's thread when the asker's first
-// request arrives (a vendor's receive thread must not make one); requests that arrive
-// before it exists go unanswered (the asker's burst asks again 0.1 s later).
+// request arrives (a vendor's receive thread must not make one); the last request that
+// arrived before it exists is answered once the asker's reader matched it (<= 1 s).
 class ClockResponder {
  public:
   // Called once per process that asks this one's clock, with its "host/process" name, on
@@ -40,12 +40,14 @@ class ClockResponder {
   std::uint64_t answered() const { return answered_.load(); }
   std::uint64_t refused() const { return refused_.load(); }              // malformed requests
   std::uint64_t not_addressed() const { return not_addressed_.load(); }  // for others
-  // Addressed to this process but arrived before the asker's reply writer existed.
+  // Addressed to this process but arrived before the asker's reply writer existed (the last
+  // of them is answered when it does).
   std::uint64_t unanswered() const { return unanswered_.load(); }
 
  private:
   void on_request(const msg::TimeSyncRequest& request);
   void open_writers();  // its thread: a writer for each asker queued by on_request
+  void answer_pending(const std::string& asker, dds::Writer<msg::TimeSyncReply>& writer);
 
   dds::Participant& participant_;
   std::string name_;
@@ -61,7 +63,8 @@ class ClockResponder {
   std::set<std::string> askers_;  // "host/process", each logged (and called back) once
   // By the asker's process name (its topic); an asker restarted on another host reuses it.
   std::map<std::string, dds::Writer<msg::TimeSyncReply>> writers_;
-  std::set<std::string> opening_;  // asked for, its writer not made yet
+  std::set<std::string> opening_;                      // asked for, its writer not made yet
+  std::map<std::string, msg::TimeSyncReply> pending_;  // by asker: its last request since
   std::thread thread_;
   dds::Reader<msg::TimeSyncRequest> reader_;  // last: its callback uses the members above
 };
