@@ -81,15 +81,19 @@ void ClockResponder::open_writers() {
     std::optional<dds::Writer<msg::TimeSyncReply>> writer;
     try {
       writer.emplace(participant_.make_writer(dds::topics::time_reply(asker)));
-      // Written before the asker's reader matched, the reply would be lost (volatile).
-      writer->wait_for_readers(1, kFirstReplyMatchWait);
     } catch (const std::exception& e) {
       spdlog::warn("cannot answer {}: {}", asker, e.what());
     }
     lock.lock();
     opening_.erase(asker);
     if (!writer) continue;
-    auto& opened = writers_.emplace(asker, std::move(*writer)).first->second;
+    // From here on requests are answered as they come (map nodes stay where they are).
+    dds::Writer<msg::TimeSyncReply>& opened =
+        writers_.emplace(asker, std::move(*writer)).first->second;
+    lock.unlock();
+    // Written before the asker's reader matched, a reply would be lost (volatile).
+    opened.wait_for_readers(1, kFirstReplyMatchWait);
+    lock.lock();
     answer_pending(asker, opened);
   }
 }
