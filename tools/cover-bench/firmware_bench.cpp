@@ -478,23 +478,61 @@ double mode_after_s(fw::FirmwareRig& rig, std::int64_t from_ns,
   return at ? ms(from_ns, *at) * 1e-3 : NAN;
 }
 
-// Turns at kTurnRate_rad_s while holding the height, until the firmware has flown it
-// steadily for 0.5 s (above 80 % of it in every report): the fault's effect is its end.
+// The firmware's yaw rate over the last half second, as the fault's detector reads it.
+struct TurnWindow {
+  std::size_t reports = 0;
+  double mean_rad_s = NAN;
+  double lowest_rad_s = NAN;
+  bool dipped = false;  // a 100 ms stretch below 70 %: what a failsafe looks like
+};
+
+TurnWindow last_half_second_of_turn(fw::FirmwareRig& rig) {
+  TurnWindow w;
+  double sum = 0.0;
+  std::optional<std::int64_t> below_since;
+  for (const auto& a : rig.monitor().attitudes_since(now_ns() - 500'000'000)) {
+    const double rate = std::abs(a.value.yawspeed);
+    ++w.reports;
+    sum += rate;
+    w.lowest_rad_s = std::isfinite(w.lowest_rad_s) ? std::min(w.lowest_rad_s, rate) : rate;
+    if (rate >= 0.7 * kTurnRate_rad_s) {
+      below_since.reset();
+    } else if (!below_since) {
+      below_since = a.at_ns;
+    } else if (a.at_ns - *below_since >= 100'000'000) {
+      w.dipped = true;
+    }
+  }
+  if (w.reports > 0) w.mean_rad_s = sum / static_cast<double>(w.reports);
+  return w;
+}
+
+// Turns at kTurnRate_rad_s while holding the height, until the firmware has flown it for
+// 0.5 s at 80 % of it on average, with no stretch the failsafe detector would take for the
+// turn's end (single noisy reports of a loaded rate loop are not): the fault's effect is the
+// turn's end. When it never does, the report says what the firmware flew instead.
 void turn(fw::FirmwareRig& rig, double height) {
   fw::AgentSetpoint extra;
   extra.yaw_rate = kTurnRate_rad_s;
   rig.agent_flies(fw::hold_height(rig.monitor(), height, extra));
-  require(wait_for(
-              [&] {
-                const auto recent = rig.monitor().attitudes_since(now_ns() - 500'000'000);
-                if (recent.size() < 20) return false;
-                for (const auto& a : recent) {
-                  if (std::abs(a.value.yawspeed) < 0.8 * kTurnRate_rad_s) return false;
-                }
-                return true;
-              },
-              10s),
-          "a steady turn before the fault");
+  TurnWindow last;
+  const bool steady = wait_for(
+      [&] {
+        last = last_half_second_of_turn(rig);
+        return last.reports >= 20 && !last.dipped && last.mean_rad_s >= 0.8 * kTurnRate_rad_s;
+      },
+      10s);
+  if (steady) return;
+  const auto hb = rig.monitor().heartbeat();
+  throw Failed{
+      "a steady turn before the fault: in the last 0.5 s " + std::to_string(last.reports) +
+      " attitude reports, mean " + figure_text("%.3f", last.mean_rad_s) + " rad/s, lowest " +
+      figure_text("%.3f", last.lowest_rad_s) + " rad/s of " + figure_text("%.2f", kTurnRate_rad_s) +
+      (last.dipped ? ", a 100 ms dip" : "") + "; firmware " +
+      (hb ? std::string(fw::armed(*hb) ? "armed" : "disarmed") +
+                (fw::in_offboard(rig.firmware_kind(), *hb) ? ", COVER's mode" : ", another mode") +
+                " (" + std::to_string(hb->custom_mode) + ")"
+          : std::string("silent"))};
 }
 
 FaultTry agent_killed(fw::FirmwareRig& rig) {
