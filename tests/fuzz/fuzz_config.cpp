@@ -29,6 +29,7 @@
 #include "cover/wire/intake.hpp"
 #include "fuzz_input.hpp"
 #include "sim_process_params.hpp"
+#include "uav_agent_params.hpp"
 #include "ugv_agent_params.hpp"
 
 namespace {
@@ -72,6 +73,8 @@ const std::vector<Loader>& loaders() {
       {"launch", "launch/example.yaml",
        [](Doc d, Path p) { cover::launch::LaunchFile::parse(d, p, fs::path(p).parent_path()); }},
       {"intake", "intake.yaml", [](Doc d, Path p) { cover::wire::IntakeLimits::from_yaml(d, p); }},
+      {"uav_agent", "uav_agent.yaml",
+       [](Doc d, Path p) { cover::uav_agent::UavAgentParams::from_yaml(d, p); }},
   };
   return all;
 }

@@ -2,6 +2,7 @@
 // failsafe when a UAV agent dies mid-flight, and tasks and aborts arriving over DDS.
 // Real processes, real DDS, the simulator's real shared-memory world as ground truth.
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -116,12 +118,47 @@ class TaskStatusWatch {
   cover::dds::Reader<cover::msg::TaskStatus> reader_;
 };
 
+// The CPU list ("1", "0-3") each thread of `pid` may run on, by thread id.
+std::map<int, std::string> thread_cpus(int pid) {
+  std::map<int, std::string> cpus;
+  const std::string task_dir = "/proc/" + std::to_string(pid) + "/task";
+  for (const auto& entry : std::filesystem::directory_iterator(task_dir)) {
+    std::ifstream status(entry.path() / "status");
+    for (std::string line; std::getline(status, line);) {
+      if (line.rfind("Cpus_allowed_list:", 0) == 0) {
+        cpus[std::stoi(entry.path().filename().string())] =
+            line.substr(line.find_first_not_of(" \t", 18));
+      }
+    }
+  }
+  return cpus;
+}
+
+// The last CPU this process may use, when it may use more than one (else -1).
+int last_of_several_cpus() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0 || CPU_COUNT(&set) < 2) return -1;
+  int last = -1;
+  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
+    if (CPU_ISSET(cpu, &set)) last = cpu;
+  }
+  return last;
+}
+
 // The whole flight of that test, in a scope of its own: its participants and processes
-// are gone before the shared-memory check.
+// are gone before the shared-memory check. The agent places its control thread alone on a
+// CPU and waits for its states there after its rehearsal (the scenario launch files' way).
 void fly_task_over_dds_validate_and_abort() {
   SimSystem system(168, "it", {"--scenario", "scenario2"});
-  auto uav = system.spawn(
-      {bin("cover-uav-agent"), "--id", "0", "--clock", "realtime", "--ugv-count", "2"}, "uav");
+  const int control_cpu = last_of_several_cpus();
+  std::vector<std::string> agent{bin("cover-uav-agent"), "--id", "0", "--clock", "realtime",
+                                 "--ugv-count",          "2"};
+  if (control_cpu >= 0) {
+    agent.insert(agent.end(), {"--control-cpu", std::to_string(control_cpu),
+                               "--spin-after-rehearsal-s", "0.0005"});
+  }
+  auto uav = system.spawn(agent, "uav");
   cover::dds::ParticipantOptions options;
   options.domain_id = system.domain();
   cover::dds::Participant station(options);  // the ground station
@@ -169,6 +206,24 @@ void fly_task_over_dds_validate_and_abort() {
   EXPECT_GT(status.solve_time_us, 0.0);
   EXPECT_TRUE(std::isfinite(status.distance_to_stage_point_m));
   EXPECT_GT(reference.latest()->sample.positions_m.size(), 2u);
+  if (control_cpu >= 0) {
+    // The control thread (the main one) alone on its CPU; every other thread, the task's
+    // planner started after the first placement among them, on the others.
+    const auto cpus = thread_cpus(uav->pid());
+    ASSERT_GT(cpus.size(), 3u);
+    for (const auto& [tid, list] : cpus) {
+      if (tid == uav->pid()) {
+        EXPECT_EQ(list, std::to_string(control_cpu));
+      } else {
+        EXPECT_EQ(list.find(std::to_string(control_cpu)), std::string::npos)
+            << "thread " << tid << " may run on " << list;
+      }
+    }
+    std::ifstream log_file(system.log_path("uav"));
+    const std::string log{std::istreambuf_iterator<char>(log_file), {}};
+    EXPECT_NE(log.find("control thread on CPU " + std::to_string(control_cpu)), std::string::npos)
+        << log;
+  }
   // Each UGV agent publishes its wheel odometry speed (scenario 2's UGVs have it) beside
   // the IMU: close to the simulator's true forward speed (1 % scale error, 0.02 m/s noise,
   // a 32 ms low-pass, and a few ms between the sample and the world read here).

@@ -22,6 +22,7 @@
 #include "cover/time_sync/time_sync_params.hpp"
 #include "cover/vocabulary/fleet_size.hpp"
 #include "sim_process_params.hpp"
+#include "uav_agent_params.hpp"
 #include "ugv_agent_params.hpp"
 
 namespace cover::params_reference {
@@ -78,6 +79,13 @@ std::vector<Section> sections() {
           "Task manager", "task_manager/dispatch/include/cover/task_manager/task_limits.hpp",
           "`config/task_manager.yaml`, section `task_manager`: what the task manager accepts "
           "and how long it waits for the agents. Read by `cover-task-manager`."),
+      section<uav_agent::UavAgentParams>(
+          "UAV agent", "uav_agent/app/params/uav_agent_params.hpp",
+          "`config/uav_agent.yaml`, section `uav_agent` (required): the process's own settings "
+          "(status period, lockstep waits, the realtime loop's rehearsal, control CPU and "
+          "spin). Read by `cover-uav-agent` (from its configuration folder, or `--config`); "
+          "`--control-cpu`, `--spin-after-rehearsal-s` and `--rehearsal-lead-s` override "
+          "their keys."),
       section<ugv::UgvAgentParams>(
           "UGV agent", "ugv_agent/app/params/ugv_agent_params.hpp",
           "`config/ugv_agent.yaml`, section `ugv_agent` (required): the IMU filter and the "

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cover/config/config_error.hpp"
+#include "cover/config/settings_flags.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/cli_options.hpp"
 #include "cover/dds/dds_error.hpp"
@@ -31,6 +32,8 @@ struct CommandLine {
   int ugv_count = cover::fleet::kDefaultUgvs;
   bool fc_bridge = false;
   cover::dds::DdsCliOptions dds;
+  cover::config::SettingsFlags<cover::uav_agent::UavAgentParams> settings{
+      "uav_agent", cover::config::default_config_dir() + "/uav_agent.yaml"};
 };
 
 void add_options(CLI::App& app, CommandLine& cli) {
@@ -45,8 +48,10 @@ void add_options(CLI::App& app, CommandLine& cli) {
                  "on each fresh relative state; system: the host's clock (field)")
       ->check(CLI::IsMember({"lockstep", "realtime", "system"}))
       ->capture_default_str();
-  app.add_option("--config-dir", cli.config_dir,
-                 "folder of mission.yaml, planner.yaml, sampc.yaml, intake.yaml, time_sync.yaml")
+  app.add_option(
+         "--config-dir", cli.config_dir,
+         "folder of mission.yaml, planner.yaml, sampc.yaml, intake.yaml, time_sync.yaml and "
+         "uav_agent.yaml (unless --config names another)")
       ->capture_default_str();
   app.add_option("--method", cli.method,
                  "override sampc.yaml's mode: " + cover::sampc::mode_names(" | "));
@@ -58,15 +63,17 @@ void add_options(CLI::App& app, CommandLine& cli) {
                "while its autopilot is armed and in OFFBOARD / GUIDED_NOGPS (cover/uav/U/fc), "
                "and fails the moment it is not. Without the flag a bridge heard on that topic "
                "gates tasks all the same");
+  cli.settings.add_to(app, {"control_cpu", "spin_after_rehearsal_s", "rehearsal_lead_s"});
   cli.dds.add_to(app);
 }
 
-cover::uav_agent::AgentOptions agent_options(const CommandLine& cli) {
+cover::uav_agent::AgentOptions agent_options(CommandLine& cli) {
   cover::uav_agent::AgentOptions options;
   options.uav_id = static_cast<std::uint32_t>(cli.uav_id);
   options.ugv_count = cli.ugv_count;
   options.clock = *cover::sim_clock::parse_clock_mode(cli.clock);
   options.fc_bridge = cli.fc_bridge;
+  options.params = cli.settings.load();
   if (!cli.task_file.empty())
     options.task = cover::mission::load_task_file(cli.task_file, cli.ugv_count);
   options.intake = cover::wire::IntakeLimits::load_file(cli.config_dir + "/intake.yaml");
@@ -97,6 +104,7 @@ int main(int argc, char** argv) {
   program.add_flags = [&](CLI::App& app) { add_options(app, cli); };
   program.exits = {cover::startup::exit_on<cover::dds::DdsError>(3)};
   return cover::startup::run_main(argc, argv, program, [&](const CLI::App&) {
+    cli.settings.default_to(cli.config_dir + "/uav_agent.yaml");
     const cover::uav_agent::AgentOptions options = agent_options(cli);
     cover::uav::ControllerConfig config = controller_config(cli);
     const cover::dds::ParticipantOptions dds =

@@ -7,6 +7,7 @@
 
 #include "cover/clock/clock.hpp"
 #include "cover/process/shutdown_signal.hpp"
+#include "cover/process/thread_placement.hpp"
 #include "cover/wire/control.hpp"
 #include "cover/wire/eigen.hpp"
 #include "cover/wire/enums.hpp"
@@ -81,7 +82,7 @@ UavAgentNode::UavAgentNode(dds::Participant& participant, AgentOptions options,
       task_status_writer_(participant.make_writer(dds::topics::task_status())),
       reference_writer_(participant.make_writer(dds::topics::uav_reference(options_.uav_id))),
       intake_(participant, options_.uav_id),
-      fc_gate_(participant, options_.uav_id, options_.fc_bridge, options_.fc_stale_after_s),
+      fc_gate_(participant, options_.uav_id, options_.fc_bridge, options_.params.fc_stale_after_s),
       clock_responder_(participant, "cover-uav-agent-" + std::to_string(options_.uav_id)),
       clock_offsets_(participant, monitor_options(options_)),
       clock_(participant, options_.clock, static_cast<int>(options_.uav_id)) {
@@ -122,9 +123,9 @@ void UavAgentNode::run_lockstep() {
       // waits for another agent): a ground side must see this agent is up.
       publish_status(last_step_s_);
       if (std::chrono::steady_clock::now() - last_tick >
-          clock::to_milliseconds(options_.silence_warning_s)) {
+          clock::to_milliseconds(options_.params.silence_warning_s)) {
         spdlog::warn("no simulator tick on cover/sim/clock for {:.1f} s",
-                     options_.silence_warning_s);
+                     options_.params.silence_warning_s);
         last_tick = std::chrono::steady_clock::now();
       }
       continue;
@@ -138,7 +139,8 @@ void UavAgentNode::run_lockstep() {
     // Answer the first tick only once the task's inputs are connected: samples published
     // before that are lost, and the run would start later than the in-process one.
     if (!connected && loop_.task()) {
-      connected = inputs_.wait_for_writers(clock::to_milliseconds(options_.connect_timeout_s));
+      connected =
+          inputs_.wait_for_writers(clock::to_milliseconds(options_.params.connect_timeout_s));
       if (connected) spdlog::info("inputs connected");
     }
     const auto inputs = std::chrono::steady_clock::now();
@@ -160,12 +162,12 @@ void UavAgentNode::run_lockstep() {
 // relative states and UGV IMU published for it have arrived.
 void UavAgentNode::wait_for_inputs(const msg::SimClock& tick) {
   const auto deadline =
-      std::chrono::steady_clock::now() + clock::to_milliseconds(options_.input_wait_s);
+      std::chrono::steady_clock::now() + clock::to_milliseconds(options_.params.input_wait_s);
   // Blocks on the readers' arrivals (no polling: a poll's sleep costs its slack every tick).
   if (loop_.task() &&
       !inputs_.wait_for_stamps(tick.relative_stamp_ns, tick.imu_stamp_ns, deadline)) {
     spdlog::warn("tick {}: inputs missing after {:.1f} s, stepping on what arrived", tick.tick,
-                 options_.input_wait_s);
+                 options_.params.input_wait_s);
   }
   // Through an autopilot: its state after the step our last command flew (whether it is
   // armed and in OFFBOARD decides when a held task starts and when a flight fails).
@@ -178,12 +180,21 @@ void UavAgentNode::wait_for_inputs(const msg::SimClock& tick) {
     spdlog::warn(
         "tick {}: the bridge's state after step {:.2f} s missing after {:.1f} s, stepping "
         "on the one before",
-        tick.tick, wire::to_seconds(flown_ns), options_.input_wait_s);
+        tick.tick, wire::to_seconds(flown_ns), options_.params.input_wait_s);
   }
 }
 
 namespace {
 constexpr double kStaleStepPeriods = 1.5;
+
+// A spin-wait's pause: lets the core's other hyperthread run and saves power.
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
+#endif
+}
 }  // namespace
 
 void UavAgentNode::run_realtime() {
@@ -193,6 +204,7 @@ void UavAgentNode::run_realtime() {
   // for its next sample.
   const dds::Reader<msg::RelativeState>* waited_on = nullptr;
   std::uint64_t seen = 0;
+  place_control_thread();
   while (!process::ShutdownSignal::requested()) {
     // Step on each fresh relative state of the reference frame, or after 1.5 control periods
     // when none comes (the controller then hovers on stale inputs: the failsafe). Not after
@@ -233,11 +245,18 @@ bool UavAgentNode::wait_for_relative_state(dds::Reader<msg::RelativeState>& read
   const auto start = Clock::now();
   const auto give_up = start + seconds(kStaleStepPeriods * period_s);
   bool arrived = false;
-  if (options_.rehearsal_lead_s > 0.0 && last_state_arrival_) {
-    const auto rehearse_at = *last_state_arrival_ + seconds(period_s - options_.rehearsal_lead_s);
+  const UavAgentParams& p = options_.params;
+  if (p.rehearsal_lead_s > 0.0 && last_state_arrival_) {
+    const auto rehearse_at = *last_state_arrival_ + seconds(period_s - p.rehearsal_lead_s);
     if (rehearse_at > start && rehearse_at < give_up) {
       arrived = reader.wait_for_sample_until(rehearse_at, seen);
-      if (!arrived) loop_.rehearse();
+      if (!arrived) {
+        loop_.rehearse();
+        if (spin_allowed_) {
+          arrived = spin_for_sample(
+              reader, seen, std::min(give_up, Clock::now() + seconds(p.spin_after_rehearsal_s)));
+        }
+      }
     }
   }
   if (!arrived) arrived = reader.wait_for_sample_until(give_up, seen);
@@ -247,6 +266,56 @@ bool UavAgentNode::wait_for_relative_state(dds::Reader<msg::RelativeState>& read
     last_state_arrival_.reset();
   }
   return arrived;
+}
+
+// On the CPU, no sleep: its core runs nothing else until the sample is there (the DDS
+// receive thread that brings it runs on another core, place_control_thread).
+bool UavAgentNode::spin_for_sample(const dds::Reader<msg::RelativeState>& reader,
+                                   std::uint64_t seen,
+                                   std::chrono::steady_clock::time_point until) {
+  while (std::chrono::steady_clock::now() < until) {
+    if (reader.received_count() > seen) return true;
+    for (int i = 0; i < 16; ++i) cpu_relax();
+  }
+  return reader.received_count() > seen;
+}
+
+// The control thread alone on control_cpu, the process's other threads on its other CPUs;
+// again after a task's start (its planner thread is started by this thread, on its CPU).
+void UavAgentNode::place_control_thread() {
+  const int cpu = options_.params.control_cpu;
+  if (options_.clock == sim_clock::ClockMode::Lockstep) return;
+  if (cpu < 0) {
+    if (options_.params.spin_after_rehearsal_s > 0.0 && !placement_logged_) {
+      spdlog::warn(
+          "spin_after_rehearsal_s ignored: no control_cpu (spinning on the core of the "
+          "DDS threads would hold off the state awaited); the control thread sleeps");
+    }
+    placement_logged_ = true;
+    return;
+  }
+  const process::ThreadPlacement placed = process::place_calling_thread_alone(cpu);
+  if (!placed.placed) {
+    if (spin_allowed_ || !placement_logged_) {
+      spdlog::error(
+          "control thread not placed on CPU {}: {}; every thread stays where it was, "
+          "and the control thread sleeps until its state (no spin)",
+          cpu, placed.error);
+    }
+    spin_allowed_ = false;
+    placement_logged_ = true;
+    return;
+  }
+  spin_allowed_ = options_.params.spin_after_rehearsal_s > 0.0;
+  if (!placement_logged_) {
+    spdlog::info("control thread on CPU {}, the other {} thread(s) on CPU {}; {}", cpu,
+                 placed.threads_moved, placed.others,
+                 spin_allowed_ ? fmt::format("after its rehearsal it waits for the state on the "
+                                             "CPU for up to {:.2f} ms",
+                                             1e3 * options_.params.spin_after_rehearsal_s)
+                               : std::string("it sleeps until its state"));
+    placement_logged_ = true;
+  }
 }
 
 void UavAgentNode::step(double now_s) {
@@ -260,7 +329,7 @@ void UavAgentNode::step(double now_s) {
   publish_task_status_on_change(now_s);
   if (now_s >= next_status_s_) {
     publish_status(now_s);
-    next_status_s_ = now_s + options_.status_period_s;
+    next_status_s_ = now_s + options_.params.status_period_s;
   }
 }
 
@@ -340,6 +409,7 @@ void UavAgentNode::start(const mission::Task& task, double now_s) {
     return;
   }
   spdlog::info("accepted {}", decision.reason);
+  place_control_thread();  // the task's planner thread started on this thread's CPU
   inputs_.subscribe(task.ugvs());
   clock_offsets_.set_peers(clock_peers(options_.uav_id, &task));
   reported_key_.clear();

@@ -16,6 +16,7 @@
 #include "dds_uav_io.hpp"
 #include "fc_gate.hpp"
 #include "task_intake.hpp"
+#include "uav_agent_params.hpp"
 
 namespace cover::uav_agent {
 
@@ -24,26 +25,12 @@ struct AgentOptions {
   int ugv_count = fleet::kDefaultUgvs;
   sim_clock::ClockMode clock = sim_clock::ClockMode::Lockstep;
   std::optional<mission::Task> task;  // from --task FILE; otherwise from cover/task/request
-  double status_period_s = 0.1;       // cover/uav/<u>/status at 10 Hz
-  // Lockstep: how long a tick waits for its relative states and IMU before stepping anyway.
-  double input_wait_s = 2.0;
-  // No tick (lockstep) or no fresh relative state (realtime) for this long: keep going
-  // (failsafe commands), but say so.
-  double silence_warning_s = 2.0;
-  // Lockstep: before answering the first tick, wait this long for the inputs' publishers.
-  double connect_timeout_s = 20.0;
-  // Realtime: wake this long before the next relative state is due (a control period after
-  // the last) to rehearse the step's feedback (UavLoop::rehearse): after 10 ms asleep the
-  // feedback otherwise runs on caches the other processes emptied. Halves measurement ->
-  // command (12-13 -> 4.6-6.0 us median at load 8-9, docs/benchmarks.md); 0: no rehearsal.
-  double rehearsal_lead_s = 0.5e-3;
-  wire::IntakeLimits intake;  // config/intake.yaml
+  wire::IntakeLimits intake;          // config/intake.yaml
+  UavAgentParams params;              // config/uav_agent.yaml (and its flags)
   // A flight-controller bridge flies this UAV (--fc-bridge): tasks wait for its autopilot
   // even before its first state is heard. Without it, a bridge heard on cover/uav/<u>/fc
   // gates tasks all the same.
   bool fc_bridge = false;
-  // The bridge publishes at 10 Hz: silent this long (wall clock) counts as not ready.
-  double fc_stale_after_s = 1.0;
   // config/time_sync.yaml: a task waits while the clock offset to a peer whose samples
   // the agent takes (simulator or mocap relay, UGV agents, its bridge) exceeds the limit.
   time_sync::TimeSyncParams time_sync;
@@ -61,6 +48,9 @@ class UavAgentNode {
   void run_realtime();
   bool wait_for_relative_state(dds::Reader<msg::RelativeState>& reader, std::uint64_t seen,
                                double period_s);
+  static bool spin_for_sample(const dds::Reader<msg::RelativeState>& reader, std::uint64_t seen,
+                              std::chrono::steady_clock::time_point until);
+  void place_control_thread();
   void wait_for_inputs(const msg::SimClock& tick);
   void step(double now_s);
   void take_requests(double now_s);
@@ -96,6 +86,8 @@ class UavAgentNode {
   std::int64_t previous_tick_ns_ = -1;  // lockstep: the tick stepped last (its command flew)
   // Realtime: when the last relative state woke the loop (the next is due a period later).
   std::optional<std::chrono::steady_clock::time_point> last_state_arrival_;
+  bool spin_allowed_ = false;      // realtime: placed alone on control_cpu, spinning configured
+  bool placement_logged_ = false;  // the placement's first outcome is logged, later ones not
   // Where a lockstep run's wall time goes (logged at the end): waiting for the simulator's
   // tick, for that tick's inputs, and the step (of which waiting for a plan due at it).
   struct LockstepTimes {

@@ -50,9 +50,10 @@ class SettingsFlags {
   // Adds --config and one flag per key (a number, bool, word or text field of the section's
   // top level; anything else is a std::logic_error, as is a key that is no field).
   void add_to(CLI::App& app, std::initializer_list<const char*> keys) {
-    app.add_option("--config", file_,
-                   "settings (" + section_ + ": section); the flags below override its keys")
-        ->capture_default_str();
+    config_option_ =
+        app.add_option("--config", file_,
+                       "settings (" + section_ + ": section); the flags below override its keys")
+            ->capture_default_str();
     Params params;
     AddVisitor visit{*this, app, {keys.begin(), keys.end()}};
     Params::fields(params, visit);
@@ -80,6 +81,11 @@ class SettingsFlags {
   }
 
   const std::string& file() const { return file_; }
+  // After parsing: `file` unless --config was given (a process whose --config-dir names the
+  // folder of all its files).
+  void default_to(std::string file) {
+    if (config_option_ == nullptr || config_option_->count() == 0) file_ = std::move(file);
+  }
 
   // "config/ground_station.yaml with --port 0 --bind 0.0.0.0": where the settings came from.
   std::string source() const {
@@ -196,6 +202,7 @@ class SettingsFlags {
   std::string section_;
   std::string file_;
   std::map<std::string, std::string> given_;  // key -> the flag's text
+  CLI::Option* config_option_ = nullptr;      // --config, once added to an app
 };
 
 }  // namespace cover::config
