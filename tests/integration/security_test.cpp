@@ -517,7 +517,19 @@ TEST_P(Security, SecureScenarioTwoLands) {
   const int domain = vendor == "fastdds" ? 127 : 128;
   const fs::path fleet = make_fleet(vendor, {"--vendor", vendor});
   const auto before = cover::test::shm_entries();
-  const LaunchOutcome run = launch({"--security", fleet.string(), "--dds", "*=" + vendor}, domain);
+  const std::vector<std::string> flags{"--security", fleet.string(), "--dds", "*=" + vendor};
+  LaunchOutcome run = launch(flags, domain);
+  // docs/security.md, "a secure Fast DDS start can stall": a pair matched without data (or
+  // never matched) and the simulator ended the run as stalled. What recovers it is new
+  // participants, as an operator restarts the pair: one more run, which must fly.
+  const auto stalled = [](const LaunchOutcome& r) {
+    return r.logs.count("sim") && r.logs.at("sim").find("lockstep stalled") != std::string::npos;
+  };
+  if (run.exit_code != 0 && vendor == "fastdds" && stalled(run)) {
+    std::cerr << "[ AGAIN    ] the secure Fast DDS start stalled (docs/security.md); "
+                 "the run again with new participants\n";
+    run = launch(flags, domain);
+  }
   ASSERT_EQ(run.exit_code, 0) << run.text;
   EXPECT_TRUE(run.result["success"].get<bool>()) << run.result.dump(2);
   EXPECT_LE(run.result["landing_error_m"].get<double>(), 0.05);
