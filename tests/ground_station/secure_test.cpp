@@ -20,6 +20,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -158,24 +159,31 @@ class StationClient {
   bool connected_ = false;
 };
 
-// The fleet's rows a page lists: every process of the system, not stale (the task
-// manager's row comes from its answers: a station that may not ask it has none).
-int fresh_rows(const Json& state) {
+// The rows of `kinds` a page lists, not stale.
+int fresh_rows(const Json& state, const std::set<std::string>& kinds) {
   int fresh = 0;
   for (const auto& row : state["fleet"]) {
-    if (row.value("stale", true)) continue;
-    const std::string kind = row.value("kind", "");
-    if (kind == "sim" || kind == "ugv-agent" || kind == "uav-agent" || kind == "fc-bridge" ||
-        kind == "task-manager")
-      ++fresh;
+    if (!row.value("stale", true) && kinds.count(row.value("kind", "")) > 0) ++fresh;
   }
   return fresh;
 }
-bool lists_the_fleet(const Json& state) {
-  return fresh_rows(state) == 6;  // two UGV agents
-}
+const std::set<std::string> kVehicleKinds = {"sim", "ugv-agent", "uav-agent", "fc-bridge"};
 bool lists_the_vehicles(const Json& state) {
-  return fresh_rows(state) == 5;  // all but the task manager
+  return fresh_rows(state, kVehicleKinds) == 5;  // two UGV agents
+}
+// The task manager's row with its answer to the station's query: a station that may ask it.
+// (A station that may not ask can still have a row for it, from the manager's clock requests,
+// which every station may read: a row without an answer.)
+bool lists_the_manager_answering(const Json& state) {
+  for (const auto& row : state["fleet"]) {
+    if (row.value("kind", "") == "task-manager" && !row.value("stale", true) &&
+        row["last"].is_object())
+      return true;
+  }
+  return false;
+}
+bool lists_the_fleet(const Json& state) {
+  return lists_the_vehicles(state) && lists_the_manager_answering(state);
 }
 
 // Fast DDS 2.9 can leave a secure pair of participants without data for good on a loaded
@@ -262,7 +270,7 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
   fleet_processes.push_back(start_manager("manager"));
 
   // Both read the fleet through the handshake and their read permissions; the viewer's page
-  // says why it has no task list.
+  // says why it has no task list, and has no answer of the task manager.
   auto operator_ptr = listing_station(fleet, "ground-station-0", lists_the_fleet);
   ASSERT_NE(operator_ptr, nullptr) << "the operator's station does not list the fleet";
   const auto viewer_ptr = listing_station(fleet, "ground-station-1", lists_the_vehicles);
@@ -270,7 +278,8 @@ TEST(GroundStationSecure, StationCommandsAsItsIdentityAndAViewerCannotArm) {
   StationClient& viewer_station = *viewer_ptr;
   EXPECT_TRUE(viewer_station.wait_for(
       [](const Json& s) {
-        return s.value("manager", "").find("cover/manager/request") != std::string::npos;
+        return s.value("manager", "").find("cover/manager/request") != std::string::npos &&
+               !lists_the_manager_answering(s);
       },
       10000ms))
       << viewer_station.state(scaled(2000ms)).dump(1);
