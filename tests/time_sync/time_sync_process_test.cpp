@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,7 @@
 #include "cover/process/child_process.hpp"
 #include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
+#include "cover/time_sync/clock_responder.hpp"
 #include "cover/time_sync/offset_monitor.hpp"
 
 namespace cover::time_sync {
@@ -399,6 +401,57 @@ TEST(TimeSyncProcess, RepliesReachOnlyTheirAsker) {
               n0, n1);
   EXPECT_EQ(sim->terminate(), 0);
   EXPECT_EQ(ugv->terminate(), 0);
+}
+
+}  // namespace
+}  // namespace cover::time_sync
+
+namespace cover::time_sync {
+namespace {
+
+// A fleet's askers arrive together: their first requests wait for their reply writers to
+// match their readers side by side. Ten askers that never read their replies (they asked
+// first) do not hold up the one that does: its first reply comes while their waits (1 s
+// each) still run. One after the other, it would come after all ten were given up (measured
+// so: 10 of 11 answered first, 10 s). One vendor on both sides: across vendors a writer can
+// see a reader matched before the reader matched it, and a single reply is then lost.
+TEST(TimeSyncProcess, NewAskersWaitForTheirReadersSideBySide) {
+  Fixture f;
+  dds::Participant answering(f.options(dds::Vendor::FastDds));
+  ClockResponder responder(answering, "cover-sim");
+  dds::Participant asking(f.options(dds::Vendor::FastDds));
+  // The replies counted when the reader's first reply came (this one may not be counted yet:
+  // delivered before the responder's count); -1 before it came.
+  std::atomic<std::int64_t> answered_at_first_reply{-1};
+  auto replies = asking.make_reader(dds::topics::time_reply("cover-uav-agent-0"),
+                                    [&](const msg::TimeSyncReply&) {
+                                      std::int64_t none = -1;
+                                      answered_at_first_reply.compare_exchange_strong(
+                                          none, static_cast<std::int64_t>(responder.answered()));
+                                    });
+  auto requests = asking.make_writer(dds::topics::time_request());
+  ASSERT_TRUE(requests.wait_for_readers(1, scaled(10s)));
+  const auto request = [&](const std::string& process, std::uint64_t id) {
+    msg::TimeSyncRequest r;
+    r.requester = "test-host/" + process;
+    r.request_id = id;
+    r.t1_ns = 1;
+    EXPECT_TRUE(requests.write(r));
+  };
+  constexpr int kSilentAskers = 10;
+  for (int k = 0; k < kSilentAskers; ++k) request("cover-silent-" + std::to_string(k), 1);
+  request("cover-uav-agent-0", 1);
+  ASSERT_TRUE(wait_until([&] { return answered_at_first_reply.load() >= 0; }, 20s))
+      << "no reply to the asker that reads them; answered " << responder.answered();
+  // Each of the askers' first requests came before its writer: held, then answered.
+  ASSERT_TRUE(wait_until([&] { return responder.answered() == kSilentAskers + 1; }, 20s))
+      << responder.answered();
+  EXPECT_EQ(responder.unanswered(), static_cast<std::uint64_t>(kSilentAskers + 1));
+  // One after the other: 10 or 11 (every silent asker's wait given up first).
+  EXPECT_LT(answered_at_first_reply.load(), kSilentAskers / 2)
+      << "the asker's first reply waited for the silent askers' waits";
+  std::printf("[ measured ] answered when the reading asker's first reply came: %lld of %d\n",
+              static_cast<long long>(answered_at_first_reply.load()), kSilentAskers + 1);
 }
 
 }  // namespace

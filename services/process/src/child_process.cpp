@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "cover/process/cpu_list.hpp"
+
 extern char** environ;
 
 namespace cover::process {
@@ -223,14 +225,10 @@ bool ChildProcess::realtime() const {
 }
 
 std::vector<int> ChildProcess::cpus() const {
-  std::vector<int> cpus;
   cpu_set_t set;
   CPU_ZERO(&set);
-  if (sched_getaffinity(pid_, sizeof set, &set) != 0) return cpus;
-  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
-    if (CPU_ISSET(cpu, &set)) cpus.push_back(cpu);
-  }
-  return cpus;
+  if (sched_getaffinity(pid_, sizeof set, &set) != 0) return {};
+  return cpus_of(set);
 }
 
 std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "cover/process/cpu_list.hpp"
+
 namespace cover::process {
 
 namespace {
@@ -24,19 +26,6 @@ const cpu_set_t& started_cpus() {
   return set;
 }
 
-std::string cpu_list(const cpu_set_t& set) {
-  std::string text;
-  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
-    if (!CPU_ISSET(cpu, &set)) continue;
-    int last = cpu;
-    while (last + 1 < CPU_SETSIZE && CPU_ISSET(last + 1, &set)) ++last;
-    if (!text.empty()) text += ",";
-    text += std::to_string(cpu) + (last > cpu ? "-" + std::to_string(last) : "");
-    cpu = last;
-  }
-  return text;
-}
-
 }  // namespace
 
 ThreadPlacement place_calling_thread_alone(int cpu) {
@@ -44,7 +33,7 @@ ThreadPlacement place_calling_thread_alone(int cpu) {
   const cpu_set_t& allowed = started_cpus();
   if (cpu < 0 || cpu >= CPU_SETSIZE || !CPU_ISSET(cpu, &allowed)) {
     result.error = "CPU " + std::to_string(cpu) + " is not among the process's CPUs (" +
-                   cpu_list(allowed) + ")";
+                   cpu_list(cpus_of(allowed)) + ")";
     return result;
   }
   cpu_set_t others = allowed;
@@ -75,7 +64,7 @@ ThreadPlacement place_calling_thread_alone(int cpu) {
     return result;
   }
   result.placed = true;
-  result.others = cpu_list(others);
+  result.others = cpu_list(cpus_of(others));
   return result;
 }
 

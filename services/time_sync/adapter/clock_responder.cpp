@@ -19,6 +19,8 @@ constexpr std::size_t kMaxAskers = 256;  // a fleet's processes, with room
 // How long a new asker's writer waits for the asker's reader before the request that made it
 // is answered (discovery on one host: tens of ms).
 constexpr std::chrono::milliseconds kFirstReplyMatchWait{1000};
+// How often the writers waiting for their askers' readers are looked at.
+constexpr std::chrono::milliseconds kMatchPoll{5};
 
 // The process part of "host/process" (all of it without a '/').
 std::string process_of(const std::string& peer) {
@@ -74,41 +76,61 @@ ClockResponder::~ClockResponder() {
 void ClockResponder::open_writers() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
-    wake_.wait(lock, [&] { return stop_ || !opening_.empty(); });
-    if (stop_) return;
-    const std::string asker = *opening_.begin();
-    lock.unlock();
-    std::optional<dds::Writer<msg::TimeSyncReply>> writer;
-    try {
-      writer.emplace(participant_.make_writer(dds::topics::time_reply(asker)));
-    } catch (const std::exception& e) {
-      spdlog::warn("cannot answer {}: {}", asker, e.what());
+    const auto work = [&] { return stop_ || !opening_.empty(); };
+    if (matching_.empty()) {
+      wake_.wait(lock, work);
+    } else {
+      wake_.wait_for(lock, kMatchPoll, work);
     }
-    lock.lock();
-    opening_.erase(asker);
-    if (!writer) continue;
-    // From here on requests are answered as they come (map nodes stay where they are).
-    dds::Writer<msg::TimeSyncReply>& opened =
-        writers_.emplace(asker, std::move(*writer)).first->second;
-    lock.unlock();
-    // Written before the asker's reader matched, a reply would be lost (volatile).
-    opened.wait_for_readers(1, kFirstReplyMatchWait);
-    lock.lock();
-    answer_pending(asker, opened);
+    if (stop_) return;
+    if (!opening_.empty()) open_writer(lock);
+    answer_matched();
   }
 }
 
-// The last request of `asker` that came before its writer, answered late: t2 is when it
+void ClockResponder::open_writer(std::unique_lock<std::mutex>& lock) {
+  const std::string asker = *opening_.begin();
+  lock.unlock();
+  std::optional<dds::Writer<msg::TimeSyncReply>> writer;
+  try {
+    writer.emplace(participant_.make_writer(dds::topics::time_reply(asker)));
+  } catch (const std::exception& e) {
+    spdlog::warn("cannot answer {}: {}", asker, e.what());
+  }
+  lock.lock();
+  opening_.erase(asker);
+  if (!writer) return;
+  // From here on requests are answered as they come (map nodes stay where they are); the
+  // one that made the writer waits for the asker's reader: written before it matched, a
+  // reply would be lost (volatile).
+  writers_.emplace(asker, std::move(*writer));
+  matching_[asker] = Clock::now() + kFirstReplyMatchWait;
+}
+
+// The last request of an asker that came before its writer, answered late: t2 is when it
 // arrived and t3 now, so the asker's offset stays right (the wait is not in its delay). A
 // one-shot asker (`cover fleet`) would otherwise hear no one that met it after its first
-// request. Called with mutex_ held.
-void ClockResponder::answer_pending(const std::string& asker,
-                                    dds::Writer<msg::TimeSyncReply>& writer) {
-  const auto pending = pending_.find(asker);
-  if (pending == pending_.end()) return;
-  pending->second.t3_ns = clock::system_ns();
-  if (writer.write(pending->second)) ++answered_;
-  pending_.erase(pending);
+// request.
+void ClockResponder::answer_matched() {
+  const auto now = Clock::now();
+  for (auto it = matching_.begin(); it != matching_.end();) {
+    dds::Writer<msg::TimeSyncReply>& writer = writers_.at(it->first);
+    if (writer.matched_readers() == 0 && now < it->second) {
+      ++it;
+      continue;
+    }
+    const auto pending = pending_.find(it->first);
+    if (pending != pending_.end()) {
+      reply_now(writer, pending->second);
+      pending_.erase(pending);
+    }
+    it = matching_.erase(it);
+  }
+}
+
+void ClockResponder::reply_now(dds::Writer<msg::TimeSyncReply>& writer, msg::TimeSyncReply& reply) {
+  reply.t3_ns = clock::system_ns();
+  if (writer.write(reply)) ++answered_;
 }
 
 void ClockResponder::on_request(const msg::TimeSyncRequest& request) {
@@ -145,8 +167,7 @@ void ClockResponder::on_request(const msg::TimeSyncRequest& request) {
       pending_[asker] = reply;
       if (opening_.insert(asker).second) wake_.notify_all();
     } else {
-      reply.t3_ns = clock::system_ns();
-      if (writer->second.write(reply)) ++answered_;
+      reply_now(writer->second, reply);
     }
   }
   if (!new_asker) return;

@@ -16,6 +16,7 @@
 #include "cover/launch/exit_codes.hpp"
 #include "cover/launch/shm_cleanup.hpp"
 #include "cover/process/child_process.hpp"
+#include "cover/process/cpu_list.hpp"
 #include "cover/process/shutdown_signal.hpp"
 
 namespace cover::launch {
@@ -41,13 +42,6 @@ struct Child {
   // Standing and field launches: died and not to be restarted; the others went on.
   bool ended = false;
 };
-
-// "1" or "0,2,3": a CPU list as cpu_affinity and taskset write it.
-std::string cpu_list(const std::vector<int>& cpus) {
-  std::string out;
-  for (const int cpu : cpus) out += (out.empty() ? "" : ",") + std::to_string(cpu);
-  return out.empty() ? "none" : out;
-}
 
 std::string online_cpus() {
   const long count = sysconf(_SC_NPROCESSORS_ONLN);
@@ -232,16 +226,16 @@ class Supervisor {
   static void log_affinity(const PlannedProcess& spec, const process::ChildProcess& child) {
     if (!spec.cpu_affinity_withheld.empty()) {
       spdlog::info("{}: cpu_affinity {} not applied in lockstep (a core taken from the others)",
-                   spec.name, cpu_list(spec.cpu_affinity_withheld));
+                   spec.name, process::cpu_list(spec.cpu_affinity_withheld));
     }
     if (spec.cpu_affinity.empty()) return;
     const std::vector<int> cpus = child.cpus();
     if (cpus == spec.cpu_affinity) {
-      spdlog::info("{} runs on CPU {}", spec.name, cpu_list(cpus));
+      spdlog::info("{} runs on CPU {}", spec.name, process::cpu_list(cpus));
     } else {
       spdlog::warn(
           "{}: cpu_affinity {} not applied as asked (this machine has CPUs {}): runs on {}",
-          spec.name, cpu_list(spec.cpu_affinity), online_cpus(), cpu_list(cpus));
+          spec.name, process::cpu_list(spec.cpu_affinity), online_cpus(), process::cpu_list(cpus));
     }
   }
 

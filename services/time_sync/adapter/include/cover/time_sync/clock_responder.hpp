@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -22,7 +23,9 @@ namespace cover::time_sync {
 // (cover/time/reply/<process>): a reply reaches its asker, not every asker of the fleet.
 // The writer of an asker's topic is made on this object's thread when the asker's first
 // request arrives (a vendor's receive thread must not make one); the last request that
-// arrived before it exists is answered once the asker's reader matched it (<= 1 s).
+// arrived before it exists is answered once the asker's reader matched it (<= 1 s). Askers
+// wait for their match side by side: a fleet's askers arriving together are answered as
+// soon as each one's reader matched, not one after the other.
 class ClockResponder {
  public:
   // Called once per process that asks this one's clock, with its "host/process" name, on
@@ -45,9 +48,17 @@ class ClockResponder {
   std::uint64_t unanswered() const { return unanswered_.load(); }
 
  private:
+  using Clock = std::chrono::steady_clock;
+
   void on_request(const msg::TimeSyncRequest& request);
   void open_writers();  // its thread: a writer for each asker queued by on_request
-  void answer_pending(const std::string& asker, dds::Writer<msg::TimeSyncReply>& writer);
+  // The first asker in opening_: its writer made (mutex_ unlocked meanwhile), then matching.
+  void open_writer(std::unique_lock<std::mutex>& lock);
+  // Answers the pending request of each matching asker whose reader matched or whose wait
+  // is over. Called with mutex_ held.
+  void answer_matched();
+  // Stamps t3 and writes. Called with mutex_ held.
+  void reply_now(dds::Writer<msg::TimeSyncReply>& writer, msg::TimeSyncReply& reply);
 
   dds::Participant& participant_;
   std::string name_;
@@ -63,7 +74,9 @@ class ClockResponder {
   std::set<std::string> askers_;  // "host/process", each logged (and called back) once
   // By the asker's process name (its topic); an asker restarted on another host reuses it.
   std::map<std::string, dds::Writer<msg::TimeSyncReply>> writers_;
-  std::set<std::string> opening_;                      // asked for, its writer not made yet
+  std::set<std::string> opening_;  // asked for, its writer not made yet
+  // Its writer made, its first reply held until the asker's reader matched or this deadline.
+  std::map<std::string, Clock::time_point> matching_;
   std::map<std::string, msg::TimeSyncReply> pending_;  // by asker: its last request since
   std::thread thread_;
   dds::Reader<msg::TimeSyncRequest> reader_;  // last: its callback uses the members above
