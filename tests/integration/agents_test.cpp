@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -26,6 +27,7 @@
 #include "cover/shm/seqlock_reader.hpp"
 #include "cover/sim/odometry_sensor.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
 #include "cover/test/wait_until.hpp"
 #include "cover/vocabulary/task.hpp"
 #include "cover/vocabulary/world_segment.hpp"
@@ -290,6 +292,33 @@ TEST(AgentsAndSimulator, LockstepStallNamesTheMissingAgent) {
   kill(uav->pid(), SIGCONT);
   EXPECT_EQ(uav->terminate(10s, SIGINT), 0);
   for (auto& ugv : system.ugvs()) EXPECT_EQ(ugv->wait(10s), std::optional<int>(0));
+}
+
+// A lockstep agent whose task's inputs never all connect (UGV 1's agent gone) waits up to
+// connect_timeout_s (20 s) for their publishers, as in a stalled secure start; SIGINT ends
+// that wait: the agent exits 0 within cover-launch's grace before SIGTERM (3 s), without
+// reporting the missing publisher as a failure.
+TEST(AgentsAndSimulator, AnAgentWaitingForItsInputsStopsOnSigint) {
+  SimSystem system(169, "it", {"--scenario", "scenario2"}, "lockstep");
+  system.ugvs()[1]->terminate(10s, SIGKILL);  // gone, whatever it had started
+  auto uav = system.spawn({bin("cover-uav-agent"), "--id", "0", "--task",
+                           std::string(COVER_CONFIG_DIR) + "/tasks/scenario2.yaml"},
+                          "uav");
+  const auto log = [&] {
+    std::ifstream file(system.log_path("uav"));
+    return std::string(std::istreambuf_iterator<char>(file), {});
+  };
+  ASSERT_TRUE(cover::test::wait_until(
+      [&] { return log().find("for the task's inputs' publishers") != std::string::npos; }, 30s))
+      << log();
+  const auto asked = std::chrono::steady_clock::now();
+  EXPECT_EQ(uav->terminate(cover::test::scaled(3s), SIGINT), 0) << log();
+  std::printf(
+      "[ measured ] SIGINT to exit while waiting for the inputs: %.0f ms\n",
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - asked).count());
+  EXPECT_EQ(log().find("no publisher of"), std::string::npos) << log();
+  EXPECT_EQ(system.sim().terminate(10s, SIGINT), 130);  // a run interrupted
+  EXPECT_EQ(system.ugvs()[0]->terminate(10s, SIGINT), 0);
 }
 
 // The simulator publishes a lockstep tick again until it hears the answer; an answer can

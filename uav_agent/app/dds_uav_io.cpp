@@ -139,22 +139,18 @@ wire::RejectionCounts DdsUavInputs::rejections() const {
   return rejections_;
 }
 
-bool DdsUavInputs::wait_for_writers(std::chrono::milliseconds timeout) const {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
+std::optional<std::string> DdsUavInputs::missing_writer() const {
   for (std::size_t k = 0; k < readers_.size(); ++k) {
     if (!readers_[k]) continue;
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
-    if (!readers_[k]->state.wait_for_writers(1, left)) {
-      spdlog::error("no publisher of cover/uav/{}/rel/{} (simulator or localisation)", uav_id_, k);
-      return false;
+    if (readers_[k]->state.matched_writers() == 0) {
+      return fmt::format("no publisher of cover/uav/{}/rel/{} (simulator or localisation)", uav_id_,
+                         k);
     }
-    if (!readers_[k]->imu.wait_for_writers(1, left)) {
-      spdlog::error("no publisher of cover/ugv/{}/imu (cover-ugv-agent --id {})", k, k);
-      return false;
+    if (readers_[k]->imu.matched_writers() == 0) {
+      return fmt::format("no publisher of cover/ugv/{}/imu (cover-ugv-agent --id {})", k, k);
     }
   }
-  return true;
+  return std::nullopt;
 }
 
 dds::Reader<msg::RelativeState>* DdsUavInputs::relative_reader(int ugv) {

@@ -45,9 +45,9 @@ class DdsUavInputs : public uav::UavInputs {
   // awaited), woken by the readers' callbacks as samples arrive; false at `deadline`.
   bool wait_for_stamps(std::int64_t relative_ns, std::int64_t imu_ns,
                        std::chrono::steady_clock::time_point deadline) const;
-  // Waits until every subscribed UGV has a relative-state and an IMU writer; false on
-  // timeout (then logs which is missing).
-  bool wait_for_writers(std::chrono::milliseconds timeout) const;
+  // The first input of a subscribed UGV without a matched writer, as a line for the log
+  // ("no publisher of ..."); nullopt when every one has its writer.
+  std::optional<std::string> missing_writer() const;
   // The reference UGV's relative-state reader: realtime mode steps on its fresh samples.
   dds::Reader<msg::RelativeState>* relative_reader(int ugv);
 

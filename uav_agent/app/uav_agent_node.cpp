@@ -2,8 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <thread>
 
 #include "cover/clock/clock.hpp"
 #include "cover/process/shutdown_signal.hpp"
@@ -19,6 +21,22 @@ namespace cover::uav_agent {
 
 namespace {
 using namespace std::chrono_literals;
+
+// A lockstep wait's slice: a shutdown request ends a long wait (connect_timeout_s for a
+// missing publisher, input_wait_s twice a tick for a missing input) within it, well inside
+// cover-launch's grace of 3 s before SIGTERM.
+constexpr std::chrono::milliseconds kShutdownSlice{100};
+
+// Calls `wait_until(until)` (true: what it waits for came) in slices up to `deadline`;
+// false at the deadline or on a shutdown request.
+template <typename WaitUntil>
+bool wait_unless_shutdown(std::chrono::steady_clock::time_point deadline, WaitUntil wait_until) {
+  while (true) {
+    const auto until = std::min(deadline, std::chrono::steady_clock::now() + kShutdownSlice);
+    if (wait_until(until)) return true;
+    if (until >= deadline || process::ShutdownSignal::requested()) return false;
+  }
+}
 
 bool on_ladder(mission::Failsafe f) {
   return f == mission::Failsafe::ImuHold || f == mission::Failsafe::EmergencyHover ||
@@ -138,11 +156,7 @@ void UavAgentNode::run_lockstep() {
     }
     // Answer the first tick only once the task's inputs are connected: samples published
     // before that are lost, and the run would start later than the in-process one.
-    if (!connected && loop_.task()) {
-      connected =
-          inputs_.wait_for_writers(clock::to_milliseconds(options_.params.connect_timeout_s));
-      if (connected) spdlog::info("inputs connected");
-    }
+    if (!connected && loop_.task()) connected = connect_inputs();
     const auto inputs = std::chrono::steady_clock::now();
     // Before the first answered tick the wait is start-up (discovery, the others' start).
     if (lockstep_times_.ticks > 0) lockstep_times_.tick_wait_s += seconds_since(waiting);
@@ -160,12 +174,35 @@ void UavAgentNode::run_lockstep() {
 
 // A lockstep tick is stepped on the inputs of that tick: wait (bounded) until the
 // relative states and UGV IMU published for it have arrived.
+bool UavAgentNode::connect_inputs() {
+  const auto deadline =
+      std::chrono::steady_clock::now() + clock::to_milliseconds(options_.params.connect_timeout_s);
+  spdlog::info("waiting up to {:.1f} s for the task's inputs' publishers",
+               options_.params.connect_timeout_s);
+  // Matching is seen by asking the readers (as dds::Reader::wait_for_writers does).
+  const bool connected = wait_unless_shutdown(deadline, [&](auto until) {
+    while (inputs_.missing_writer()) {
+      if (std::chrono::steady_clock::now() >= until) return false;
+      std::this_thread::sleep_for(1ms);
+    }
+    return true;
+  });
+  if (connected) {
+    spdlog::info("inputs connected");
+  } else if (const auto missing = inputs_.missing_writer()) {
+    if (!process::ShutdownSignal::requested()) spdlog::error("{}", *missing);
+  }
+  return connected;
+}
+
 void UavAgentNode::wait_for_inputs(const msg::SimClock& tick) {
   const auto deadline =
       std::chrono::steady_clock::now() + clock::to_milliseconds(options_.params.input_wait_s);
   // Blocks on the readers' arrivals (no polling: a poll's sleep costs its slack every tick).
-  if (loop_.task() &&
-      !inputs_.wait_for_stamps(tick.relative_stamp_ns, tick.imu_stamp_ns, deadline)) {
+  const auto inputs_arrived = [&](auto until) {
+    return inputs_.wait_for_stamps(tick.relative_stamp_ns, tick.imu_stamp_ns, until);
+  };
+  if (loop_.task() && !wait_unless_shutdown(deadline, inputs_arrived)) {
     spdlog::warn("tick {}: inputs missing after {:.1f} s, stepping on what arrived", tick.tick,
                  options_.params.input_wait_s);
   }
@@ -176,7 +213,10 @@ void UavAgentNode::wait_for_inputs(const msg::SimClock& tick) {
   if (flown_ns < 0 || !fc_gate_.bridge_present()) return;
   // The bridge stamps a step with the autopilot's time: whole microseconds.
   constexpr std::int64_t kAutopilotStampResolution_ns = 1000;
-  if (!fc_gate_.wait_for_stamp(flown_ns - kAutopilotStampResolution_ns, deadline)) {
+  const auto state_arrived = [&](auto until) {
+    return fc_gate_.wait_for_stamp(flown_ns - kAutopilotStampResolution_ns, until);
+  };
+  if (!wait_unless_shutdown(deadline, state_arrived)) {
     spdlog::warn(
         "tick {}: the bridge's state after step {:.2f} s missing after {:.1f} s, stepping "
         "on the one before",

@@ -51,6 +51,9 @@ class UavAgentNode {
   static bool spin_for_sample(const dds::Reader<msg::RelativeState>& reader, std::uint64_t seen,
                               std::chrono::steady_clock::time_point until);
   void place_control_thread();
+  // Lockstep, before the first tick of a task: every input's publisher matched; false after
+  // connect_timeout_s (logged) or on a shutdown request.
+  bool connect_inputs();
   void wait_for_inputs(const msg::SimClock& tick);
   void step(double now_s);
   void take_requests(double now_s);
