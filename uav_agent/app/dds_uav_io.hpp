@@ -89,8 +89,8 @@ class DdsUavInputs : public uav::UavInputs {
   std::vector<int> task_ugvs_;  // the last subscribe()'s: what wait_for_stamps awaits
 };
 
-// The loop's command to DDS: this step's trace, then its command (the simulator in
-// lockstep takes the command as the end of the UAV's tick).
+// The loop's command to DDS: this step's command, then its trace (the vehicle waits for
+// the command; a lockstep simulator waits for both before it ends the UAV's tick).
 class DdsCommandOutput : public uav::CommandOutput {
  public:
   DdsCommandOutput(dds::Participant& participant, std::uint32_t uav_id);
