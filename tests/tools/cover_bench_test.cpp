@@ -2,6 +2,7 @@
 // issue's interface: types and the ranges a working run meets, no claim on speed) and their
 // plots.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <algorithm>
 #include <chrono>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -17,8 +19,11 @@
 #include <vector>
 
 #include "cover/process/child_process.hpp"
+#include "cover/process/stop_children_on_shutdown.hpp"
 #include "cover/sampc/sampc_params.hpp"
 #include "cover/test/scratch_dir.hpp"
+#include "cover/test/time_scale.hpp"
+#include "cover/test/wait_until.hpp"
 #include "cover/vocabulary/angles.hpp"
 
 namespace {
@@ -288,4 +293,55 @@ TEST(CoverBench, BadArgumentsAreUsageErrors) {
   EXPECT_NE(run_bench({"faults", "--fault", "meteor"}).exit_code, 0);
   EXPECT_NE(run_bench({"faults", "--count", "0"}).exit_code, 0);
   EXPECT_NE(run_bench({"wifi", "--seeds", "0"}).exit_code, 0);
+}
+
+// SIGTERM to cover-bench alone while its launch runs (`respawn`: a standing system of the
+// simulator, the agents and the task manager): the launch is stopped as a signal asks it and
+// removes the simulator's shared memory, every process of the run ends, and cover-bench exits
+// 130. Killed with cover-bench (PR_SET_PDEATHSIG), the launch left its segment behind.
+TEST(CoverBench, ASignalStopsItsLaunchAndLeavesNothingBehind) {
+  namespace fs = std::filesystem;
+  cover::process::SpawnOptions options;
+  options.extra_env = {"TMPDIR=" + temp_dir().string()};
+  options.log_file = cover::test::scratch_path("respawn.log");
+  cover::process::ChildProcess bench({COVER_BENCH, "respawn"}, options);
+  const auto launch_of = [&]() -> pid_t {
+    for (const pid_t pid : cover::process::live_children(bench.pid())) {
+      std::ifstream comm("/proc/" + std::to_string(pid) + "/comm");
+      std::string name;
+      if (std::getline(comm, name) && name == "cover-launch") return pid;
+    }
+    return 0;
+  };
+  const auto segment_of = [](pid_t launch) {
+    const std::string suffix = "_" + std::to_string(launch);
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator("/dev/shm", ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("cover_sim_", 0) == 0 && name.size() > suffix.size() &&
+          name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+        return name;
+    }
+    return std::string();
+  };
+  pid_t launch = 0;
+  std::vector<pid_t> run;  // the launch's processes
+  ASSERT_TRUE(cover::test::wait_until(
+      [&] {
+        launch = launch_of();
+        run = launch ? cover::process::live_children(launch) : std::vector<pid_t>{};
+        return launch != 0 && !segment_of(launch).empty() && run.size() >= 4;
+      },
+      std::chrono::seconds(90)))
+      << "no launch with its segment and processes; " << read_file(options.log_file);
+  const std::string segment = segment_of(launch);
+  ASSERT_EQ(kill(bench.pid(), SIGTERM), 0);
+  EXPECT_EQ(bench.wait(cover::test::scaled(std::chrono::seconds(30))), std::optional<int>(130))
+      << read_file(options.log_file);
+  EXPECT_FALSE(fs::exists("/dev/shm/" + segment)) << segment << " left behind";
+  for (const pid_t pid : run) {
+    EXPECT_TRUE(cover::test::wait_until([&] { return kill(pid, 0) != 0; }, std::chrono::seconds(5)))
+        << "process " << pid << " of the run still there";
+  }
+  EXPECT_NE(read_file(options.log_file).find("stopping on a signal"), std::string::npos);
 }

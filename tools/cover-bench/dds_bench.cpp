@@ -145,6 +145,6 @@ int run_dds_bench(const std::vector<std::string>& args) {
 const cover::bench::Registrar dds_registrar{
     "dds", "DDS one-way latency, every vendor pair, back-to-back and at 100 Hz", &run_dds_bench};
 const cover::bench::Registrar pong_registrar{"dds-pong", "(internal) echo peer of `dds` and `e2e`",
-                                             &cover::bench::run_pong};
+                                             &cover::bench::run_pong, /*handles_shutdown=*/true};
 
 }  // namespace

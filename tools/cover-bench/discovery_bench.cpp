@@ -416,8 +416,9 @@ int run(const std::vector<std::string>& args) {
 const cover::bench::Registrar kRegistrar{
     "discovery",
     "last process start -> every reader matched: simple / unicast / server, 2..32, lo or --wifi",
-    &run};
+    &run, /*handles_shutdown=*/true};
 const cover::bench::Registrar kPeerRegistrar{
-    "discovery-peer", "(internal) one process of `cover-bench discovery`", &peer};
+    "discovery-peer", "(internal) one process of `cover-bench discovery`", &peer,
+    /*handles_shutdown=*/true};
 
 }  // namespace

@@ -15,16 +15,20 @@ bool g_requested = false;  // guarded by g_mutex; never touched by a signal hand
 }  // namespace
 
 void ShutdownSignal::install() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &set, nullptr);  // inherited by every thread created later
-  std::thread([set] {
-    int received = 0;
-    sigwait(&set, &received);
-    request();
-  }).detach();
+  // Once per process: a second waiting thread would take signals from the first.
+  static std::once_flag installed;
+  std::call_once(installed, [] {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &set, nullptr);  // inherited by every thread created later
+    std::thread([set] {
+      int received = 0;
+      sigwait(&set, &received);
+      request();
+    }).detach();
+  });
 }
 
 void ShutdownSignal::request() {

@@ -9,7 +9,8 @@ namespace cover::process {
 // them with sigwait, then wakes whoever waits here.
 class ShutdownSignal {
  public:
-  // Call first in main(), before any thread (DDS participants start threads) exists.
+  // Call first in main(), before any thread (DDS participants start threads) exists; once
+  // per process (a later call does nothing).
   static void install();
   static bool requested();
   // Blocks until a signal arrives or `timeout` passes; true when shutdown was requested.
