@@ -52,8 +52,11 @@ DiscoveryWifi::DiscoveryWifi(const WifiLink& link, int processes) : tag_(run_tag
       std::vector<std::string>{wifi_sim_script(), "--run", tag_, "down"}, log_path(tag_, "net"));
   if (!setup_->ok()) return;
   // The addresses as the script gives them ("NODE ADDRESS" lines, in node order).
+  const std::string addresses_log = log_path(tag_, "addresses");
   const auto listed = process::run_command({wifi_sim_script(), "addresses", "--nodes", nodes},
-                                           log_path(tag_, "addresses"), std::chrono::seconds(10));
+                                           addresses_log, std::chrono::seconds(10));
+  std::error_code ignored;
+  if (listed.exit_code == 0) std::filesystem::remove(addresses_log, ignored);
   std::istringstream lines(listed.output);
   std::string node, address;
   while (lines >> node >> address) {

@@ -1,5 +1,6 @@
 #include "cover/process/scoped_setup.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -39,12 +40,22 @@ ScopedSetup::ScopedSetup(const std::vector<std::string>& up, std::vector<std::st
 }
 
 ScopedSetup::~ScopedSetup() {
+  const std::string down_log = log_file_ + ".down";
   try {
-    const CommandResult down = run_command(down_, log_file_ + ".down", kTearDownTimeout);
-    if (down.exit_code != 0) std::cerr << "tear-down failed: " << down.output << "\n";
+    const CommandResult down = run_command(down_, down_log, kTearDownTimeout);
+    if (down.exit_code != 0) {
+      std::cerr << "tear-down failed: " << down.output << "\n";
+      return;
+    }
   } catch (const std::exception& e) {
     std::cerr << "tear-down could not run: " << e.what() << "\n";
+    return;
   }
+  // The logs say why a set-up or tear-down failed; after both went well they say nothing.
+  if (!ok()) return;
+  std::error_code ignored;
+  std::filesystem::remove(log_file_, ignored);
+  std::filesystem::remove(down_log, ignored);
 }
 
 }  // namespace cover::process

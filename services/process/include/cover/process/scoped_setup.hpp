@@ -22,7 +22,9 @@ class ScopedSetup {
  public:
   ScopedSetup(const std::vector<std::string>& up, std::vector<std::string> down,
               std::string log_file);
-  ~ScopedSetup();  // runs `down` (whatever `up` did); a failing `down` is logged only
+  // Runs `down` (whatever `up` did); a failing `down` is logged only. The log files
+  // (`log_file`, and `log_file`.down) are kept when either failed, removed otherwise.
+  ~ScopedSetup();
   ScopedSetup(const ScopedSetup&) = delete;
   ScopedSetup& operator=(const ScopedSetup&) = delete;
 
