@@ -3,6 +3,7 @@
 // command timeout on a loaded companion. The logic without sockets: frames in, frames out.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
 
 #include "bridge_rig.hpp"
@@ -226,6 +227,92 @@ TEST(Parameters, ArduPilotAngleBoostOnHoldsTasksWithTheReason) {
   answer_all(rig, 12.0);
   EXPECT_EQ(rig.bridge.state(rig.t).flight_blocker, "");
   EXPECT_TRUE(rig.noticed("no autopilot parameter holds COVER's flights any more"));
+}
+
+const ParameterFinding* finding(const FcStatus& s, const std::string& name) {
+  for (const ParameterFinding& f : s.parameters) {
+    if (f.name == name) return &f;
+  }
+  return nullptr;
+}
+
+// ArduCopter lands by itself when the bridge dies only if its GCS failsafe watches the
+// bridge's HEARTBEAT: FS_GCS_ENABLE 5 (Land), a short FS_GCS_TIMEOUT, MAV_GCS_SYSID the
+// system id the bridge speaks as (the vehicle's). Advisory: wrong, they hold no task.
+TEST(Parameters, ArduPilotGcsFailsafeMustWatchTheBridgesHeartbeat) {
+  BridgeRig rig(Autopilot::ArduPilot);
+  rig.parameters = {{"ATC_ANGLE_BOOST", 0.0F},
+                    {"GUID_OPTIONS", 8.0F},
+                    {"FS_GCS_ENABLE", 5.0F},
+                    {"FS_GCS_TIMEOUT", 5.0F},
+                    {"MAV_GCS_SYSID", static_cast<float>(test::kSys)}};
+  answer_all(rig, 8.0);
+  FcStatus s = rig.bridge.state(rig.t);
+  for (const char* name : {"FS_GCS_ENABLE", "FS_GCS_TIMEOUT", "MAV_GCS_SYSID"}) {
+    const ParameterFinding* f = finding(s, name);
+    ASSERT_NE(f, nullptr) << name;
+    EXPECT_TRUE(f->known && f->ok) << name << " = " << f->value;
+    EXPECT_EQ(f->weight, ParameterWeight::Advisory) << name;
+  }
+  // ArduPilot's defaults: no GCS failsafe, the ground station's id 255 watched; and an RTL,
+  // which needs a position, and a timeout that leaves the UAV drifting for 10 s.
+  for (const auto& [name, value] :
+       std::map<std::string, float>{{"FS_GCS_ENABLE", 0.0F}, {"MAV_GCS_SYSID", 255.0F}}) {
+    rig.parameters[name] = value;
+  }
+  rig.parameters["FS_GCS_TIMEOUT"] = 10.0F;
+  answer_all(rig, 12.0);  // read again within param_refresh_s
+  s = rig.bridge.state(rig.t);
+  for (const char* name : {"FS_GCS_ENABLE", "FS_GCS_TIMEOUT", "MAV_GCS_SYSID"}) {
+    const ParameterFinding* f = finding(s, name);
+    ASSERT_NE(f, nullptr) << name;
+    EXPECT_TRUE(f->known) << name;
+    EXPECT_FALSE(f->ok) << name << " = " << f->value;
+  }
+  EXPECT_EQ(s.flight_blocker, "");         // advisory only
+  rig.parameters["FS_GCS_ENABLE"] = 1.0F;  // RTL
+  answer_all(rig, 12.0);
+  EXPECT_FALSE(finding(rig.bridge.state(rig.t), "FS_GCS_ENABLE")->ok);
+}
+
+// Before ArduPilot 4.7 the watched id is SYSID_MYGCS; a bridge given its own system id in
+// its settings is watched under that id, not the vehicle's.
+TEST(Parameters, TheWatchedIdIsTheOneTheBridgeSpeaksAsUnderEitherName) {
+  BridgeConfig config = BridgeRig::config(Autopilot::ArduPilot, false);
+  config.params.system_id = 42;
+  BridgeRig rig(config);
+  rig.parameters = {{"SYSID_MYGCS", static_cast<float>(test::kSys)}};  // MAV_GCS_SYSID unanswered
+  answer_all(rig, 8.0);
+  const ParameterFinding* f = finding(rig.bridge.state(rig.t), "SYSID_MYGCS");
+  ASSERT_NE(f, nullptr) << "the old name is tried when the new one is not answered";
+  EXPECT_TRUE(f->known);
+  EXPECT_FALSE(f->ok) << "the vehicle's id, but the bridge speaks as 42";
+  rig.parameters["SYSID_MYGCS"] = 42.0F;
+  answer_all(rig, 12.0);
+  EXPECT_TRUE(finding(rig.bridge.state(rig.t), "SYSID_MYGCS")->ok);
+}
+
+// A value read before the bridge knew its own system id is judged again once it does.
+TEST(Parameters, AValueAgainstTheLinkIsJudgedAgainWhenTheLinkIsKnown) {
+  ParameterCheck check(parameter_rules(Autopilot::ArduPilot), mav::ParamEncoding::CCast, 1.0, 2,
+                       10.0);
+  check.restart(0.0);
+  mav::ParamValue value;
+  value.param_id = mav::param_id_from("MAV_GCS_SYSID");
+  value.param_type = mav::mav_param_type::kInt16;
+  value.param_value = 3.0F;
+  check.on_value(value, 0.1);
+  const auto judged = [&check] {
+    for (const ParameterFinding& f : check.findings()) {
+      if (f.name == "MAV_GCS_SYSID") return f.ok;
+    }
+    return false;
+  };
+  EXPECT_FALSE(judged());  // no system id yet: not the bridge's
+  check.set_context(ParameterContext{3});
+  EXPECT_TRUE(judged());
+  check.set_context(ParameterContext{4});
+  EXPECT_FALSE(judged());
 }
 
 TEST(Parameters, GuidedThrustNotSelectedIsBlocking) {

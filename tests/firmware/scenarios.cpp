@@ -287,7 +287,8 @@ void expect_values_as_the_firmware_holds_them(FirmwareRig& rig, const nlohmann::
     ASSERT_TRUE(reading.has_value()) << "the monitor could not read " << name;
     const double truth = reading->value(rig.profile().bytewise_params);
     const double reported = p.value("value", std::nan(""));
-    std::printf("parameter %-16s firmware %g, bridge %g, %s\n", name.c_str(), truth, reported,
+    std::printf("parameter %-16s firmware %g (MAV_PARAM_TYPE %u), bridge %g, %s\n", name.c_str(),
+                truth, static_cast<unsigned>(reading->type), reported,
                 p.value("ok", false) ? "ok" : "BAD");
     EXPECT_NEAR(reported, truth, 1e-6 * std::max(1.0, std::abs(truth)))
         << name << " as the bridge read it differs from the firmware's value";
@@ -672,10 +673,99 @@ void pilot_takes_over(FirmwareRig& rig) {
       << context(rig);
 }
 
+// ArduCopter after the bridge's death (its HEARTBEAT stops): the GCS failsafe (FS_GCS_ENABLE
+// 5, MAV_GCS_SYSID the bridge's id) switches to LAND FS_GCS_TIMEOUT after the last HEARTBEAT
+// (checked at 3 Hz), says "GCS Failsafe", pauses 4 s (LAND_WITH_DELAY_MS: a failsafe's land
+// holds height first), descends and disarms on the ground. Timed by its STATUSTEXT, which it
+// sends at once; its HEARTBEAT (1 Hz) confirms the mode.
+void arducopter_lands_without_the_bridge(FirmwareRig& rig, std::int64_t kill_ns) {
+  const Autopilot fw = rig.firmware_kind();
+  auto& monitor = rig.monitor();
+  const auto timeout = monitor.read_param("FS_GCS_TIMEOUT", 5s);
+  ASSERT_TRUE(timeout.has_value()) << "FS_GCS_TIMEOUT" << context(rig);
+  const double timeout_s = timeout->value(false);
+  const auto heartbeat = rig.tap().last_bridge_heartbeat_ns();
+  ASSERT_TRUE(heartbeat.has_value()) << "no HEARTBEAT of the bridge's reached the firmware";
+  const std::int64_t heartbeat_ns = *heartbeat;
+  std::optional<std::int64_t> announced_ns;
+  std::optional<std::int64_t> land_ns;
+  const bool landing = wait_until(
+      [&] {
+        announced_ns = text_since(monitor, heartbeat_ns, "GCS Failsafe");
+        for (const auto& hb : monitor.heartbeats_since(heartbeat_ns)) {
+          if (in_land(fw, hb.value)) {
+            land_ns = hb.at_ns;
+            break;
+          }
+        }
+        return announced_ns && land_ns;
+      },
+      std::chrono::milliseconds(static_cast<long long>(timeout_s * 1000.0)) + 5s);
+  ASSERT_TRUE(landing) << (announced_ns ? "GCS Failsafe said, but no HEARTBEAT in LAND"
+                                        : "no GCS failsafe after the bridge's last HEARTBEAT")
+                       << context(rig);
+  const double failsafe_s = ms_between(heartbeat_ns, *announced_ns) * 1e-3;
+  // Descending: the failsafe's 4 s pause, then LAND_SPEED.
+  std::optional<std::int64_t> descending_ns;
+  EXPECT_TRUE(wait_until(
+      [&] {
+        for (const auto& p : monitor.positions_since(*announced_ns)) {
+          if (p.value.vz > 0.2) {
+            descending_ns = p.at_ns;
+            return true;
+          }
+        }
+        return false;
+      },
+      10s))
+      << "ArduCopter did not descend in LAND" << context(rig);
+  std::optional<std::int64_t> disarmed_ns;
+  const bool down = wait_until(
+      [&] {
+        for (const auto& hb : monitor.heartbeats_since(*announced_ns)) {
+          if (!armed(hb.value)) {
+            disarmed_ns = hb.at_ns;
+            return true;
+          }
+        }
+        return false;
+      },
+      40s);
+  ASSERT_TRUE(down) << "ArduCopter did not land and disarm" << context(rig);
+  // The touchdown speed: the vertical speed at the last sample 0.2 m or more above where it
+  // came to rest.
+  const auto positions = monitor.positions_since(*announced_ns);
+  ASSERT_FALSE(positions.empty());
+  const double rest_m = height_m(positions.back().value);
+  double touchdown_m_s = 0.0;
+  for (const auto& p : positions) {
+    if (p.at_ns < *disarmed_ns && height_m(p.value) >= rest_m + 0.2) touchdown_m_s = p.value.vz;
+  }
+  std::printf(
+      "bridge killed: ArduCopter's GCS failsafe %.3f s after the bridge's last HEARTBEAT (%.3f s "
+      "before the kill; FS_GCS_TIMEOUT %g), LAND in its HEARTBEAT %.3f s after it, descending "
+      "%.1f s after it, %.2f m/s 0.2 m above the ground, disarmed %.1f s after the kill\n",
+      failsafe_s, ms_between(heartbeat_ns, kill_ns) * 1e-3, timeout_s,
+      ms_between(heartbeat_ns, *land_ns) * 1e-3,
+      descending_ns ? ms_between(*announced_ns, *descending_ns) * 1e-3 : -1.0, touchdown_m_s,
+      ms_between(kill_ns, *disarmed_ns) * 1e-3);
+  ::testing::Test::RecordProperty("gcs_failsafe_s", std::to_string(failsafe_s));
+  ::testing::Test::RecordProperty("touchdown_m_s", std::to_string(touchdown_m_s));
+  // Not before the timeout (it is the bridge's silence that landed it), and within the
+  // 3 Hz check and a loaded machine's delay after it.
+  EXPECT_GE(failsafe_s, timeout_s - 0.05) << context(rig);
+  EXPECT_LE(failsafe_s, timeout_s + 1.0 * cover::test::time_scale()) << context(rig);
+  EXPECT_LE(ms_between(*announced_ns, *land_ns), 1100.0 * cover::test::time_scale())
+      << "the HEARTBEAT in LAND came more than a period after the announcement";
+  EXPECT_GT(touchdown_m_s, 0.0) << "not descending 0.2 m above the ground";
+  EXPECT_LT(touchdown_m_s, 1.0) << "landed hard" << context(rig);
+}
+
 // The bridge killed in flight (SIGKILL): the firmware's own offboard-loss failsafe takes the
 // UAV after its parameter's delay. Until then it flies the last setpoint it got; a yaw rate
 // in it makes the moment it stops visible at the monitor's attitude rate (50 Hz), where its
-// HEARTBEAT (1 Hz: PX4 refuses a faster one) would not time it.
+// HEARTBEAT (1 Hz: PX4 refuses a faster one) would not time it. PX4 lands then; ArduCopter
+// levels and holds its height until its GCS failsafe lands it.
 void firmware_failsafe_when_the_bridge_dies(FirmwareRig& rig, double height) {
   const FirmwareProfile& profile = rig.profile();
   const Autopilot fw = profile.firmware;
@@ -693,6 +783,7 @@ void firmware_failsafe_when_the_bridge_dies(FirmwareRig& rig, double height) {
       },
       5s))
       << context(rig);
+  const std::int64_t kill_ns = now_ns();
   rig.kill_bridge();
   const auto last = rig.tap().last_setpoint();
   ASSERT_TRUE(last.has_value());
@@ -738,13 +829,13 @@ void firmware_failsafe_when_the_bridge_dies(FirmwareRig& rig, double height) {
         5s))
         << "PX4 did not descend" << context(rig);
   } else {
-    // Level, climb rate 0 (altitude hold), still GUIDED_NOGPS.
-    fly_for(2s, [] { return false; });
+    // Level, climb rate 0 (altitude hold), still GUIDED_NOGPS, until the GCS failsafe.
     const auto p = monitor.position();
     ASSERT_TRUE(p.has_value());
     EXPECT_LT(std::abs(p->value.vz), 0.3) << context(rig);
     EXPECT_TRUE(monitor_sees(rig, [&](auto& hb) { return in_offboard(fw, hb) && armed(hb); }))
         << context(rig);
+    arducopter_lands_without_the_bridge(rig, kill_ns);
   }
 }
 

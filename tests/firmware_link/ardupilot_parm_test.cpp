@@ -17,12 +17,13 @@
 namespace cover::firmware {
 namespace {
 
+// The file's numbers; a value naming the instance's own system id (kOwnSystemId) is -1.
 std::map<std::string, double> shipped() {
   std::map<std::string, double> values;
   for (const auto& [name, value] :
        read_params_file(COVER_CONFIG_DIR "/firmware/arducopter_json.parm")) {
     EXPECT_EQ(values.count(name), 0u) << name << " given twice";
-    values[name] = std::stod(value);
+    values[name] = value == kOwnSystemId ? -1.0 : std::stod(value);
   }
   return values;
 }
@@ -38,25 +39,22 @@ TEST(ArduCopterJsonParm, SaysWhatCoverCommandsNeed) {
   EXPECT_EQ(p.at("EK3_SRC1_POSXY"), 0);
   EXPECT_EQ(p.at("EK3_SRC1_VELXY"), 0);
   EXPECT_EQ(p.at("EK3_SRC1_VELZ"), 0);
+  // The bridge's death lands the UAV: the GCS failsafe (Land) watches the bridge's
+  // HEARTBEAT, which carries the vehicle's own system id.
+  EXPECT_EQ(p.at("FS_GCS_ENABLE"), 5);
+  EXPECT_GT(p.at("FS_GCS_TIMEOUT"), 0);
+  EXPECT_LE(p.at("FS_GCS_TIMEOUT"), 5);
+  EXPECT_EQ(p.at("MAV_GCS_SYSID"), -1) << "the instance's own system id, " << kOwnSystemId;
 }
 
-TEST(ArduCopterJsonParm, MatchesThePlant) {
-  auto p = shipped();
-  const auto uav =
-      sim::FirmwareUavParams::load_file(COVER_CONFIG_DIR "/sim/firmware_uav_arducopter.yaml");
-  const auto& motor = uav.plant.motor;
-  EXPECT_DOUBLE_EQ(p.at("MOT_SPIN_MIN"), motor.spin_min);
-  EXPECT_DOUBLE_EQ(p.at("MOT_SPIN_MAX"), motor.spin_max);
-  EXPECT_DOUBLE_EQ(p.at("MOT_THST_EXPO"), motor.thrust_expo);
-  EXPECT_EQ(p.at("MOT_PWM_MIN"), 1000);  // the link's (pwm - 1000) / 1000
-  EXPECT_EQ(p.at("MOT_PWM_MAX"), 2000);
-  // ArduCopter's throttle is linear in thrust: hover = m g / (4 T_max).
-  EXPECT_NEAR(p.at("MOT_THST_HOVER"), uav.plant.mass_kg * 9.81 / (4.0 * motor.max_thrust_n), 0.001);
-  EXPECT_EQ(p.at("MOT_BAT_VOLT_MAX"), 0);  // no battery in the plant: no compensation
-  // One SITL frame per physics step.
-  EXPECT_EQ(p.at("SIM_RATE_HZ"), 1000);
-  EXPECT_NO_THROW(sim::FirmwareUavParams::load_file(
-      COVER_CONFIG_DIR "/sim/firmware_uav_arducopter.yaml", p.at("SIM_RATE_HZ")));
+// The instance's own system id goes into the parameters ArduCopter loads as a number.
+TEST(WriteArduCopterParams, WritesTheOwnSystemIdAsTheInstancesNumber) {
+  const auto path = cover::test::scratch_dir() / "cover.parm";
+  write_arducopter_params(path, {{"MAV_GCS_SYSID", kOwnSystemId}, {"FS_GCS_ENABLE", "5"}}, 8);
+  const auto written = read_params_file(path);
+  ASSERT_EQ(written.size(), 2u);
+  EXPECT_EQ(written[0], (std::pair<std::string, std::string>("MAV_GCS_SYSID", "8")));
+  EXPECT_EQ(written[1], (std::pair<std::string, std::string>("FS_GCS_ENABLE", "5")));
 }
 
 TEST(ReadParamsFile, ReadsArduPilotsFormsAndNamesTheBadLine) {

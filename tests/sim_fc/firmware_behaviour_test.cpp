@@ -286,9 +286,10 @@ TEST(FirmwareBehaviour, ArduPilotAnswersItsParametersWithArduPilotsTypes) {
     std::uint8_t type;
     float value;
   } expected[] = {{"ATC_ANGLE_BOOST", 2, 1.0F}, {"GUID_OPTIONS", 6, 8.0F},
-                  {"GUID_TIMEOUT", 9, 3.0F},    {"FS_THR_ENABLE", 2, 0.0F},
-                  {"MOT_THST_HOVER", 9, 0.35F}, {"DISARM_DELAY", 2, 7.0F},
-                  {"MAV_SYSID", 4, 3.0F}};
+                  {"GUID_TIMEOUT", 9, 3.0F},    {"FS_GCS_ENABLE", 2, 5.0F},
+                  {"FS_GCS_TIMEOUT", 9, 5.0F},  {"MAV_GCS_SYSID", 4, 3.0F},  // its own id
+                  {"FS_THR_ENABLE", 2, 0.0F},   {"MOT_THST_HOVER", 9, 0.35F},
+                  {"DISARM_DELAY", 2, 7.0F},    {"MAV_SYSID", 4, 3.0F}};
   for (const auto& e : expected) {
     const auto a = answer_of(bench.read_parameter(e.name));
     ASSERT_TRUE(a) << e.name;

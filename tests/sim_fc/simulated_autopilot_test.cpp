@@ -285,23 +285,82 @@ TEST(SimulatedAutopilot, LandModeDescendsAtTheLandSpeed) {
             mav::mav_landed_state::kLanding);
 }
 
-TEST(SimulatedAutopilot, ArduPilotGuidedTimeoutLevelsThenLands) {
-  AutopilotBench bench(Autopilot::ArduPilot);
+// `duration_s` without setpoints, the companion's HEARTBEAT once a second (alive, silent).
+void alive_without_setpoints(AutopilotBench& bench, double duration_s) {
+  for (double left = duration_s; left > 1e-9; left -= 1.0) {
+    bench.companion_heartbeat();
+    bench.idle(std::min(1.0, left));
+  }
+}
+
+bool said(const AutopilotBench& bench, const std::string& words) {
+  for (const auto& t : bench.sent<mav::StatusText>()) {
+    if (t.text_string().find(words) != std::string::npos) return true;
+  }
+  return false;
+}
+
+SimFcParams watching_the_bench() {
+  SimFcParams params;
+  params.ardupilot.mav_gcs_sysid = 245;  // the bench's companion
+  return params;
+}
+
+// ArduCopter without setpoints levels and holds its height after GUID_TIMEOUT (3 s), for as
+// long as the companion's HEARTBEAT comes; once that stops, its GCS failsafe (FS_GCS_ENABLE
+// 5) lands FS_GCS_TIMEOUT (5 s) after the last one: the height held 4 s, then a descent.
+TEST(SimulatedAutopilot, ArduPilotGuidedTimeoutLevelsAndTheGcsFailsafeLands) {
+  AutopilotBench bench(Autopilot::ArduPilot, cover::sim::fc::test::ground_world(),
+                       watching_the_bench());
+  bench.companion_heartbeat();
   fly_offboard(bench, 0.7F);
   bench.stream(1.0, 0.6F);
+  bench.companion_heartbeat();
   bench.stream(1.0, 0.515F);  // about hover
-  bench.idle(2.9);
+  alive_without_setpoints(bench, 2.9);
   EXPECT_TRUE(bench.autopilot().events().back().kind != AutopilotEvent::Kind::Failsafe);
-  bench.idle(0.2);  // GUID_TIMEOUT = 3 s: levelled, height held, still GUIDED_NOGPS
+  alive_without_setpoints(bench, 0.2);  // GUID_TIMEOUT = 3 s: levelled, height held
   EXPECT_EQ(bench.autopilot().mode(), FlightMode::Offboard);
   EXPECT_TRUE(has_event(bench.autopilot(), AutopilotEvent::Kind::Failsafe, "levelling"));
   const double height_m = bench.world().state().uav.position_m.z;
-  bench.idle(1.5);
+  alive_without_setpoints(bench, 8.0);  // the companion alive: held, as long as it lives
+  EXPECT_EQ(bench.autopilot().mode(), FlightMode::Offboard);
   EXPECT_NEAR(bench.world().state().uav.position_m.z, height_m, 0.3);
-  bench.idle(0.6);  // guid_level_hold_s = 2 s later: LAND
+  bench.companion_heartbeat();  // its last
+  bench.idle(4.9);
+  EXPECT_EQ(bench.autopilot().mode(), FlightMode::Offboard);
+  bench.idle(0.2);  // FS_GCS_TIMEOUT = 5 s after it
   EXPECT_EQ(bench.autopilot().mode(), FlightMode::Land);
-  bench.idle(1.0);
+  EXPECT_TRUE(said(bench, "GCS Failsafe"));
+  bench.idle(3.5);  // the failsafe's LAND holds its height 4 s first
+  EXPECT_NEAR(bench.world().state().uav.position_m.z, height_m, 0.3);
+  bench.idle(2.0);
+  EXPECT_LT(bench.world().state().uav.velocity_m_s.z, -0.3);
+  bench.companion_heartbeat();  // back: the failsafe clears, the LAND goes on
+  bench.idle(0.1);
+  EXPECT_TRUE(said(bench, "GCS Failsafe Cleared"));
   EXPECT_EQ(bench.sent<mav::Heartbeat>().back().custom_mode, copter::kLand);
+}
+
+// Only the watched system's HEARTBEAT counts, and only once one has come; armed on the
+// ground, the failsafe disarms.
+TEST(SimulatedAutopilot, ArduPilotGcsFailsafeWatchesOneSystemAndDisarmsOnTheGround) {
+  {
+    AutopilotBench bench(Autopilot::ArduPilot);  // watches its own id; the bench is 245
+    bench.companion_heartbeat();
+    fly_offboard(bench, 0.0F);
+    bench.idle(6.0);
+    EXPECT_TRUE(bench.autopilot().armed()) << "a HEARTBEAT of another system was watched";
+  }
+  AutopilotBench bench(Autopilot::ArduPilot, cover::sim::fc::test::ground_world(),
+                       watching_the_bench());
+  fly_offboard(bench, 0.0F);
+  bench.companion_heartbeat();  // the first and last
+  bench.idle(4.9);
+  EXPECT_TRUE(bench.autopilot().armed());
+  bench.idle(0.2);
+  EXPECT_FALSE(bench.autopilot().armed());
+  EXPECT_TRUE(said(bench, "GCS Failsafe - Disarming"));
 }
 
 TEST(SimulatedAutopilot, ThrustIsTheTrueMaxThrustTimesTheSetpoint) {

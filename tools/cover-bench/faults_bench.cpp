@@ -25,10 +25,13 @@
 #include "bench_cli.hpp"
 #include "bench_registry.hpp"
 #include "bench_stats.hpp"
+#include "cover/clock/clock.hpp"
 #include "cover/config/yaml_reader.hpp"
 #include "cover/dds/domain_claim.hpp"
 #include "cover/dds/participant.hpp"
 #include "cover/dds/topics.hpp"
+#include "cover/firmware/firmware_monitor.hpp"
+#include "cover/firmware/firmware_profile.hpp"
 #include "cover/firmware/sitl_ports.hpp"
 #include "cover/process/child_process.hpp"
 #include "cover/shm/segment_name.hpp"
@@ -144,6 +147,37 @@ class Probe {
 };
 
 // The UAV's contacts with a surface while the world is watched.
+// The UAV's flight after its bridge was killed under a real firmware, for a reader: how
+// high and how far it went (the firmware flew on without COVER).
+struct AfterKill {
+  std::int64_t kill_ns = 0;  // monotonic
+  bool started = false;
+  double start_x_m = 0.0, start_y_m = 0.0, start_z_m = 0.0;
+  double peak_z_m = -1e9;
+  double farthest_m = 0.0;
+  void observe(const cover::sim::SharedUav& uav) {
+    const auto& p = uav.state.position_m;
+    if (!started) {
+      started = true;
+      start_x_m = p.x;
+      start_y_m = p.y;
+      start_z_m = p.z;
+    }
+    peak_z_m = std::max(peak_z_m, static_cast<double>(p.z));
+    farthest_m = std::max(farthest_m, std::hypot(p.x - start_x_m, p.y - start_y_m));
+  }
+  std::string describe(const cover::sim::SharedUav& end) const {
+    char buf[200];
+    std::snprintf(
+        buf, sizeof buf,
+        "after the kill: from %.2f m up to %.2f m, %.1f m away at most; at the end "
+        "%.2f m up, %.1f m away",
+        start_z_m, peak_z_m, farthest_m, static_cast<double>(end.state.position_m.z),
+        std::hypot(end.state.position_m.x - start_x_m, end.state.position_m.y - start_y_m));
+    return buf;
+  }
+};
+
 struct Landing {
   bool airborne = false;
   double last_vz_m_s = 0.0;
@@ -281,6 +315,11 @@ class FaultRun {
                  std::to_string(firmware_->instance), "--workdir", dir_ + "/" + run_id_ + "_sitl",
                  "--params", firmware_->params_file()},
                 v.sim, "firmware");
+      // A ground station's link of its own: what the firmware does once the bridge, which
+      // reports its mode otherwise, is gone.
+      monitor_ = firmware_->px4()
+                     ? cover::firmware::FirmwareMonitor::px4(firmware_->instance)
+                     : cover::firmware::FirmwareMonitor::arducopter(firmware_->instance);
     } else if (through_bridge(fault)) {
       sim.insert(sim.end(), {"--fc", "px4", "--fc-peer-port-base", fc_port, "--fc-bind-port-base",
                              std::to_string(bridge_port(domain) + 1)});
@@ -382,6 +421,7 @@ class FaultRun {
     while (Clock::now() < deadline && world_) {
       if (world_->read(*last_) && last_->time_s > 0.0) {
         landing_.observe(last_->uavs[0], last_->time_s);
+        if (after_kill_) after_kill_->observe(last_->uavs[0]);
         if (until(*last_)) return true;
       }
       if (sim_exit_ = sim_->wait(0ms); sim_exit_) return false;
@@ -393,8 +433,10 @@ class FaultRun {
   void inject() {
     const int reference = probe_.reference_ugv();
     const double world_at_fault_s = last_->time_s;
-    if (fault_ == "uav_agent_kill" || fault_ == "agent_kill_with_bridge" ||
-        fault_ == "bridge_kill") {
+    if (fault_ == "bridge_kill" && firmware_) {
+      kill_bridge_under_firmware();
+    } else if (fault_ == "uav_agent_kill" || fault_ == "agent_kill_with_bridge" ||
+               fault_ == "bridge_kill") {
       // The flight controller takes over: the simulated one's offboard loss, or the
       // autopilot's land mode (requested by the bridge, or PX4's own offboard loss when the
       // bridge is the one killed).
@@ -445,6 +487,62 @@ class FaultRun {
     }
   }
 
+  // The bridge killed with a real firmware flying: nothing reports the firmware's mode to
+  // the world, so its own link times its failsafe: PX4's "Failsafe activated" (offboard
+  // loss), ArduCopter's "GCS Failsafe" (its bridge's HEARTBEAT watched), or its HEARTBEAT
+  // in land mode (1 Hz), whichever comes first.
+  void kill_bridge_under_firmware() {
+    after_kill_.emplace();
+    const std::int64_t kill_ns = cover::clock::monotonic_ns();
+    after_kill_->kill_ns = kill_ns;
+    kill(bridge_->pid(), SIGKILL);
+    bridge_->wait(5s);
+    std::optional<std::int64_t> land_ns;
+    watch(
+        [&](const SharedWorld&) {
+          land_ns = firmware_failsafe_ns(kill_ns);
+          return land_ns.has_value();
+        },
+        20s);
+    if (!land_ns) {
+      row_.detail = "no failsafe of the firmware's within 20 s of the kill";
+      return;
+    }
+    row_.time_to_failsafe_ms = static_cast<double>(*land_ns - kill_ns) * 1e-6;
+  }
+
+  // What the firmware said since the kill, and whether it is armed now.
+  std::string firmware_said() const {
+    std::string text;
+    int n = 0;
+    for (const auto& t : monitor_->texts()) {
+      if (t.at_ns < after_kill_->kill_ns || ++n > 8) continue;
+      text += " '" + t.value + "'";
+    }
+    const auto hb = monitor_->heartbeat();
+    return "; the firmware said" + (text.empty() ? std::string(" nothing") : text) +
+           (hb ? (cover::firmware::armed(*hb) ? ", armed" : ", disarmed") +
+                     (", mode " + std::to_string(hb->custom_mode))
+               : std::string(", no HEARTBEAT"));
+  }
+
+  std::optional<std::int64_t> firmware_failsafe_ns(std::int64_t since_ns) const {
+    std::optional<std::int64_t> first;
+    for (const auto& text : monitor_->texts()) {
+      if (text.at_ns >= since_ns && text.value.find("Failsafe") != std::string::npos) {
+        first = text.at_ns;
+        break;
+      }
+    }
+    for (const auto& hb : monitor_->heartbeats_since(since_ns)) {
+      if (cover::firmware::in_land(firmware_->autopilot(), hb.value)) {
+        if (!first || hb.at_ns < *first) first = hb.at_ns;
+        break;
+      }
+    }
+    return first;
+  }
+
   void finish() {
     if (fault_ == "sim_kill") {
       finish_without_world();
@@ -457,8 +555,11 @@ class FaultRun {
     // its rotors then spin down, their thrust never exactly 0.
     const auto disarmed_now = [&](const cover::sim::SharedUav& uav) {
       if (firmware_) {
+        // With the bridge gone only the firmware's own link says it disarmed.
+        const auto heartbeat = monitor_ ? monitor_->heartbeat() : std::nullopt;
         return uav.offboard == OffboardState::LossDisarmed ||
-               uav.offboard == OffboardState::WaitingForAgent;
+               uav.offboard == OffboardState::WaitingForAgent ||
+               (fault_ == "bridge_kill" && heartbeat && !cover::firmware::armed(*heartbeat));
       }
       return agent_gone ? uav.offboard == OffboardState::LossDisarmed
                         : uav.command.thrust_m_s2 == 0.0;
@@ -489,6 +590,10 @@ class FaultRun {
       row_.outcome = "landed_safely";
     } else {
       row_.outcome = "crashed";
+    }
+    if (after_kill_) {
+      if (!row_.detail.empty()) row_.detail += "; ";
+      row_.detail += after_kill_->describe(uav) + firmware_said();
     }
     if (!row_.detail.empty()) row_.detail += "; ";
     row_.detail +=
@@ -530,6 +635,8 @@ class FaultRun {
   std::unique_ptr<ChildProcess> uav_;
   std::unique_ptr<ChildProcess> bridge_;            // the flight-controller faults, or --firmware
   std::unique_ptr<ChildProcess> firmware_process_;  // --firmware: cover-firmware
+  std::unique_ptr<cover::firmware::FirmwareMonitor> monitor_;  // --firmware: its GCS link
+  std::optional<AfterKill> after_kill_;  // bridge_kill under a firmware: where the UAV went
   std::optional<cover::shm::SeqlockReader<SharedWorld>> world_;
   std::unique_ptr<SharedWorld> last_ = std::make_unique<SharedWorld>();
   std::optional<int> sim_exit_;

@@ -210,6 +210,7 @@ void Bridge::learn_identity(double now_s) {
                                      ? static_cast<std::uint8_t>(config_.params.system_id)
                                      : session_.system_id();
   encoder_.set_sender(system_id, static_cast<std::uint8_t>(config_.params.component_id));
+  parameters_.set_context(ParameterContext{system_id});
   note(Notice::Level::Info, "autopilot found: system " + std::to_string(session_.system_id()) +
                                 " component " + std::to_string(session_.component_id()) + ", " +
                                 autopilot_name(session_.reported_autopilot()) +

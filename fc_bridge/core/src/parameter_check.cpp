@@ -50,6 +50,13 @@ void ParameterCheck::restart(double now_s) {
   complete_once_ = false;
 }
 
+void ParameterCheck::set_context(const ParameterContext& context) {
+  context_ = context;
+  for (std::size_t i = 0; i < rules_.size(); ++i) {
+    if (findings_[i].known) judge(i, findings_[i].name, findings_[i].value);
+  }
+}
+
 std::optional<mavlink::ParamRequestRead> ParameterCheck::next_request(double now_s) {
   if (!round_started_) return std::nullopt;
   if (complete() && now_s - round_start_s_ >= refresh_s_) {
@@ -105,8 +112,9 @@ void ParameterCheck::judge(std::size_t index, const std::string& name, double va
   finding.known = std::isfinite(value);
   finding.absent = false;
   finding.value = value;
-  const auto acceptable = rules_[index].acceptable;
-  finding.ok = finding.known && (acceptable == nullptr || acceptable(value));
+  const ParameterRule& rule = rules_[index];
+  finding.ok = finding.known && (rule.acceptable == nullptr || rule.acceptable(value)) &&
+               (rule.acceptable_on_link == nullptr || rule.acceptable_on_link(value, context_));
 }
 
 bool ParameterCheck::complete() const {

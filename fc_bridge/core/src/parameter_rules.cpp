@@ -25,6 +25,16 @@ bool mavlink_control_allowed(double value) {
 bool guided_timeout_short(double value) {
   return value > 0.0 && value <= 3.0;
 }
+bool lands(double value) {
+  return value == 5.0;
+}  // FS_GCS_ENABLE 5: Land (RTL and SmartRTL need a position COVER does not give)
+bool gcs_timeout_short(double value) {
+  return value > 0.0 && value <= 5.0;
+}
+// ArduPilot's GCS failsafe watches the HEARTBEATs of this one system id.
+bool watches_the_bridge(double value, const ParameterContext& context) {
+  return context.bridge_system_id != 0 && value == static_cast<double>(context.bridge_system_id);
+}
 
 std::vector<ParameterRule> px4_rules() {
   return {
@@ -86,7 +96,7 @@ std::vector<ParameterRule> ardupilot_rules() {
        ParameterWeight::Advisory,
        "> 0 and <= 3 s",
        "ArduPilot's own setpoint-loss delay: if the bridge dies it levels and holds "
-       "altitude after it",
+       "altitude after it, until the GCS failsafe (FS_GCS_ENABLE) lands it",
        guided_timeout_short},
       {{"FS_THR_ENABLE"},
        ParameterWeight::Advisory,
@@ -104,6 +114,27 @@ std::vector<ParameterRule> ardupilot_rules() {
        "ArduPilot disarms this long after arming while landed at zero throttle: arm within "
        "it of the task's start",
        nullptr},
+      {{"FS_GCS_ENABLE"},
+       ParameterWeight::Advisory,
+       "5 (Land)",
+       "what ArduPilot does when the HEARTBEATs of MAV_GCS_SYSID stop: with the bridge's "
+       "watched, it lands when the bridge dies; without (0), it hovers level after "
+       "GUID_TIMEOUT indefinitely, drifting without a position",
+       lands},
+      {{"FS_GCS_TIMEOUT"},
+       ParameterWeight::Advisory,
+       "> 0 and <= 5 s",
+       "how long after the watched HEARTBEAT stops ArduPilot lands (GCS failsafe); until "
+       "then it flies the last setpoint for GUID_TIMEOUT, then hovers level and drifts",
+       gcs_timeout_short},
+      {{"MAV_GCS_SYSID", "SYSID_MYGCS"},
+       ParameterWeight::Advisory,
+       "the bridge's own system id (the vehicle's)",
+       "the system whose HEARTBEATs ArduPilot's GCS failsafe watches (MAV_GCS_SYSID from "
+       "ArduPilot 4.7, SYSID_MYGCS before): the bridge's makes its death a failsafe; a "
+       "ground station at another id still commands, but its RC overrides are ignored",
+       nullptr,
+       watches_the_bridge},
       {{"MAV_SYSID", "SYSID_THISMAV"},
        ParameterWeight::Info,
        "any (the system id)",

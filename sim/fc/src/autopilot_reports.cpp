@@ -24,6 +24,7 @@ void SimulatedAutopilot::set_mode(FlightMode mode, double now_s, const std::stri
   mode_ = mode;
   hold_height_m_.reset();
   guided_levelled_since_s_.reset();
+  land_descent_from_s_.reset();
   if (mode != FlightMode::Land) in_failsafe_ = false;
   log_event(AutopilotEvent::Kind::Mode, now_s,
             std::string("Mode ") + mode_name() + " (" + why + ")");

@@ -14,6 +14,10 @@ namespace {
 
 namespace typemask = mavlink::attitude_target_typemask;
 
+constexpr std::uint8_t kSeverityWarning = 4;  // MAV_SEVERITY_WARNING
+// ArduCopter's LAND_WITH_DELAY_MS: a failsafe's LAND holds its height this long first.
+constexpr double kLandWithDelay_s = 4.0;
+
 bool finite(const mavlink::SetAttitudeTarget& s) {
   return std::isfinite(s.body_roll_rate) && std::isfinite(s.body_pitch_rate) &&
          std::isfinite(s.body_yaw_rate) && std::isfinite(s.thrust);
@@ -67,6 +71,10 @@ FrameResponse SimulatedAutopilot::on_frame(const mavlink::Frame& frame, double n
     return response;
   }
   link_active_ = true;
+  if (frame.message_id == mavlink::Heartbeat::kId &&
+      frame.system_id == watched_gcs_sysid(params_.ardupilot, system_id())) {
+    gcs_seen_s_ = now_s;
+  }
   if (const auto setpoint = mavlink::decode<mavlink::SetAttitudeTarget>(frame)) {
     handle_setpoint(frame, *setpoint, now_s, response);
   } else if (const auto command = mavlink::decode<mavlink::CommandLong>(frame)) {
@@ -158,6 +166,7 @@ AutopilotStep SimulatedAutopilot::step(double now_s, const World& world) {
     disarm(now_s, "landed", 0);
   }
   check_offboard_loss(now_s);
+  check_gcs_failsafe(now_s);
   AutopilotStep out;
   out.plant_command = plant_command(world);
   check_auto_disarm(now_s);
@@ -189,18 +198,40 @@ void SimulatedAutopilot::check_offboard_loss(double now_s) {
     set_mode(FlightMode::Land, now_s, "failsafe");
     return;
   }
-  // ArduPilot levels and holds silently (mode_guided.cpp); the LAND after it is ours, for a
-  // vehicle in the air only (on the ground DISARM_DELAY ends it, as on ArduCopter SITL).
+  // ArduPilot levels and holds silently and indefinitely (mode_guided.cpp): its GCS failsafe
+  // or, on the ground, DISARM_DELAY ends it.
   if (!guided_levelled_since_s_ && age_s > params_.ardupilot.guid_timeout_s) {
     guided_levelled_since_s_ = now_s;
     in_failsafe_ = true;
     log_event(AutopilotEvent::Kind::Failsafe, now_s, "GUIDED: setpoint timeout, levelling");
   }
-  if (guided_levelled_since_s_ && !resting_ &&
-      now_s - *guided_levelled_since_s_ >= params_.ardupilot.guid_level_hold_s) {
-    log_event(AutopilotEvent::Kind::Failsafe, now_s, "Failsafe: no setpoints, landing");
-    set_mode(FlightMode::Land, now_s, "failsafe");
+}
+
+// ArduCopter's failsafe_gcs_check and failsafe_gcs_on_event (events.cpp): armed, the
+// watched HEARTBEAT silent for longer than FS_GCS_TIMEOUT after one has come: on the
+// ground a disarm, in the air LAND "with pause". Its return clears the failsafe, not LAND.
+void SimulatedAutopilot::check_gcs_failsafe(double now_s) {
+  const ArduPilotParams& a = params_.ardupilot;
+  if (profile_ != Autopilot::ArduPilot || a.fs_gcs_enable == 0 || !gcs_seen_s_) return;
+  const bool silent = now_s - *gcs_seen_s_ > a.fs_gcs_timeout_s;
+  if (!silent) {
+    if (gcs_failsafe_) say(kSeverityWarning, "GCS Failsafe Cleared");
+    gcs_failsafe_ = false;
+    return;
   }
+  if (gcs_failsafe_ || !armed_) return;
+  gcs_failsafe_ = true;
+  if (resting_) {
+    say(kSeverityWarning, "GCS Failsafe - Disarming");
+    disarm(now_s, "GCS failsafe", 0);
+    return;
+  }
+  say(kSeverityWarning, "GCS Failsafe");
+  log_event(AutopilotEvent::Kind::Failsafe, now_s, "GCS failsafe: landing");
+  const bool already_landing = mode_ == FlightMode::Land;
+  set_mode(FlightMode::Land, now_s, "GCS failsafe");
+  in_failsafe_ = true;
+  if (!already_landing) land_descent_from_s_ = now_s + kLandWithDelay_s;
 }
 
 // The land detector (the plant's contact) and the firmware's auto-disarm. ArduPilot's
@@ -236,6 +267,7 @@ QuadrotorCommand SimulatedAutopilot::plant_command(const World& world) {
     case FlightMode::Position:
       return hold_command(world);
     case FlightMode::Land:
+      if (land_descent_from_s_ && last_now_s_ < *land_descent_from_s_) return hold_command(world);
       return levelled_vertical_speed_command(world, -params_.land_speed_m_s);
     case FlightMode::Offboard:
       if (guided_levelled_since_s_ || !setpoint_) return hold_command(world);

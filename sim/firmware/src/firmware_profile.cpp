@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "cover/firmware/params_file.hpp"
 #include "cover/mavlink/state_messages.hpp"
 
 namespace cover::firmware {
@@ -48,16 +49,20 @@ FirmwareProfile arducopter_profile() {
   FirmwareProfile p;
   p.firmware = Autopilot::ArduPilot;
   p.bridge_autopilot = "ardupilot";
-  // docs/flight-controller.md, "Connecting a real ArduPilot"; GUID_TIMEOUT is its default.
-  p.flight_params = {{"FS_THR_ENABLE", "0"},
-                     {"ATC_ANGLE_BOOST", "0"},
-                     {"GUID_OPTIONS", "8"},
-                     {"GUID_TIMEOUT", "3"},
-                     {"EK3_GPS_CHECK", "0"}};
-  p.wrong_params = {{"ATC_ANGLE_BOOST", "1"},  // thrust compensated twice
-                    {"GUID_OPTIONS", "0"},     // thrust read as a climb rate
-                    {"FS_THR_ENABLE", "1"}};   // arming needs an RC receiver
-  p.wrong_names = {"ATC_ANGLE_BOOST", "GUID_OPTIONS", "FS_THR_ENABLE"};
+  // docs/flight-controller.md, "Connecting a real ArduPilot"; GUID_TIMEOUT and
+  // FS_GCS_TIMEOUT are its defaults. The GCS failsafe watches the bridge's HEARTBEAT (the
+  // vehicle's own system id) and lands when it stops.
+  p.flight_params = {{"FS_THR_ENABLE", "0"},          {"ATC_ANGLE_BOOST", "0"},
+                     {"GUID_OPTIONS", "8"},           {"GUID_TIMEOUT", "3"},
+                     {"FS_GCS_ENABLE", "5"},          {"FS_GCS_TIMEOUT", "5"},
+                     {"MAV_GCS_SYSID", kOwnSystemId}, {"EK3_GPS_CHECK", "0"}};
+  p.wrong_params = {{"ATC_ANGLE_BOOST", "1"},   // thrust compensated twice
+                    {"GUID_OPTIONS", "0"},      // thrust read as a climb rate
+                    {"FS_THR_ENABLE", "1"},     // arming needs an RC receiver
+                    {"FS_GCS_ENABLE", "0"},     // ArduPilot's defaults: the bridge's death
+                    {"MAV_GCS_SYSID", "255"}};  // is no failsafe
+  p.wrong_names = {"ATC_ANGLE_BOOST", "GUID_OPTIONS", "FS_THR_ENABLE", "FS_GCS_ENABLE",
+                   "MAV_GCS_SYSID"};
   p.blocking_names = {"ATC_ANGLE_BOOST", "GUID_OPTIONS"};
   p.bridge_hover_start = 0.43;  // SITL's copter.parm says MOT_THST_HOVER 0.39
   p.offboard_loss_param = "GUID_TIMEOUT";

@@ -109,8 +109,15 @@ void LinkTap::from_bridge(const std::uint8_t* data, std::size_t size) {
       commands_.push_back({at_ns, *command});  // what the bridge did, delivered or not
     } else if (const auto setpoint = mav::decode<mav::SetAttitudeTarget>(frame); setpoint && !cut) {
       setpoint_log_.push_back({at_ns, *setpoint});
+    } else if (frame.message_id == mav::Heartbeat::kId && !cut) {
+      last_bridge_heartbeat_ns_ = at_ns;
     }
   });
+}
+
+std::optional<std::int64_t> LinkTap::last_bridge_heartbeat_ns() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return last_bridge_heartbeat_ns_;
 }
 
 double LinkTap::rate_hz(std::uint32_t message_id, std::int64_t from_ns, std::int64_t to_ns) const {

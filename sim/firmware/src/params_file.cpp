@@ -31,4 +31,13 @@ FirmwareParams read_params_file(const std::filesystem::path& path) {
   return params;
 }
 
+void write_arducopter_params(const std::filesystem::path& path, const FirmwareParams& params,
+                             int own_system_id) {
+  std::ofstream out(path);
+  for (const auto& [name, value] : params) {
+    out << name << " " << (value == kOwnSystemId ? std::to_string(own_system_id) : value) << "\n";
+  }
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
 }  // namespace cover::firmware

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "cover/firmware/params_file.hpp"
+
 namespace cover::firmware {
 namespace {
 
@@ -114,14 +116,10 @@ SitlProcess SitlProcess::start_arducopter_model(const FirmwareBuild& build, Inst
                                                 const FirmwareParams& params,
                                                 const std::string& model) {
   fs::create_directories(workdir);
-  const fs::path ours = workdir / "cover.parm";
-  {
-    std::ofstream parm(ours);
-    for (const auto& [name, value] : params) parm << name << " " << value << "\n";
-    if (!parm) throw std::runtime_error("cannot write " + ours.string());
-  }
-  const fs::path console = workdir / "console.log";
   const int n = slot.instance();
+  const fs::path ours = workdir / "cover.parm";
+  write_arducopter_params(ours, params, n + 1);
+  const fs::path console = workdir / "console.log";
   // ArduPilot SITL writes its eeprom, logs and terrain into its working directory: a shell
   // enters it and becomes the firmware (exec: the same pid, the same process group).
   std::vector<std::string> argv{"/bin/sh",

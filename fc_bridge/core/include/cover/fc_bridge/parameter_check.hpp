@@ -18,6 +18,11 @@ enum class ParameterWeight {
 };
 const char* to_string(ParameterWeight weight);
 
+// What a value may be judged against besides constants: the link as the bridge speaks on it.
+struct ParameterContext {
+  int bridge_system_id = 0;  // the system id of the bridge's own frames; 0: not known yet
+};
+
 // A parameter COVER depends on, what it needs and why. `names`: the parameter under each
 // name it has had, newest first (ArduPilot 4.7 renamed SYSID_THISMAV to MAV_SYSID).
 struct ParameterRule {
@@ -26,6 +31,9 @@ struct ParameterRule {
   std::string needed;  // in words: "0", "bit 3 (8) set"
   std::string why;
   bool (*acceptable)(double value) = nullptr;  // nullptr: any value
+  // For a value that must agree with the link rather than a constant (ArduPilot's
+  // MAV_GCS_SYSID: the bridge's own system id); nullptr: not asked.
+  bool (*acceptable_on_link)(double value, const ParameterContext& context) = nullptr;
 };
 std::vector<ParameterRule> parameter_rules(Autopilot kind);
 
@@ -52,6 +60,9 @@ class ParameterCheck {
                  double timeout_s, int tries, double refresh_s);
 
   void restart(double now_s);
+  // The link the values are judged against (the bridge learns its system id from the
+  // autopilot's HEARTBEAT); every value already known is judged again.
+  void set_context(const ParameterContext& context);
   std::optional<mavlink::ParamRequestRead> next_request(double now_s);
   // A PARAM_VALUE from the autopilot; true when it answered one of ours (news to log).
   bool on_value(const mavlink::ParamValue& value, double now_s);
@@ -73,6 +84,7 @@ class ParameterCheck {
   void judge(std::size_t index, const std::string& name, double value);
 
   std::vector<ParameterRule> rules_;
+  ParameterContext context_;
   std::vector<ParameterFinding> findings_;
   std::vector<Reading> readings_;
   mavlink::ParamEncoding encoding_;

@@ -39,6 +39,9 @@ class LinkTap {
   std::vector<Timed<mavlink::CommandLong>> commands() const;  // bridge -> firmware
   // The newest SET_ATTITUDE_TARGET the bridge sent, and how many.
   std::optional<Timed<mavlink::SetAttitudeTarget>> last_setpoint() const;
+  // When the newest HEARTBEAT of the bridge's passed on to the firmware (what ArduCopter's
+  // GCS failsafe times its silence from, with MAV_GCS_SYSID the bridge's id).
+  std::optional<std::int64_t> last_bridge_heartbeat_ns() const;
   std::uint64_t setpoints() const;
   // Every SET_ATTITUDE_TARGET passed on to the firmware since `since_ns`, and the
   // firmware's ATTITUDE_TARGETs (what it says its setpoint is) to the bridge.
@@ -67,6 +70,7 @@ class LinkTap {
   std::vector<Timed<mavlink::CommandLong>> commands_;
   std::vector<Timed<mavlink::SetAttitudeTarget>> setpoint_log_;
   std::vector<Timed<mavlink::AttitudeTarget>> attitude_targets_;
+  std::optional<std::int64_t> last_bridge_heartbeat_ns_;
   std::atomic<bool> cut_{false};
   std::atomic<bool> stop_{false};
   std::thread thread_;

@@ -44,7 +44,8 @@ class SitlProcess {
   //     --defaults copter.parm,WORKDIR/cover.parm --serial0 tcp:0
   //     --serial1 udpclient:127.0.0.1:<14540 + N>
   // cover.parm holds `params` (they override SITL's defaults; -w wipes what an earlier run
-  // stored). SERIAL0 is a TCP server on 5760 + 10 N.
+  // stored; written by write_arducopter_params, kOwnSystemId as N + 1). SERIAL0 is a TCP
+  // server on 5760 + 10 N.
   static SitlProcess start_arducopter(const FirmwareBuild& build, InstanceSlot slot,
                                       const std::filesystem::path& workdir,
                                       const FirmwareParams& params);

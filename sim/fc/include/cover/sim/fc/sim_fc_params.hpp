@@ -149,7 +149,9 @@ struct ArduPilotParams {
   int atc_angle_boost = 0;         // ATC_ANGLE_BOOST: 1 multiplies the thrust by 1/cos(tilt)
   int guid_options = 8;            // GUID_OPTIONS: reported only (bit 3: thrust is thrust)
   double guid_timeout_s = 3.0;     // GUID_TIMEOUT: no setpoint -> level, hold height
-  double guid_level_hold_s = 2.0;  // the simulator's own: levelled this long, then LAND
+  int fs_gcs_enable = 5;           // FS_GCS_ENABLE: 0 none, else LAND (no position: no RTL)
+  double fs_gcs_timeout_s = 5.0;   // FS_GCS_TIMEOUT: the watched HEARTBEAT silent this long
+  int mav_gcs_sysid = 0;           // MAV_GCS_SYSID: whose HEARTBEAT is watched; 0: our own id
   int fs_thr_enable = 0;           // FS_THR_ENABLE: reported only
   double mot_thst_hover = 0.35;    // MOT_THST_HOVER: reported only
   int disarm_delay_s = 10;         // DISARM_DELAY: landed at zero throttle this long: disarm
@@ -173,12 +175,23 @@ struct ArduPilotParams {
           Field("s", "GUID_TIMEOUT: no setpoint this long in GUIDED_NOGPS: level, height held")
               .at_least(0.1)
               .at_most(60.0));
-    visit("guid_level_hold_s", self.guid_level_hold_s,
-          Field("s",
-                "levelled this long after GUID_TIMEOUT, then LAND (the simulator's own: "
-                "ArduPilot holds until its pilot acts)")
+    visit("fs_gcs_enable", self.fs_gcs_enable,
+          Field("",
+                "FS_GCS_ENABLE: 0 no GCS failsafe; else LAND when the watched HEARTBEAT stops "
+                "(armed, in the air; on the ground it disarms). Without a position ArduPilot's "
+                "RTL, SmartRTL and Brake fall back to LAND, so every action lands here")
               .at_least(0.0)
-              .at_most(600.0));
+              .at_most(7.0));
+    visit("fs_gcs_timeout_s", self.fs_gcs_timeout_s,
+          Field("s", "FS_GCS_TIMEOUT: the watched HEARTBEAT silent this long: the GCS failsafe")
+              .at_least(2.0)
+              .at_most(120.0));
+    visit("mav_gcs_sysid", self.mav_gcs_sysid,
+          Field("",
+                "MAV_GCS_SYSID: the system whose HEARTBEAT the GCS failsafe watches; 0: the "
+                "vehicle's own id, which a companion (COVER's bridge) speaks with")
+              .at_least(0.0)
+              .at_most(255.0));
     visit("fs_thr_enable", self.fs_thr_enable,
           Field("", "FS_THR_ENABLE (reported only)").at_least(0.0).at_most(7.0));
     visit("mot_thst_hover", self.mot_thst_hover,
@@ -193,6 +206,11 @@ struct ArduPilotParams {
               .at_most(600.0));
   }
 };
+
+// The system whose HEARTBEAT the simulated ArduPilot's GCS failsafe watches.
+inline std::uint8_t watched_gcs_sysid(const ArduPilotParams& p, std::uint8_t own_system_id) {
+  return p.mav_gcs_sysid == 0 ? own_system_id : static_cast<std::uint8_t>(p.mav_gcs_sysid);
+}
 
 // The simulated autopilots (config/sim/sim_fc.yaml, section `sim_fc`): their MAVLink
 // identities, each firmware's parameters and streams, the battery.

@@ -68,8 +68,10 @@ enum class StepClosing { None, HighresImu };
 //    attitude, targeted at this system, from the first sender only; thrust u becomes
 //    u * the vehicle's TRUE max thrust (ArduPilot with ATC_ANGLE_BOOST: / cos(tilt));
 //  - offboard loss: PX4 after COM_OF_LOSS_T descends in land mode; ArduPilot after
-//    GUID_TIMEOUT levels and holds height, then lands after guid_level_hold_s (the
-//    simulator's own step);
+//    GUID_TIMEOUT levels and holds height;
+//  - ArduPilot's GCS failsafe (FS_GCS_ENABLE): armed, once a HEARTBEAT of MAV_GCS_SYSID (the
+//    companion's) has come and then none for FS_GCS_TIMEOUT, LAND, its height held for 4 s
+//    first (LAND_WITH_DELAY_MS), or a disarm on the ground;
 //  - auto-disarm (AutoDisarm); land mode: a levelled descent at land_speed_m_s; after
 //    PX4's disarm in it, its HEARTBEAT shows the mode before the landing again;
 //  - streams (MessageStreams): PX4's onboard set, ArduPilot HEARTBEAT only, each changed by
@@ -127,6 +129,7 @@ class SimulatedAutopilot {
   double setpoint_age_s(double now_s) const;
   bool offboard_signal(double now_s) const;
   void check_offboard_loss(double now_s);
+  void check_gcs_failsafe(double now_s);
   void check_auto_disarm(double now_s);
   QuadrotorCommand plant_command(const World& world);
   QuadrotorCommand hold_command(const World& world);
@@ -204,6 +207,11 @@ class SimulatedAutopilot {
   std::optional<double> hold_height_m_;  // captured on the first held step of a mode
   // ArduPilot: when GUID_TIMEOUT levelled the vehicle (nullopt: flying setpoints).
   std::optional<double> guided_levelled_since_s_;
+  // ArduPilot's GCS failsafe: the watched HEARTBEAT's last arrival, whether the failsafe is
+  // on, and until when a failsafe's LAND holds its height before descending.
+  std::optional<double> gcs_seen_s_;
+  bool gcs_failsafe_ = false;
+  std::optional<double> land_descent_from_s_;
   std::optional<Setpoint> setpoint_;
   std::optional<std::pair<std::uint8_t, std::uint8_t>> companion_;  // system, component
   bool release_requested_ = false;
