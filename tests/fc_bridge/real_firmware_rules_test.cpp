@@ -218,7 +218,9 @@ TEST(Parameters, ArduPilotAngleBoostOnHoldsTasksWithTheReason) {
   bool sysid_found = false;
   for (const ParameterFinding& f : s.parameters) {
     if (f.name == "SYSID_THISMAV") sysid_found = f.known && f.value == 7.0;
-    if (f.name == "GUID_OPTIONS") EXPECT_TRUE(f.ok);
+    if (f.name == "GUID_OPTIONS") {
+      EXPECT_TRUE(f.ok);
+    }
   }
   EXPECT_TRUE(sysid_found) << "the old name is tried when the new one is not answered";
   EXPECT_TRUE(rig.noticed("COVER's tasks are held: autopilot parameter ATC_ANGLE_BOOST is 1"));
