@@ -86,7 +86,7 @@ TEST(CoverBenchFirmware, Px4SihShortRunMeasuresEveryFigure) {
   }
   const BenchRun run = run_bench(
       {"firmware", "--autopilot", "px4", "--tries", "1", "--hold-s", "5", "--json"}, {}, 240s);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;  // the JSON: each try's detail
   const auto out = nlohmann::json::parse(run.out, nullptr, false);
   ASSERT_FALSE(out.is_discarded()) << run.out;
   ASSERT_EQ(out["autopilots"].size(), 1u) << run.out;

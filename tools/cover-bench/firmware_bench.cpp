@@ -432,13 +432,21 @@ double failsafe_after_s(fw::FirmwareRig& rig, std::int64_t from_ns,
   wait_for(
       [&] {
         if (rig.firmware_kind() == cover::Autopilot::Px4) {
+          // Its "Failsafe activated" text, or its HEARTBEAT in its land mode, whichever comes
+          // first: a STATUSTEXT can be dropped on a loaded machine (CI: none within 7 s).
           for (const auto& t : rig.monitor().texts()) {
             if (t.at_ns >= from_ns && t.value.find("Failsafe") != std::string::npos) {
               at = t.at_ns;
-              return true;
+              break;
             }
           }
-          return false;
+          for (const auto& hb : rig.monitor().heartbeats_since(from_ns)) {
+            if (fw::in_land(cover::Autopilot::Px4, hb.value)) {
+              if (!at || hb.at_ns < *at) at = hb.at_ns;
+              break;
+            }
+          }
+          return at.has_value();
         }
         // The first moment from which the yaw rate stays below 70 % of the turn for 100 ms
         // (one low sample of a noisy rate loop is no failsafe).
